@@ -1,0 +1,20 @@
+#pragma once
+// The subcommands of the `shaftlab` executable. Each registers its options on the CLI11 app and
+// returns the function that runs it once the command line is parsed.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace sl::app {
+
+using Command = std::function<int()>;
+
+Command add_render_command(CLI::App& app);
+Command add_scenes_command(CLI::App& app);
+Command add_gl_info_command(CLI::App& app);
+
+// "WxH" with both positive; throws sl::Error otherwise.
+void parse_size(const std::string& text, int& width, int& height);
+
+}  // namespace sl::app

@@ -1,0 +1,46 @@
+// shaftlab: a testbed for real-time volumetric light shafts. See README.md for the subcommands.
+
+#include <cstdio>
+#include <exception>
+#include <map>
+
+#include "app/commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"shaftlab: a testbed for real-time volumetric light shafts"};
+    app.require_subcommand(1);
+    std::map<CLI::App*, sl::app::Command> commands;
+    auto add = [&](sl::app::Command (*make)(CLI::App&)) {
+        const size_t before = app.get_subcommands({}).size();
+        sl::app::Command command = make(app);
+        commands[app.get_subcommands({})[before]] = std::move(command);
+    };
+    add(sl::app::add_render_command);
+    add(sl::app::add_scenes_command);
+    add(sl::app::add_gl_info_command);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "shaftlab: error: %s (see --help)\n", e.what());
+        return 2;
+    }
+    try {
+        for (const auto& [subcommand, command] : commands) {
+            if (subcommand->parsed()) {
+                return command();
+            }
+        }
+    } catch (const sl::Error& e) {
+        std::fprintf(stderr, "shaftlab: error: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "shaftlab: error: %s\n", e.what());
+        return 1;
+    }
+    return 1;
+}

@@ -1,0 +1,168 @@
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <regex>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "core/output_files.h"
+#include "gl/platform.h"
+#include "gl/renderer.h"
+#include "scenes/scene_file.h"
+
+namespace sl::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+struct RenderArguments {
+    std::string scene;
+    std::string method = "none";
+    std::string size = "640x360";
+    std::string out = "out";
+    std::string shadow = "pcf";
+    int pcf_radius = 1;
+    int shadow_map_size = 2048;
+    int warmup = 2;
+    int frames = 5;
+};
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+int run_render(const RenderArguments& args) {
+    gl::RenderOptions options;
+    parse_size(args.size, options.width, options.height);
+    options.shadow_filter = args.shadow == "hard" ? gl::ShadowFilter::hard : gl::ShadowFilter::pcf;
+    options.pcf_radius = args.pcf_radius;
+    options.shadow_map_size = args.shadow_map_size;
+    // Fail on an unknown method before any expensive work.
+    std::unique_ptr<gl::VolumeMethod> method = gl::create_volume_method(args.method);
+
+    auto start = Clock::now();
+    const Scene scene = load_scene(args.scene, SceneSearchPaths::defaults());
+    const double load_ms = ms_since(start);
+
+    start = Clock::now();
+    const auto platform = gl::create_osmesa_platform();
+    const gl::ContextInfo context = platform->info();
+    gl::SceneRenderer renderer(scene, options);
+    const double setup_ms = ms_since(start);
+
+    start = Clock::now();
+    method->prepare(scene);
+    const double prepare_ms = ms_since(start);
+    // Warm-up frames first: they absorb shader compilation and first-use costs (and llvmpipe's
+    // first GL_TIME_ELAPSED query, which reports time since boot). Timings are medians over the
+    // measured frames; the images come from the last one.
+    for (int i = 0; i < args.warmup; ++i) {
+        renderer.render(*method);
+    }
+    gl::Frame frame;
+    std::vector<double> cpu_ms, gpu_ms[4];
+    for (int i = 0; i < args.frames; ++i) {
+        frame = renderer.render(*method);
+        cpu_ms.push_back(frame.cpu_ms);
+        gpu_ms[0].push_back(frame.gpu.shadow_ms);
+        gpu_ms[1].push_back(frame.gpu.surface_ms);
+        gpu_ms[2].push_back(frame.gpu.volume_ms);
+        gpu_ms[3].push_back(frame.gpu.composite_ms);
+    }
+    frame.cpu_ms = median(cpu_ms);
+    frame.gpu = {median(gpu_ms[0]), median(gpu_ms[1]), median(gpu_ms[2]), median(gpu_ms[3])};
+
+    const std::string stem = fmt::format("{}.{}", scene.name, method->name());
+    nlohmann::ordered_json json = {
+        {"scene", scene.name},
+        {"scene_file", scene.source.string()},
+        {"method", method->name()},
+        {"width", options.width},
+        {"height", options.height},
+        {"shadow", {{"filter", args.shadow}, {"pcf_radius", options.pcf_radius},
+                    {"map_size", options.shadow_map_size}}},
+        {"protocol", {{"warmup_frames", args.warmup}, {"measured_frames", args.frames},
+                      {"statistic", "median"}}},
+        {"gl", {{"renderer", context.renderer}, {"version", context.version},
+                {"vendor", context.vendor}}},
+        {"stats", {{"objects", scene.objects.size()}, {"triangles", scene.triangle_count()}}},
+        {"timings_ms",
+         {{"scene_load", load_ms},
+          {"gl_setup", setup_ms},
+          {"method_prepare", prepare_ms},
+          {"frame_cpu", frame.cpu_ms},
+          {"gpu", {{"shadow", frame.gpu.shadow_ms},
+                   {"surface", frame.gpu.surface_ms},
+                   {"volume", frame.gpu.volume_ms},
+                   {"composite", frame.gpu.composite_ms},
+                   {"total", frame.gpu.total_ms()}}}}},
+        {"files", {stem + ".png", stem + ".exr", stem + ".json"}},
+    };
+
+    OutputFiles outputs(args.out);
+    outputs.add(stem + ".png", [&](const std::filesystem::path& path) {
+        write_png(frame.display_srgb8, options.width, options.height, path);
+    });
+    outputs.add(stem + ".exr",
+                [&](const std::filesystem::path& path) { write_exr(frame.radiance, path); });
+    outputs.add_text(stem + ".json", json.dump(2) + "\n");
+    outputs.commit();
+    fmt::print("{}: {}x{} {} in {:.1f} ms GPU ({:.1f} ms CPU) -> {}/{}.{{png,exr,json}}\n",
+               scene.name, options.width, options.height, method->name(), frame.gpu.total_ms(),
+               frame.cpu_ms, args.out, stem);
+    return 0;
+}
+
+}  // namespace
+
+void parse_size(const std::string& text, int& width, int& height) {
+    static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
+    std::smatch match;
+    if (!std::regex_match(text, match, pattern)) {
+        fail("--size '{}': expected WIDTHxHEIGHT with positive integers, e.g. 640x360", text);
+    }
+    width = std::stoi(match[1]);
+    height = std::stoi(match[2]);
+    if (width < 1 || height < 1 || width > 16384 || height > 16384) {
+        fail("--size '{}': width and height must be in 1..16384", text);
+    }
+}
+
+Command add_render_command(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "render", "Render one frame of a scene with one method: DIR/<scene>.<method>.{png,exr,json}");
+    auto args = std::make_shared<RenderArguments>();
+    command->add_option("--scene", args->scene, "Canonical name, multiple:N, or a .toml file")
+        ->required();
+    command->add_option("--method", args->method, "Volumetric method (none)")->capture_default_str();
+    command->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+    command->add_option("--out", args->out, "Output directory")->capture_default_str();
+    command->add_option("--shadow", args->shadow, "Shadow map filter")
+        ->check(CLI::IsMember({"hard", "pcf"}))
+        ->capture_default_str();
+    command->add_option("--pcf-radius", args->pcf_radius, "PCF kernel radius r: (2r+1)^2 taps")
+        ->check(CLI::Range(0, 8))
+        ->capture_default_str();
+    command->add_option("--shadow-map-size", args->shadow_map_size, "Shadow map resolution")
+        ->check(CLI::Range(16, 16384))
+        ->capture_default_str();
+    command->add_option("--warmup", args->warmup, "Frames rendered before measuring")
+        ->check(CLI::Range(0, 1000))
+        ->capture_default_str();
+    command->add_option("--frames", args->frames, "Measured frames (timings are medians)")
+        ->check(CLI::Range(1, 10000))
+        ->capture_default_str();
+    return [args] { return run_render(*args); };
+}
+
+}  // namespace sl::app

@@ -1,0 +1,59 @@
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "app/commands.h"
+#include "gl/platform.h"
+#include "scenes/scene_file.h"
+
+namespace sl::app {
+
+Command add_scenes_command(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "scenes", "List the canonical scenes (objects, triangles, light) or generate multiple:N");
+    auto names_only = std::make_shared<bool>(false);
+    auto generate = std::make_shared<int>(0);
+    command->add_flag("--names", *names_only, "Print only the names, one per line");
+    command->add_option("--generate", *generate,
+                        "Print the TOML of the generated scene multiple:N and exit")
+        ->check(CLI::Range(1, 100000));
+    return [=] {
+        if (*generate > 0) {
+            std::fputs(generate_multiple_scene(*generate).c_str(), stdout);
+            return 0;
+        }
+        const SceneSearchPaths paths = SceneSearchPaths::defaults();
+        for (const std::string& name : canonical_scene_names()) {
+            if (*names_only) {
+                fmt::print("{}\n", name);
+                continue;
+            }
+            const Scene scene = load_scene(name, paths);
+            fmt::print("{:<10} {:>3} objects {:>8} triangles  light cone {:.0f} deg  medium {}  "
+                       "{}\n",
+                       name, scene.objects.size(), scene.triangle_count(),
+                       scene.light.cone_half_angle_degrees, to_string(scene.medium.model),
+                       scene.source.string());
+        }
+        if (!*names_only) {
+            fmt::print("multiple:N  generated: N objects under one spot light\n");
+        }
+        return 0;
+    };
+}
+
+Command add_gl_info_command(CLI::App& app) {
+    CLI::App* command =
+        app.add_subcommand("gl-info", "Print the headless OpenGL context (OSMesa) shaftlab uses");
+    (void)command;
+    return [] {
+        const auto platform = gl::create_osmesa_platform();
+        const gl::ContextInfo info = platform->info();
+        fmt::print("backend  {}\nvendor   {}\nrenderer {}\nversion  {}\nprofile  {}\n",
+                   platform->backend(), info.vendor, info.renderer, info.version,
+                   info.core_profile ? "core" : "compatibility");
+        return 0;
+    };
+}
+
+}  // namespace sl::app

@@ -1,0 +1,110 @@
+#pragma once
+// The GL 4.5 core entry points shaftlab uses, resolved at run time through the platform's
+// GetProcAddress into one table (OSMesa's library does not export the direct-state-access
+// functions, so nothing is linked directly). Call them as GL.CreateBuffers(...).
+//
+// One table per process: every backend (OSMesa, GLFW/GLX) returns context-independent pointers on
+// Linux, and shaftlab never mixes backends in one process.
+
+#include <GL/glcorearb.h>
+
+namespace sl::gl {
+
+// X(return-type-less PFN name, member name). Add an entry here to use a new entry point.
+#define SL_GL_FUNCTIONS(X)                                                         \
+    X(PFNGLGETERRORPROC, GetError)                                                 \
+    X(PFNGLGETSTRINGPROC, GetString)                                               \
+    X(PFNGLGETSTRINGIPROC, GetStringi)                                             \
+    X(PFNGLGETINTEGERVPROC, GetIntegerv)                                           \
+    X(PFNGLENABLEPROC, Enable)                                                     \
+    X(PFNGLDISABLEPROC, Disable)                                                   \
+    X(PFNGLISENABLEDPROC, IsEnabled)                                               \
+    X(PFNGLVIEWPORTPROC, Viewport)                                                 \
+    X(PFNGLCULLFACEPROC, CullFace)                                                 \
+    X(PFNGLDEPTHFUNCPROC, DepthFunc)                                               \
+    X(PFNGLDEPTHMASKPROC, DepthMask)                                               \
+    X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                       \
+    X(PFNGLBLENDFUNCPROC, BlendFunc)                                               \
+    X(PFNGLFINISHPROC, Finish)                                                     \
+    X(PFNGLPIXELSTOREIPROC, PixelStorei)                                           \
+    X(PFNGLDRAWARRAYSPROC, DrawArrays)                                             \
+    X(PFNGLDRAWELEMENTSPROC, DrawElements)                                         \
+    X(PFNGLDEBUGMESSAGECALLBACKPROC, DebugMessageCallback)                         \
+    X(PFNGLDEBUGMESSAGECONTROLPROC, DebugMessageControl)                           \
+    X(PFNGLOBJECTLABELPROC, ObjectLabel)                                           \
+    X(PFNGLPUSHDEBUGGROUPPROC, PushDebugGroup)                                     \
+    X(PFNGLPOPDEBUGGROUPPROC, PopDebugGroup)                                       \
+    X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                                       \
+    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                       \
+    X(PFNGLISBUFFERPROC, IsBuffer)                                                 \
+    X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                             \
+    X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                             \
+    X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                     \
+    X(PFNGLCREATETEXTURESPROC, CreateTextures)                                     \
+    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                     \
+    X(PFNGLISTEXTUREPROC, IsTexture)                                               \
+    X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                                 \
+    X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)                               \
+    X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                               \
+    X(PFNGLTEXTUREPARAMETERFVPROC, TextureParameterfv)                             \
+    X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                                   \
+    X(PFNGLGETTEXTUREIMAGEPROC, GetTextureImage)                                   \
+    X(PFNGLCREATEFRAMEBUFFERSPROC, CreateFramebuffers)                             \
+    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                             \
+    X(PFNGLISFRAMEBUFFERPROC, IsFramebuffer)                                       \
+    X(PFNGLNAMEDFRAMEBUFFERTEXTUREPROC, NamedFramebufferTexture)                   \
+    X(PFNGLNAMEDFRAMEBUFFERDRAWBUFFERSPROC, NamedFramebufferDrawBuffers)           \
+    X(PFNGLNAMEDFRAMEBUFFERDRAWBUFFERPROC, NamedFramebufferDrawBuffer)             \
+    X(PFNGLCHECKNAMEDFRAMEBUFFERSTATUSPROC, CheckNamedFramebufferStatus)           \
+    X(PFNGLCLEARNAMEDFRAMEBUFFERFVPROC, ClearNamedFramebufferfv)                   \
+    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                                   \
+    X(PFNGLBLITNAMEDFRAMEBUFFERPROC, BlitNamedFramebuffer)                         \
+    X(PFNGLCREATEVERTEXARRAYSPROC, CreateVertexArrays)                             \
+    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                             \
+    X(PFNGLISVERTEXARRAYPROC, IsVertexArray)                                       \
+    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                                   \
+    X(PFNGLVERTEXARRAYVERTEXBUFFERPROC, VertexArrayVertexBuffer)                   \
+    X(PFNGLVERTEXARRAYELEMENTBUFFERPROC, VertexArrayElementBuffer)                 \
+    X(PFNGLENABLEVERTEXARRAYATTRIBPROC, EnableVertexArrayAttrib)                   \
+    X(PFNGLVERTEXARRAYATTRIBFORMATPROC, VertexArrayAttribFormat)                   \
+    X(PFNGLVERTEXARRAYATTRIBBINDINGPROC, VertexArrayAttribBinding)                 \
+    X(PFNGLCREATESHADERPROC, CreateShader)                                         \
+    X(PFNGLDELETESHADERPROC, DeleteShader)                                         \
+    X(PFNGLSHADERSOURCEPROC, ShaderSource)                                         \
+    X(PFNGLCOMPILESHADERPROC, CompileShader)                                       \
+    X(PFNGLGETSHADERIVPROC, GetShaderiv)                                           \
+    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                                 \
+    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                                       \
+    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                       \
+    X(PFNGLISPROGRAMPROC, IsProgram)                                               \
+    X(PFNGLATTACHSHADERPROC, AttachShader)                                         \
+    X(PFNGLLINKPROGRAMPROC, LinkProgram)                                           \
+    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                         \
+    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                               \
+    X(PFNGLUSEPROGRAMPROC, UseProgram)                                             \
+    X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                                 \
+    X(PFNGLPROGRAMUNIFORM1FPROC, ProgramUniform1f)                                 \
+    X(PFNGLPROGRAMUNIFORM3FVPROC, ProgramUniform3fv)                               \
+    X(PFNGLPROGRAMUNIFORMMATRIX4FVPROC, ProgramUniformMatrix4fv)                   \
+    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                             \
+    X(PFNGLCREATEQUERIESPROC, CreateQueries)                                       \
+    X(PFNGLDELETEQUERIESPROC, DeleteQueries)                                       \
+    X(PFNGLISQUERYPROC, IsQuery)                                                   \
+    X(PFNGLBEGINQUERYPROC, BeginQuery)                                             \
+    X(PFNGLENDQUERYPROC, EndQuery)                                                 \
+    X(PFNGLGETQUERYOBJECTIVPROC, GetQueryObjectiv)                                 \
+    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
+
+struct Api {
+#define SL_GL_DECLARE(type, name) type name = nullptr;
+    SL_GL_FUNCTIONS(SL_GL_DECLARE)
+#undef SL_GL_DECLARE
+};
+
+extern Api GL;
+
+using ProcAddressFn = void* (*)(const char* name);
+// Fills GL from `resolve`; throws sl::Error naming every entry point that did not resolve.
+void load_api(ProcAddressFn resolve);
+
+}  // namespace sl::gl

@@ -1,0 +1,41 @@
+#include "gl/objects.h"
+
+namespace sl::gl {
+
+Buffer create_buffer(const void* data, size_t bytes, GLbitfield flags) {
+    GLuint id = 0;
+    GL.CreateBuffers(1, &id);
+    GL.NamedBufferStorage(id, GLsizeiptr(bytes), data, flags);
+    return Buffer(id);
+}
+
+Texture create_texture_2d(GLenum internal_format, int width, int height, GLenum filter) {
+    GLuint id = 0;
+    GL.CreateTextures(GL_TEXTURE_2D, 1, &id);
+    GL.TextureStorage2D(id, 1, internal_format, width, height);
+    GL.TextureParameteri(id, GL_TEXTURE_MIN_FILTER, GLint(filter));
+    GL.TextureParameteri(id, GL_TEXTURE_MAG_FILTER, GLint(filter));
+    GL.TextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    GL.TextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return Texture(id);
+}
+
+Framebuffer create_framebuffer() {
+    GLuint id = 0;
+    GL.CreateFramebuffers(1, &id);
+    return Framebuffer(id);
+}
+
+VertexArray create_vertex_array() {
+    GLuint id = 0;
+    GL.CreateVertexArrays(1, &id);
+    return VertexArray(id);
+}
+
+Query create_query(GLenum target) {
+    GLuint id = 0;
+    GL.CreateQueries(target, 1, &id);
+    return Query(id);
+}
+
+}  // namespace sl::gl

@@ -1,0 +1,37 @@
+#include "gl/platform.h"
+
+#include "core/error.h"
+#include "gl/debug.h"
+#include "gl/functions.h"
+
+namespace sl::gl {
+
+ContextInfo Platform::info() const {
+    auto text = [](GLenum name) {
+        const auto* s = reinterpret_cast<const char*>(GL.GetString(name));
+        return std::string(s ? s : "");
+    };
+    ContextInfo info;
+    info.vendor = text(GL_VENDOR);
+    info.renderer = text(GL_RENDERER);
+    info.version = text(GL_VERSION);
+    GL.GetIntegerv(GL_MAJOR_VERSION, &info.major);
+    GL.GetIntegerv(GL_MINOR_VERSION, &info.minor);
+    GLint mask = 0;
+    GL.GetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
+    info.core_profile = (mask & GL_CONTEXT_CORE_PROFILE_BIT) != 0;
+    return info;
+}
+
+void initialize_loaded_context(void* (*resolve)(const char*)) {
+    load_api(resolve);
+    GLint major = 0, minor = 0;
+    GL.GetIntegerv(GL_MAJOR_VERSION, &major);
+    GL.GetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 45) {
+        fail("OpenGL 4.5 core is required, the context is {}.{}", major, minor);
+    }
+    install_debug_callback();
+}
+
+}  // namespace sl::gl

@@ -1,0 +1,302 @@
+#include "gl/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "core/error.h"
+#include "gl/debug.h"
+#include "gl/shaders.h"
+
+namespace sl::gl {
+
+namespace {
+
+// Uniform locations fixed in the shaders (layout(location = N)).
+constexpr GLint kModelLocation = 0;
+constexpr GLint kNormalMatrixLocation = 1;
+constexpr GLint kAlbedoLocation = 2;
+
+// Normal offset of shadow lookups, in shadow-map texels at the receiver's distance.
+constexpr float kShadowNormalOffsetTexels = 1.5f;
+
+void require_complete(GLuint framebuffer, const char* what) {
+    const GLenum status = GL.CheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        fail("{} framebuffer is incomplete (status {:#x})", what, status);
+    }
+}
+
+}  // namespace
+
+shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOptions& options) {
+    const float aspect = float(options.width) / float(options.height);
+    const glm::mat4 view_projection = scene.camera.projection(aspect) * scene.camera.view();
+    const SpotLight& light = scene.light;
+    const Medium& medium = scene.medium;
+    shared::FrameUniforms u{};
+    u.view_projection = view_projection;
+    u.inverse_view_projection = glm::inverse(view_projection);
+    u.light_view_projection = light.projection() * light.view();
+    u.camera_position = glm::vec4(scene.camera.position, 1.0f);
+    u.light_position = glm::vec4(light.position, light.near);
+    u.light_direction = glm::vec4(light.direction(), light.far);
+    u.light_intensity = glm::vec4(light.intensity, 0.0f);
+    u.light_cone = glm::vec4(glm::radians(light.cone_half_angle_degrees),
+                             glm::radians(light.falloff_degrees), 0.0f, 0.0f);
+    u.medium_sigma_s = glm::vec4(medium.sigma_s, 0.0f);
+    u.medium_sigma_t =
+        glm::vec4(medium.sigma_t(), medium.model == MediumModel::physical ? 1.0f : 0.0f);
+    u.medium_attenuation = glm::vec4(medium.a0, medium.a1, 0.0f, 0.0f);
+    u.ambient = glm::vec4(scene.ambient, 0.0f);
+    const int radius = options.shadow_filter == ShadowFilter::pcf ? options.pcf_radius : 0;
+    u.shadow = glm::vec4(1.0f / float(options.shadow_map_size), float(radius),
+                         kShadowNormalOffsetTexels, 0.0f);
+    u.display = glm::vec4(scene.camera.exposure, float(options.width), float(options.height), 0.0f);
+    return u;
+}
+
+// Times one pass with a GL_TIME_ELAPSED query; the result is read after the frame.
+class SceneRenderer::PassTimer {
+public:
+    PassTimer(const Query& query, const char* name) {
+        GL.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name);
+        GL.BeginQuery(GL_TIME_ELAPSED, query.id());
+    }
+    ~PassTimer() {
+        GL.EndQuery(GL_TIME_ELAPSED);
+        GL.PopDebugGroup();
+    }
+    PassTimer(const PassTimer&) = delete;
+    PassTimer& operator=(const PassTimer&) = delete;
+};
+
+SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
+    : scene_(scene), options_(options) {
+    if (options.width <= 0 || options.height <= 0 || options.width > 16384 ||
+        options.height > 16384) {
+        fail("render size {}x{} must be in 1..16384", options.width, options.height);
+    }
+    if (options.shadow_map_size < 16 || options.shadow_map_size > 16384) {
+        fail("shadow map size {} must be in 16..16384", options.shadow_map_size);
+    }
+    if (options.pcf_radius < 0 || options.pcf_radius > 8) {
+        fail("PCF radius {} must be in 0..8", options.pcf_radius);
+    }
+    uniforms_ = make_frame_uniforms(scene, options);
+    uniform_buffer_ = create_buffer(&uniforms_, sizeof(uniforms_), GL_DYNAMIC_STORAGE_BIT);
+    uniform_buffer_.label("frame uniforms");
+
+    for (const Object& object : scene.objects) {
+        const Mesh& mesh = *object.mesh;
+        if (meshes_.contains(&mesh)) {
+            continue;
+        }
+        std::vector<float> interleaved;
+        interleaved.reserve(mesh.positions.size() * 6);
+        for (size_t i = 0; i < mesh.positions.size(); ++i) {
+            const glm::vec3 p = mesh.positions[i], n = mesh.normals[i];
+            interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
+        }
+        GpuMesh gpu;
+        gpu.vertices = create_buffer(interleaved.data(), interleaved.size() * sizeof(float));
+        gpu.indices = create_buffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
+        gpu.index_count = GLsizei(mesh.triangles.size() * 3);
+        gpu.vertex_array = create_vertex_array();
+        const GLuint vao = gpu.vertex_array.id();
+        GL.VertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, 6 * sizeof(float));
+        GL.VertexArrayElementBuffer(vao, gpu.indices.id());
+        for (GLuint attribute = 0; attribute < 2; ++attribute) {
+            GL.EnableVertexArrayAttrib(vao, attribute);
+            GL.VertexArrayAttribFormat(vao, attribute, 3, GL_FLOAT, GL_FALSE,
+                                       attribute * 3 * sizeof(float));
+            GL.VertexArrayAttribBinding(vao, attribute, 0);
+        }
+        gpu.vertex_array.label(object.name);
+        meshes_.emplace(&mesh, std::move(gpu));
+    }
+
+    shadow_program_ = create_program(
+        {{GL_VERTEX_SHADER, "gl/shaders/shadow.vert"}, {GL_FRAGMENT_SHADER, "gl/shaders/shadow.frag"}});
+    surface_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/surface.vert"},
+                                       {GL_FRAGMENT_SHADER, "gl/shaders/surface.frag"}});
+    composite_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                         {GL_FRAGMENT_SHADER, "gl/shaders/composite.frag"}});
+    empty_vertex_array_ = create_vertex_array();
+
+    // Shadow map: depth compared in the sampler; linear filtering adds 2x2 PCF per tap, nearest
+    // keeps the hard variant hard.
+    const GLenum shadow_filter =
+        options.shadow_filter == ShadowFilter::pcf ? GL_LINEAR : GL_NEAREST;
+    shadow_map_ = create_texture_2d(GL_DEPTH_COMPONENT32F, options.shadow_map_size,
+                                    options.shadow_map_size, shadow_filter);
+    GL.TextureParameteri(shadow_map_.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    GL.TextureParameteri(shadow_map_.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    shadow_map_.label("shadow map");
+    shadow_framebuffer_ = create_framebuffer();
+    GL.NamedFramebufferTexture(shadow_framebuffer_.id(), GL_DEPTH_ATTACHMENT, shadow_map_.id(), 0);
+    GL.NamedFramebufferDrawBuffer(shadow_framebuffer_.id(), GL_NONE);
+    require_complete(shadow_framebuffer_.id(), "shadow");
+
+    const int w = options.width, h = options.height;
+    surface_color_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
+    surface_depth_ = create_texture_2d(GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
+    surface_framebuffer_ = create_framebuffer();
+    GL.NamedFramebufferTexture(surface_framebuffer_.id(), GL_COLOR_ATTACHMENT0, surface_color_.id(), 0);
+    GL.NamedFramebufferTexture(surface_framebuffer_.id(), GL_DEPTH_ATTACHMENT, surface_depth_.id(), 0);
+    require_complete(surface_framebuffer_.id(), "surface");
+
+    in_scattering_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
+    volume_framebuffer_ = create_framebuffer();
+    GL.NamedFramebufferTexture(volume_framebuffer_.id(), GL_COLOR_ATTACHMENT0, in_scattering_.id(), 0);
+    require_complete(volume_framebuffer_.id(), "in-scattering");
+
+    hdr_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
+    display_ = create_texture_2d(GL_RGBA8, w, h, GL_NEAREST);
+    composite_framebuffer_ = create_framebuffer();
+    GL.NamedFramebufferTexture(composite_framebuffer_.id(), GL_COLOR_ATTACHMENT0, hdr_.id(), 0);
+    GL.NamedFramebufferTexture(composite_framebuffer_.id(), GL_COLOR_ATTACHMENT1, display_.id(), 0);
+    const GLenum attachments[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    GL.NamedFramebufferDrawBuffers(composite_framebuffer_.id(), 2, attachments);
+    require_complete(composite_framebuffer_.id(), "composite");
+
+    for (Query& timer : timers_) {
+        timer = create_query(GL_TIME_ELAPSED);
+    }
+    // llvmpipe reports its first GL_TIME_ELAPSED query of a context from time zero (since boot):
+    // spend that first query here, on a clear, so that every frame's timings are real.
+    {
+        const Query priming = create_query(GL_TIME_ELAPSED);
+        GL.BeginQuery(GL_TIME_ELAPSED, priming.id());
+        const float one = 1.0f;
+        GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_DEPTH, 0, &one);
+        GL.EndQuery(GL_TIME_ELAPSED);
+        GLuint64 ns = 0;
+        GL.GetQueryObjectui64v(priming.id(), GL_QUERY_RESULT, &ns);
+    }
+    check_errors("creating the scene renderer");
+}
+
+void SceneRenderer::draw_objects(bool with_normals) {
+    for (const Object& object : scene_.objects) {
+        const GLuint program = with_normals ? surface_program_.id() : shadow_program_.id();
+        GL.ProgramUniformMatrix4fv(program, kModelLocation, 1, GL_FALSE,
+                                   glm::value_ptr(object.transform));
+        if (with_normals) {
+            const glm::mat4 normal_matrix = glm::inverseTranspose(object.transform);
+            GL.ProgramUniformMatrix4fv(program, kNormalMatrixLocation, 1, GL_FALSE,
+                                       glm::value_ptr(normal_matrix));
+            const glm::vec3 albedo = scene_.materials[size_t(object.material)].albedo;
+            GL.ProgramUniform3fv(program, kAlbedoLocation, 1, glm::value_ptr(albedo));
+        }
+        const GpuMesh& mesh = meshes_.at(object.mesh.get());
+        GL.BindVertexArray(mesh.vertex_array.id());
+        GL.DrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+    }
+}
+
+Frame SceneRenderer::render(VolumeMethod& method) {
+    const auto start = std::chrono::steady_clock::now();
+    const int w = options_.width, h = options_.height;
+    GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, uniform_buffer_.id());
+    GL.NamedBufferSubData(uniform_buffer_.id(), 0, sizeof(uniforms_), &uniforms_);
+    GL.Disable(GL_BLEND);
+    GL.Disable(GL_CULL_FACE);  // open meshes (planes) must cast shadows from both sides
+
+    {
+        PassTimer timer(timers_[0], "shadow map");
+        GL.BindFramebuffer(GL_FRAMEBUFFER, shadow_framebuffer_.id());
+        GL.Viewport(0, 0, options_.shadow_map_size, options_.shadow_map_size);
+        const float one = 1.0f;
+        GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_DEPTH, 0, &one);
+        GL.Enable(GL_DEPTH_TEST);
+        GL.DepthFunc(GL_LESS);
+        GL.DepthMask(GL_TRUE);
+        GL.Enable(GL_POLYGON_OFFSET_FILL);
+        GL.PolygonOffset(2.0f, 4.0f);  // slope-scaled bias against shadow acne
+        GL.UseProgram(shadow_program_.id());
+        draw_objects(false);
+        GL.Disable(GL_POLYGON_OFFSET_FILL);
+    }
+    {
+        PassTimer timer(timers_[1], "surfaces");
+        GL.BindFramebuffer(GL_FRAMEBUFFER, surface_framebuffer_.id());
+        GL.Viewport(0, 0, w, h);
+        const float black[4] = {0, 0, 0, 0};
+        const float far_depth = 1.0f;
+        GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_COLOR, 0, black);
+        GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_DEPTH, 0, &far_depth);
+        GL.UseProgram(surface_program_.id());
+        GL.BindTextureUnit(0, shadow_map_.id());
+        draw_objects(true);
+    }
+    {
+        PassTimer timer(timers_[2], "volume");
+        GL.BindFramebuffer(GL_FRAMEBUFFER, volume_framebuffer_.id());
+        const float zero[4] = {0, 0, 0, 0};
+        GL.ClearNamedFramebufferfv(volume_framebuffer_.id(), GL_COLOR, 0, zero);
+        GL.Disable(GL_DEPTH_TEST);
+        GL.DepthMask(GL_FALSE);
+        method.render(VolumeInputs{scene_, uniforms_, surface_depth_.id(), shadow_map_.id(), w, h});
+    }
+    {
+        PassTimer timer(timers_[3], "composite");
+        GL.BindFramebuffer(GL_FRAMEBUFFER, composite_framebuffer_.id());
+        GL.Viewport(0, 0, w, h);
+        GL.Disable(GL_DEPTH_TEST);
+        GL.Disable(GL_BLEND);
+        GL.UseProgram(composite_program_.id());
+        GL.BindTextureUnit(0, surface_color_.id());
+        GL.BindTextureUnit(1, in_scattering_.id());
+        GL.BindVertexArray(empty_vertex_array_.id());
+        GL.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    GL.DepthMask(GL_TRUE);
+
+    Frame frame;
+    double* pass_ms[] = {&frame.gpu.shadow_ms, &frame.gpu.surface_ms, &frame.gpu.volume_ms,
+                         &frame.gpu.composite_ms};
+    for (int i = 0; i < 4; ++i) {
+        GLuint64 ns = 0;
+        GL.GetQueryObjectui64v(timers_[i].id(), GL_QUERY_RESULT, &ns);
+        *pass_ms[i] = double(ns) * 1e-6;
+    }
+    frame.radiance = read_rgb(hdr_.id());
+    frame.in_scattering = read_rgb(in_scattering_.id());
+    frame.surface = read_rgb(surface_color_.id());
+    std::vector<uint8_t> rgba(size_t(w) * h * 4);
+    GL.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    GL.GetTextureImage(display_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()), rgba.data());
+    frame.display_srgb8.resize(size_t(w) * h * 3);
+    for (int y = 0; y < h; ++y) {  // GL rows run bottom to top
+        for (int x = 0; x < w; ++x) {
+            const size_t src = (size_t(h - 1 - y) * w + x) * 4, dst = (size_t(y) * w + x) * 3;
+            std::copy_n(&rgba[src], 3, &frame.display_srgb8[dst]);
+        }
+    }
+    check_errors(("rendering with method " + method.name()).c_str());
+    frame.cpu_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return frame;
+}
+
+Image SceneRenderer::read_rgb(GLuint texture) const {
+    const int w = options_.width, h = options_.height;
+    std::vector<float> rgba(size_t(w) * h * 4);
+    GL.GetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)),
+                       rgba.data());
+    Image image(w, h);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const size_t src = (size_t(h - 1 - y) * w + x) * 4;
+            image.set(x, y, {rgba[src], rgba[src + 1], rgba[src + 2]});
+        }
+    }
+    return image;
+}
+
+}  // namespace sl::gl

@@ -1,0 +1,100 @@
+#include "gl/shaders.h"
+
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "gl/embedded_files.h"
+
+namespace sl::gl {
+
+namespace {
+
+std::string_view embedded(const std::string& path) {
+    const auto& files = embedded_files();
+    const auto it = files.find(path);
+    if (it == files.end()) {
+        fail("shader file '{}' is not embedded in the binary", path);
+    }
+    return it->second;
+}
+
+void expand(const std::string& path, std::set<std::string>& stack, std::string& out) {
+    if (!stack.insert(path).second) {
+        fail("shader file '{}' includes itself", path);
+    }
+    std::istringstream in{std::string(embedded(path))};
+    std::string line;
+    while (std::getline(in, line)) {
+        constexpr std::string_view kInclude = "#include \"";
+        if (line.starts_with(kInclude) && line.back() == '"') {
+            expand(line.substr(kInclude.size(), line.size() - kInclude.size() - 1), stack, out);
+        } else {
+            out += line;
+            out += '\n';
+        }
+    }
+    stack.erase(path);
+}
+
+Shader compile(const ShaderStage& stage, const std::vector<std::string>& defines) {
+    const std::string source = shader_source(stage.path, defines);
+    Shader shader(GL.CreateShader(stage.type));
+    const char* text = source.c_str();
+    GL.ShaderSource(shader.id(), 1, &text, nullptr);
+    GL.CompileShader(shader.id());
+    GLint ok = GL_FALSE;
+    GL.GetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        GL.GetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(size_t(std::max(length, 1)), '\0');
+        GL.GetShaderInfoLog(shader.id(), length, nullptr, log.data());
+        fail("{}: shader does not compile: {}", stage.path, log.c_str());
+    }
+    return shader;
+}
+
+}  // namespace
+
+std::string shader_source(const std::string& path, const std::vector<std::string>& defines) {
+    std::set<std::string> stack;
+    std::string expanded;
+    expand(path, stack, expanded);
+    if (!expanded.starts_with("#version")) {
+        fail("shader file '{}' must begin with a #version line", path);
+    }
+    std::string define_lines;
+    for (const std::string& define : defines) {
+        define_lines += "#define " + define + "\n";
+    }
+    const size_t after_version = expanded.find('\n') + 1;
+    expanded.insert(after_version, define_lines);
+    return expanded;
+}
+
+Program create_program(const std::vector<ShaderStage>& stages,
+                       const std::vector<std::string>& defines) {
+    Program program(GL.CreateProgram());
+    std::vector<Shader> shaders;
+    std::string names;
+    for (const ShaderStage& stage : stages) {
+        shaders.push_back(compile(stage, defines));
+        GL.AttachShader(program.id(), shaders.back().id());
+        names += (names.empty() ? "" : " + ") + stage.path;
+    }
+    GL.LinkProgram(program.id());
+    GLint ok = GL_FALSE;
+    GL.GetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        GL.GetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(size_t(std::max(length, 1)), '\0');
+        GL.GetProgramInfoLog(program.id(), length, nullptr, log.data());
+        fail("{}: program does not link: {}", names, log.c_str());
+    }
+    program.label(names);
+    return program;
+}
+
+}  // namespace sl::gl

@@ -1,0 +1,42 @@
+#pragma once
+// The interface every volumetric method implements (DESIGN.md §3): given the scene and the
+// frame's buffers, add the in-scattered radiance I_s of Nilsson eq. 2.7 into the bound target.
+// The renderer, the harness and the viewer talk to methods only through this interface; methods
+// are created by name from the registry.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl/functions.h"
+#include "gl/shaders/frame_uniforms.h"
+#include "scenes/scene.h"
+
+namespace sl::gl {
+
+struct VolumeInputs {
+    const Scene& scene;
+    const shared::FrameUniforms& uniforms;  // also bound as the uniform block at its binding
+    GLuint surface_depth;                   // camera depth buffer (depth texture)
+    GLuint shadow_map;                      // light depth buffer (depth texture, compare mode)
+    int width;
+    int height;
+};
+
+class VolumeMethod {
+public:
+    virtual ~VolumeMethod() = default;
+    virtual std::string name() const = 0;
+    // Called once per scene before the first frame (CPU work such as building regions).
+    virtual void prepare(const Scene& scene) = 0;
+    // Adds I_s (linear RGB, alpha ignored) into the bound framebuffer, which is cleared to zero
+    // and has no depth attachment; the viewport covers it.
+    virtual void render(const VolumeInputs& inputs) = 0;
+};
+
+// The methods that exist, in display order.
+std::vector<std::string> volume_method_names();
+// Throws sl::Error naming the known methods when `name` is not one of them.
+std::unique_ptr<VolumeMethod> create_volume_method(const std::string& name);
+
+}  // namespace sl::gl

@@ -1,0 +1,97 @@
+#include "scenes/scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace sl {
+
+glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
+
+glm::mat4 Camera::projection(float aspect) const {
+    return glm::perspective(glm::radians(fov_y_degrees), aspect, near, far);
+}
+
+glm::vec3 SpotLight::direction() const { return glm::normalize(target - position); }
+
+glm::vec3 SpotLight::up() const {
+    const glm::vec3 d = direction();
+    return std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, -1);
+}
+
+glm::mat4 SpotLight::view() const { return glm::lookAt(position, target, up()); }
+
+glm::mat4 SpotLight::projection() const {
+    // A square frustum of half-angle θ circumscribes the cone of half-angle θ.
+    return glm::perspective(2.0f * glm::radians(cone_half_angle_degrees), 1.0f, near, far);
+}
+
+float SpotLight::cone_factor(glm::vec3 p) const {
+    const float cos_angle = glm::dot(glm::normalize(p - position), direction());
+    const float angle = glm::degrees(std::acos(std::clamp(cos_angle, -1.0f, 1.0f)));
+    if (falloff_degrees <= 0.0f) {
+        return angle <= cone_half_angle_degrees ? 1.0f : 0.0f;  // Nilsson eq. 2.9
+    }
+    const float t = std::clamp((cone_half_angle_degrees - angle) / falloff_degrees, 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);  // smoothstep from the edge inwards
+}
+
+bool SpotLight::in_influence_volume(glm::vec3 p) const {
+    const glm::vec4 clip = projection() * view() * glm::vec4(p, 1.0f);
+    return clip.w > 0.0f && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w &&
+           std::abs(clip.z) <= clip.w;
+}
+
+glm::vec3 Medium::transmittance(float s) const {
+    if (model == MediumModel::simplified) {
+        return glm::vec3(1.0f);
+    }
+    return glm::exp(-sigma_t() * s);
+}
+
+glm::vec3 Medium::light_falloff(float r) const {
+    if (model == MediumModel::simplified) {
+        return glm::vec3(1.0f / (a1 * r * r + a0));
+    }
+    return transmittance(r) / (r * r);
+}
+
+size_t Scene::triangle_count() const {
+    size_t count = 0;
+    for (const Object& object : objects) {
+        count += object.mesh->triangles.size();
+    }
+    return count;
+}
+
+Bounds Scene::world_bounds() const {
+    Bounds bounds;
+    for (const Object& object : objects) {
+        for (const glm::vec3& p : object.mesh->positions) {
+            bounds.extend(glm::vec3(object.transform * glm::vec4(p, 1.0f)));
+        }
+    }
+    return bounds;
+}
+
+const char* to_string(PhaseFunction phase) {
+    switch (phase) {
+        case PhaseFunction::isotropic: return "isotropic";
+        case PhaseFunction::henyey_greenstein: return "henyey-greenstein";
+        case PhaseFunction::schlick: return "schlick";
+        case PhaseFunction::rayleigh: return "rayleigh";
+        case PhaseFunction::mie_hazy: return "mie-hazy";
+        case PhaseFunction::mie_murky: return "mie-murky";
+        case PhaseFunction::nishita_hazy: return "nishita-hazy";
+    }
+    return "?";
+}
+
+const char* to_string(MediumModel model) {
+    return model == MediumModel::simplified ? "simplified" : "physical";
+}
+
+}  // namespace sl

@@ -1,0 +1,120 @@
+#pragma once
+// The scene every method renders: meshes with materials and transforms, one spot light, a camera
+// and a homogeneous participating medium (DESIGN.md §1). Plain data plus the derived quantities
+// (matrices, cone factor) that the GPU and CPU paths must agree on.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "scenes/mesh.h"
+
+namespace sl {
+
+struct Material {
+    std::string name;
+    glm::vec3 albedo{0.8f};  // diffuse reflectance in [0, 1]
+    float roughness = 0.5f;  // for the IBL work; the surface pass here is Lambertian
+    glm::vec3 f0{0.04f};     // normal-incidence specular reflectance, likewise
+};
+
+// An axis-aligned box in an object's local frame.
+struct Box {
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
+};
+
+struct Object {
+    std::string name;
+    std::shared_ptr<const Mesh> mesh;  // local frame
+    glm::mat4 transform{1.0f};         // local -> world
+    int material = 0;                  // index into Scene::materials
+    std::vector<Box> inner_boxes;      // explicit inner bounding volumes, local frame
+};
+
+struct Camera {
+    glm::vec3 position{0.0f, 1.0f, 5.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fov_y_degrees = 45.0f;  // vertical field of view
+    float near = 0.1f;
+    float far = 100.0f;
+    float exposure = 1.0f;  // linear scale before tone mapping
+
+    glm::mat4 view() const;
+    glm::mat4 projection(float aspect) const;
+};
+
+struct SpotLight {
+    glm::vec3 position{0.0f, 5.0f, 0.0f};
+    glm::vec3 target{0.0f};
+    float cone_half_angle_degrees = 30.0f;
+    float near = 0.1f;  // the influence volume spans [near, far] along the axis
+    float far = 20.0f;  // the backplate: nothing is lit beyond it
+    glm::vec3 intensity{1.0f};
+    float falloff_degrees = 0.0f;  // 0: hard edge (Nilsson eq. 2.9); else smooth over this width
+
+    glm::vec3 direction() const;
+    // An up vector not parallel to the axis, fixed so that the shadow map never flips.
+    glm::vec3 up() const;
+    glm::mat4 view() const;
+    // The square frustum circumscribing the cone (the influence pyramid), near to far.
+    glm::mat4 projection() const;
+    // I(Ω) / I of eq. 2.9 for the direction from the light to p, with the optional falloff.
+    float cone_factor(glm::vec3 p) const;
+    // True when p lies inside the influence pyramid between near and far.
+    bool in_influence_volume(glm::vec3 p) const;
+};
+
+enum class PhaseFunction {
+    isotropic,
+    henyey_greenstein,
+    schlick,
+    rayleigh,
+    mie_hazy,
+    mie_murky,
+    nishita_hazy
+};
+enum class MediumModel { simplified, physical };
+
+struct Medium {
+    glm::vec3 sigma_s{0.0f};  // scattering coefficient, 1/m
+    glm::vec3 sigma_a{0.0f};  // absorption coefficient, 1/m
+    PhaseFunction phase = PhaseFunction::isotropic;
+    float g = 0.0f;  // asymmetry parameter of Henyey-Greenstein and Schlick
+    MediumModel model = MediumModel::simplified;
+    float a0 = 1.0f;  // simplified model attenuation I / (a1 r^2 + a0), Nilsson eq. 2.13
+    float a1 = 1.0f;
+
+    glm::vec3 sigma_t() const { return sigma_s + sigma_a; }
+    // T(s) along a path of length s: e^(-σt s) (Nilsson eq. 2.2) for `physical`, 1 for
+    // `simplified` (eq. 2.15).
+    glm::vec3 transmittance(float s) const;
+    // Irradiance falloff of the light at distance r: T(r)/r² (eq. 2.8) or 1/(a1 r² + a0)
+    // (eq. 2.13).
+    glm::vec3 light_falloff(float r) const;
+};
+
+struct Scene {
+    std::string name;
+    std::filesystem::path source;  // the file it was read from, empty for generated scenes
+    Camera camera;
+    SpotLight light;
+    Medium medium;
+    // Constant incident radiance from every direction: a surface reflects albedo * ambient.
+    glm::vec3 ambient{0.0f};
+    std::vector<Material> materials;
+    std::vector<Object> objects;
+
+    size_t triangle_count() const;
+    Bounds world_bounds() const;
+};
+
+const char* to_string(PhaseFunction phase);
+const char* to_string(MediumModel model);
+
+}  // namespace sl

@@ -1,0 +1,519 @@
+#include "scenes/scene_file.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "core/error.h"
+
+#ifndef SHAFTLAB_SCENES_DIR
+#error "SHAFTLAB_SCENES_DIR must be defined by the build"
+#endif
+#ifndef SHAFTLAB_DATA_DIR
+#error "SHAFTLAB_DATA_DIR must be defined by the build"
+#endif
+
+namespace sl {
+
+namespace fs = std::filesystem;
+
+SceneSearchPaths SceneSearchPaths::defaults() {
+    SceneSearchPaths paths{SHAFTLAB_SCENES_DIR, SHAFTLAB_DATA_DIR};
+    if (const char* scenes = std::getenv("SHAFTLAB_SCENES"); scenes && *scenes) {
+        paths.scenes = scenes;
+    }
+    if (const char* data = std::getenv("SHAFTLAB_DATA"); data && *data) {
+        paths.data = data;
+    }
+    return paths;
+}
+
+namespace {
+
+// Reads the keys of one TOML table, remembering which were read so that finish() can reject the
+// rest: a misspelt key is an error, never silently ignored.
+class TableReader {
+public:
+    TableReader(const toml::table& table, std::string origin, std::string context)
+        : table_(table), origin_(std::move(origin)), context_(std::move(context)) {}
+
+    bool has(std::string_view key) const { return table_.contains(key); }
+
+    [[noreturn]] void error(std::string_view key, const std::string& reason) const {
+        const toml::node* node = table_.get(key);
+        const auto line = node ? node->source().begin.line : table_.source().begin.line;
+        fail("{}:{}: {} {}: {}", origin_, line, context_, key, reason);
+    }
+
+    double number(std::string_view key, double fallback) {
+        const toml::node* node = take(key);
+        if (!node) {
+            return fallback;
+        }
+        const std::optional<double> value = node->is_number() ? node->value<double>() : std::nullopt;
+        if (!value) {
+            error(key, "expected a number");
+        }
+        if (!std::isfinite(*value)) {
+            error(key, fmt::format("value {} is not finite", *value));
+        }
+        return *value;
+    }
+    double number(std::string_view key) {
+        require(key);
+        return number(key, 0.0);
+    }
+    // A number in [lo, hi] (open at an end when the flag says so).
+    double number_in(std::string_view key, double fallback, double lo, double hi,
+                     bool open_lo = false, bool open_hi = false) {
+        const double v = number(key, fallback);
+        if ((open_lo ? v <= lo : v < lo) || (open_hi ? v >= hi : v > hi)) {
+            error(key, fmt::format("must be in {}{}, {}{}, got {}", open_lo ? '(' : '[', lo, hi,
+                                   open_hi ? ')' : ']', v));
+        }
+        return v;
+    }
+    int integer_in(std::string_view key, int fallback, int lo, int hi) {
+        const toml::node* node = take(key);
+        if (!node) {
+            return fallback;
+        }
+        const std::optional<int64_t> value = node->as_integer() ? node->value<int64_t>() : std::nullopt;
+        if (!value || *value < lo || *value > hi) {
+            error(key, fmt::format("expected an integer in [{}, {}]", lo, hi));
+        }
+        return int(*value);
+    }
+    glm::vec3 vec3(std::string_view key, glm::vec3 fallback) {
+        const toml::node* node = take(key);
+        if (!node) {
+            return fallback;
+        }
+        const toml::array* array = node->as_array();
+        if (!array || array->size() != 3) {
+            error(key, "expected an array of three numbers");
+        }
+        glm::vec3 v;
+        for (int i = 0; i < 3; ++i) {
+            const std::optional<double> c = (*array)[i].value<double>();
+            if (!c || !(*array)[i].is_number()) {
+                error(key, "expected an array of three numbers");
+            }
+            if (!std::isfinite(*c)) {
+                error(key, fmt::format("component {} is not finite", i));
+            }
+            v[i] = float(*c);
+        }
+        return v;
+    }
+    glm::vec3 vec3(std::string_view key) {
+        require(key);
+        return vec3(key, glm::vec3(0.0f));
+    }
+    glm::vec3 non_negative_vec3(std::string_view key, glm::vec3 fallback) {
+        const glm::vec3 v = vec3(key, fallback);
+        if (v.x < 0 || v.y < 0 || v.z < 0) {
+            error(key, "components must not be negative");
+        }
+        return v;
+    }
+    std::string string(std::string_view key, std::string fallback) {
+        const toml::node* node = take(key);
+        if (!node) {
+            return fallback;
+        }
+        if (!node->is_string()) {
+            error(key, "expected a string");
+        }
+        return std::string(*node->value<std::string_view>());
+    }
+    std::string string(std::string_view key) {
+        require(key);
+        return string(key, "");
+    }
+    const toml::table* table(std::string_view key) {
+        const toml::node* node = take(key);
+        if (node && !node->is_table()) {
+            error(key, "expected a table");
+        }
+        return node ? node->as_table() : nullptr;
+    }
+    const toml::array* array(std::string_view key) {
+        const toml::node* node = take(key);
+        if (node && !node->is_array()) {
+            error(key, "expected an array");
+        }
+        return node ? node->as_array() : nullptr;
+    }
+    const toml::node* take(std::string_view key) {
+        used_.insert(std::string(key));
+        return table_.get(key);
+    }
+    void finish() const {
+        for (const auto& [key, node] : table_) {
+            if (!used_.contains(std::string(key.str()))) {
+                const std::string name(key.str());
+                fail("{}:{}: {} {}: unknown key", origin_, node.source().begin.line, context_,
+                     name);
+            }
+        }
+    }
+
+private:
+    void require(std::string_view key) const {
+        if (!table_.contains(key)) {
+            fail("{}:{}: {} {}: missing required key", origin_, table_.source().begin.line,
+                 context_, key);
+        }
+    }
+
+    const toml::table& table_;
+    std::string origin_;
+    std::string context_;
+    std::set<std::string> used_;
+};
+
+const toml::table& empty_table() {
+    static const toml::table table;
+    return table;
+}
+
+template <typename Enum>
+Enum parse_enum(TableReader& reader, std::string_view key, Enum fallback,
+                const std::vector<std::pair<std::string, Enum>>& names) {
+    const std::string value = reader.string(key, "");
+    if (value.empty() && !reader.has(key)) {
+        return fallback;
+    }
+    for (const auto& [name, e] : names) {
+        if (name == value) {
+            return e;
+        }
+    }
+    std::string known;
+    for (const auto& [name, e] : names) {
+        known += (known.empty() ? "" : ", ") + name;
+    }
+    reader.error(key, fmt::format("unknown value '{}' (expected one of: {})", value, known));
+}
+
+Camera read_camera(TableReader r) {
+    Camera c;
+    c.position = r.vec3("position");
+    c.target = r.vec3("target");
+    c.up = r.vec3("up", c.up);
+    c.fov_y_degrees = float(r.number_in("fov", c.fov_y_degrees, 0.0, 180.0, true, true));
+    c.near = float(r.number_in("near", c.near, 0.0, 1e9, true));
+    c.far = float(r.number_in("far", c.far, c.near, 1e9, true));
+    c.exposure = float(r.number_in("exposure", c.exposure, 0.0, 1e9, true));
+    if (glm::length(c.target - c.position) <= 0.0f) {
+        r.error("target", "camera target equals its position");
+    }
+    if (glm::length(glm::cross(c.target - c.position, c.up)) <= 1e-6f * glm::length(c.up)) {
+        r.error("up", "up vector is parallel to the view direction");
+    }
+    r.finish();
+    return c;
+}
+
+SpotLight read_light(TableReader r) {
+    SpotLight l;
+    l.position = r.vec3("position");
+    l.target = r.vec3("target");
+    // Below 90° so that the influence pyramid (a square frustum) exists.
+    l.cone_half_angle_degrees =
+        float(r.number_in("cone_angle", l.cone_half_angle_degrees, 0.0, 89.0, true));
+    l.near = float(r.number_in("near", l.near, 0.0, 1e9, true));
+    l.far = float(r.number_in("far", l.far, l.near, 1e9, true));
+    l.intensity = r.non_negative_vec3("intensity", l.intensity);
+    l.falloff_degrees = float(r.number_in("falloff", 0.0, 0.0, l.cone_half_angle_degrees));
+    if (glm::length(l.target - l.position) <= 0.0f) {
+        r.error("target", "light target equals its position");
+    }
+    r.finish();
+    return l;
+}
+
+Medium read_medium(TableReader r) {
+    Medium m;
+    m.sigma_s = r.non_negative_vec3("sigma_s", m.sigma_s);
+    m.sigma_a = r.non_negative_vec3("sigma_a", m.sigma_a);
+    m.phase = parse_enum(r, "phase", m.phase,
+                         {{"isotropic", PhaseFunction::isotropic},
+                          {"henyey-greenstein", PhaseFunction::henyey_greenstein},
+                          {"schlick", PhaseFunction::schlick},
+                          {"rayleigh", PhaseFunction::rayleigh},
+                          {"mie-hazy", PhaseFunction::mie_hazy},
+                          {"mie-murky", PhaseFunction::mie_murky},
+                          {"nishita-hazy", PhaseFunction::nishita_hazy}});
+    m.g = float(r.number_in("g", m.g, -1.0, 1.0, true, true));
+    m.model = parse_enum(r, "model", m.model,
+                         {{"simplified", MediumModel::simplified},
+                          {"physical", MediumModel::physical}});
+    m.a0 = float(r.number_in("a0", m.a0, 0.0, 1e9));
+    m.a1 = float(r.number_in("a1", m.a1, 0.0, 1e9));
+    if (m.a0 == 0.0f && m.a1 == 0.0f) {
+        r.error("a1", "a0 and a1 must not both be zero (the falloff 1/(a1 r² + a0) is undefined)");
+    }
+    r.finish();
+    return m;
+}
+
+Material read_material(TableReader r, std::string name) {
+    Material m;
+    m.name = std::move(name);
+    m.albedo = r.non_negative_vec3("albedo", m.albedo);
+    if (m.albedo.x > 1 || m.albedo.y > 1 || m.albedo.z > 1) {
+        r.error("albedo", "components must be in [0, 1]");
+    }
+    m.roughness = float(r.number_in("roughness", m.roughness, 0.0, 1.0));
+    m.f0 = r.non_negative_vec3("f0", m.f0);
+    r.finish();
+    return m;
+}
+
+glm::mat4 read_transform(TableReader& r) {
+    const glm::vec3 translate = r.vec3("translate", glm::vec3(0.0f));
+    const glm::vec3 rotate = r.vec3("rotate", glm::vec3(0.0f));
+    glm::vec3 scale(1.0f);
+    if (const toml::node* node = r.take("scale"); node && node->is_number()) {
+        scale = glm::vec3(float(*node->value<double>()));
+    } else if (node) {
+        scale = r.vec3("scale", scale);
+    }
+    if (!std::isfinite(scale.x) || !std::isfinite(scale.y) || !std::isfinite(scale.z) ||
+        scale.x == 0 || scale.y == 0 || scale.z == 0) {
+        r.error("scale", "must be finite and non-zero");
+    }
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), translate);
+    m = glm::rotate(m, glm::radians(rotate.z), {0, 0, 1});
+    m = glm::rotate(m, glm::radians(rotate.y), {0, 1, 0});
+    m = glm::rotate(m, glm::radians(rotate.x), {1, 0, 0});
+    return glm::scale(m, scale);
+}
+
+fs::path resolve_mesh_path(const std::string& file, const fs::path& base_dir,
+                           const SceneSearchPaths& paths, TableReader& r) {
+    const fs::path candidates[] = {base_dir / file, paths.data / "meshes" / file,
+                                   paths.data / file};
+    for (const fs::path& candidate : candidates) {
+        if (fs::is_regular_file(candidate)) {
+            return candidate;
+        }
+    }
+    r.error("file", fmt::format("mesh '{}' not found (looked in {}, {}/meshes, {})", file,
+                                base_dir.string(), paths.data.string(), paths.data.string()));
+}
+
+// Meshes are shared between objects that name the same file and fit.
+using MeshCache = std::map<std::string, std::shared_ptr<const Mesh>>;
+
+std::shared_ptr<const Mesh> read_shape(TableReader& r, const fs::path& base_dir,
+                                       const SceneSearchPaths& paths, MeshCache& cache) {
+    const std::string shape = r.string("shape");
+    auto positive = [&](std::string_view key, double fallback) {
+        return float(r.number_in(key, fallback, 0.0, 1e9, true));
+    };
+    auto positive_vec3 = [&](std::string_view key, glm::vec3 fallback) {
+        const glm::vec3 v = r.vec3(key, fallback);
+        if (!(v.x > 0 && v.y > 0 && v.z > 0)) {
+            r.error(key, "components must be positive");
+        }
+        return v;
+    };
+    if (shape == "mesh") {
+        const std::string file = r.string("file");
+        const double fit = r.number_in("fit", 0.0, 0.0, 1e9);
+        const fs::path path = resolve_mesh_path(file, base_dir, paths, r);
+        const std::string key = fmt::format("{}|{}", path.string(), fit);
+        if (auto it = cache.find(key); it != cache.end()) {
+            return it->second;
+        }
+        Mesh mesh = load_mesh(path);
+        if (fit > 0.0) {
+            fit_mesh(mesh, float(fit));
+        }
+        return cache[key] = std::make_shared<const Mesh>(std::move(mesh));
+    }
+    if (shape == "box") {
+        return std::make_shared<const Mesh>(make_box(positive_vec3("size", glm::vec3(1.0f))));
+    }
+    if (shape == "sphere") {
+        const float radius = positive("radius", 0.5);
+        return std::make_shared<const Mesh>(make_sphere(radius, r.integer_in("segments", 32, 4, 4096)));
+    }
+    if (shape == "cylinder") {
+        const float radius = positive("radius", 0.5);
+        const float height = positive("height", 1.0);
+        return std::make_shared<const Mesh>(
+            make_cylinder(radius, height, r.integer_in("segments", 32, 3, 4096)));
+    }
+    if (shape == "torus") {
+        const float major = positive("major_radius", 0.5);
+        const float minor = positive("minor_radius", 0.2);
+        if (minor >= major) {
+            r.error("minor_radius", "must be smaller than major_radius");
+        }
+        const int major_segments = r.integer_in("major_segments", 48, 3, 4096);
+        const int minor_segments = r.integer_in("minor_segments", 24, 3, 4096);
+        return std::make_shared<const Mesh>(
+            make_torus(major, minor, major_segments, minor_segments));
+    }
+    if (shape == "plane") {
+        const glm::vec3 size = r.vec3("size", glm::vec3(10.0f, 0.0f, 10.0f));
+        if (!(size.x > 0 && size.z > 0) || size.y != 0) {
+            r.error("size", "expected [x, 0, z] with x and z positive");
+        }
+        return std::make_shared<const Mesh>(make_plane({size.x, size.z}));
+    }
+    r.error("shape", fmt::format("unknown shape '{}' (expected mesh, box, sphere, cylinder, "
+                                 "torus or plane)",
+                                 shape));
+}
+
+std::vector<Box> read_inner_boxes(TableReader& r, const std::string& origin,
+                                  const std::string& context) {
+    std::vector<Box> boxes;
+    const toml::array* array = r.array("inner");
+    if (!array) {
+        return boxes;
+    }
+    for (size_t i = 0; i < array->size(); ++i) {
+        const toml::table* table = (*array)[i].as_table();
+        if (!table) {
+            r.error("inner", "expected an array of tables { min = [..], max = [..] }");
+        }
+        TableReader box(*table, origin, fmt::format("{} inner[{}]", context, i));
+        Box b{box.vec3("min"), box.vec3("max")};
+        if (!(b.min.x < b.max.x && b.min.y < b.max.y && b.min.z < b.max.z)) {
+            box.error("max", "must exceed min in every component");
+        }
+        box.finish();
+        boxes.push_back(b);
+    }
+    return boxes;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& origin, const fs::path& base_dir,
+                  const SceneSearchPaths& paths) {
+    toml::table root;
+    try {
+        root = toml::parse(text, origin);
+    } catch (const toml::parse_error& e) {
+        fail("{}:{}: malformed TOML: {}", origin, e.source().begin.line, e.description());
+    }
+    TableReader top(root, origin, "");
+    Scene scene;
+
+    const toml::table* scene_table = top.table("scene");
+    TableReader scene_reader(scene_table ? *scene_table : empty_table(), origin, "[scene]");
+    scene.name = scene_reader.string("name", fs::path(origin).stem().string());
+    scene.ambient = scene_reader.non_negative_vec3("ambient", scene.ambient);
+    scene_reader.finish();
+
+    auto section = [&](std::string_view key) -> const toml::table& {
+        const toml::table* table = top.table(key);
+        if (!table) {
+            fail("{}: missing required table [{}]", origin, key);
+        }
+        return *table;
+    };
+    scene.camera = read_camera(TableReader(section("camera"), origin, "[camera]"));
+    scene.light = read_light(TableReader(section("light"), origin, "[light]"));
+    const toml::table* medium = top.table("medium");
+    scene.medium = read_medium(TableReader(medium ? *medium : empty_table(), origin, "[medium]"));
+
+    scene.materials.push_back(Material{.name = "default"});
+    std::map<std::string, int> material_index{{"default", 0}};
+    if (const toml::table* materials = top.table("materials")) {
+        for (const auto& [key, node] : *materials) {
+            const std::string name(key.str());
+            if (!node.is_table()) {
+                fail("{}:{}: [materials] {}: expected a table", origin, node.source().begin.line,
+                     name);
+            }
+            material_index[name] = int(scene.materials.size());
+            scene.materials.push_back(read_material(
+                TableReader(*node.as_table(), origin, fmt::format("[materials.{}]", name)), name));
+        }
+    }
+
+    MeshCache meshes;
+    if (const toml::array* objects = top.array("objects")) {
+        for (size_t i = 0; i < objects->size(); ++i) {
+            const toml::table* table = (*objects)[i].as_table();
+            if (!table) {
+                fail("{}: objects must be an array of tables ([[objects]])", origin);
+            }
+            const std::string context = fmt::format("[[objects]] #{}", i + 1);
+            TableReader r(*table, origin, context);
+            Object object;
+            object.name = r.string("name", fmt::format("object{}", i + 1));
+            object.mesh = read_shape(r, base_dir, paths, meshes);
+            const std::string material = r.string("material", "default");
+            const auto it = material_index.find(material);
+            if (it == material_index.end()) {
+                r.error("material", fmt::format("unknown material '{}'", material));
+            }
+            object.material = it->second;
+            object.transform = read_transform(r);
+            object.inner_boxes = read_inner_boxes(r, origin, context);
+            r.finish();
+            scene.objects.push_back(std::move(object));
+        }
+    }
+    top.finish();
+    return scene;
+}
+
+Scene load_scene_file(const fs::path& path, const SceneSearchPaths& paths) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        fail("{}: cannot read scene file (no such file)", path.string());
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) {
+        fail("{}: cannot read scene file", path.string());
+    }
+    Scene scene = parse_scene(text, path.string(), path.parent_path(), paths);
+    scene.source = path;
+    return scene;
+}
+
+std::vector<std::string> canonical_scene_names() { return {"toplight", "parallel", "multiple"}; }
+
+Scene load_scene(const std::string& name, const SceneSearchPaths& paths) {
+    constexpr std::string_view kMultiple = "multiple:";
+    if (name.starts_with(kMultiple)) {
+        const std::string count_text = name.substr(kMultiple.size());
+        char* end = nullptr;
+        const long count = std::strtol(count_text.c_str(), &end, 10);
+        if (count_text.empty() || *end != '\0' || count < 1 || count > 100000) {
+            fail("scene '{}': N in multiple:N must be an integer in [1, 100000]", name);
+        }
+        return parse_scene(generate_multiple_scene(int(count)), name, paths.scenes, paths);
+    }
+    const auto names = canonical_scene_names();
+    if (std::find(names.begin(), names.end(), name) != names.end()) {
+        return load_scene_file(paths.scenes / (name + ".toml"), paths);
+    }
+    if (fs::path(name).extension() == ".toml" || name.find('/') != std::string::npos) {
+        return load_scene_file(name, paths);
+    }
+    fail("unknown scene '{}' (canonical: toplight, parallel, multiple, multiple:N; or a .toml "
+         "file)",
+         name);
+}
+
+}  // namespace sl

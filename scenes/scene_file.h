@@ -1,0 +1,48 @@
+#pragma once
+// Scene files (TOML). Every key is read in scene_file.cpp, next to its documentation and its
+// validation; an unknown key, a wrong type or an out-of-range value is an error naming the file,
+// line, table and key. The format:
+//
+//   [scene]     name, ambient = [r, g, b]
+//   [camera]    position, target, up, fov (vertical, degrees), near, far, exposure
+//   [light]     position, target, cone_angle (half-angle, degrees), near, far,
+//               intensity = [r, g, b], falloff (degrees, 0 = hard edge)
+//   [medium]    sigma_s, sigma_a ([r, g, b] 1/m), phase, g, model ("simplified" | "physical"),
+//               a0, a1
+//   [materials.NAME]  albedo, roughness, f0
+//   [[objects]] name, shape ("mesh" | "box" | "sphere" | "cylinder" | "torus" | "plane"),
+//               the shape's parameters, material, translate, rotate (degrees about x, y, z,
+//               applied in that order), scale (number or [x, y, z]),
+//               inner = [{ min = [..], max = [..] }, ...]   (boxes in the local frame)
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "scenes/scene.h"
+
+namespace sl {
+
+struct SceneSearchPaths {
+    std::filesystem::path scenes;  // canonical scene files (<name>.toml)
+    std::filesystem::path data;    // extracted meshes (data/meshes/*.off)
+    // Built-in defaults, overridden by the environment variables SHAFTLAB_SCENES, SHAFTLAB_DATA.
+    static SceneSearchPaths defaults();
+};
+
+Scene load_scene_file(const std::filesystem::path& path, const SceneSearchPaths& paths);
+// `origin` names the text in error messages (a path or "multiple:40").
+Scene parse_scene(const std::string& text, const std::string& origin,
+                  const std::filesystem::path& base_dir, const SceneSearchPaths& paths);
+
+// The canonical scenes in display order, and the generated `multiple:N` family.
+std::vector<std::string> canonical_scene_names();
+// A scene of N objects on a jittered grid under one spot light (DESIGN.md §5), as TOML text,
+// deterministic in N. `multiple` is multiple:kMultipleDefaultCount.
+constexpr int kMultipleDefaultCount = 32;
+std::string generate_multiple_scene(int count);
+
+// Resolves a canonical name ("toplight"), a generated name ("multiple:120") or a file path.
+Scene load_scene(const std::string& name_or_path, const SceneSearchPaths& paths);
+
+}  // namespace sl

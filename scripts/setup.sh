@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# One-step set-up on a fresh Debian 12 machine: installs the Debian packages shaftlab needs (only
+# those missing), configures a Release build in ./build and builds it. Sourced by run.sh and
+# test.sh; safe to run again (it does only what is missing).
+set -euo pipefail
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+
+packages=(
+    build-essential cmake ninja-build pkg-config clang-format
+    libgl-dev libosmesa6-dev libglfw3-dev libglm-dev
+    libcgal-dev libcgal-demo libembree-dev libtbb-dev
+    libimgui-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
+    libstb-dev libopenexr-dev libtinyobjloader-dev
+    libgtest-dev libbenchmark-dev xvfb
+)
+
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if ((${#missing[@]})); then
+    echo "setup: installing ${missing[*]}"
+    sudo=""
+    if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+    export DEBIAN_FRONTEND=noninteractive
+    $sudo apt-get update -q
+    $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+build_type=${SHAFTLAB_BUILD_TYPE:-Release}
+build_dir=${SHAFTLAB_BUILD_DIR:-$repo/build}
+cmake -S "$repo" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" ${SHAFTLAB_CMAKE_ARGS:-}
+cmake --build "$build_dir" --parallel "$(nproc)"
