@@ -89,23 +89,30 @@ int run_render(const RenderArguments& args) {
         {"method", method->name()},
         {"width", options.width},
         {"height", options.height},
-        {"shadow", {{"filter", args.shadow}, {"pcf_radius", options.pcf_radius},
-                    {"map_size", options.shadow_map_size}}},
-        {"protocol", {{"warmup_frames", args.warmup}, {"measured_frames", args.frames},
-                      {"statistic", "median"}}},
-        {"gl", {{"renderer", context.renderer}, {"version", context.version},
-                {"vendor", context.vendor}}},
+        {"shadow",
+         {{"filter", args.shadow},
+          {"pcf_radius", options.pcf_radius},
+          {"map_size", options.shadow_map_size}}},
+        {"protocol",
+         {{"warmup_frames", args.warmup},
+          {"measured_frames", args.frames},
+          {"statistic", "median"}}},
+        {"gl",
+         {{"renderer", context.renderer},
+          {"version", context.version},
+          {"vendor", context.vendor}}},
         {"stats", {{"objects", scene.objects.size()}, {"triangles", scene.triangle_count()}}},
         {"timings_ms",
          {{"scene_load", load_ms},
           {"gl_setup", setup_ms},
           {"method_prepare", prepare_ms},
           {"frame_cpu", frame.cpu_ms},
-          {"gpu", {{"shadow", frame.gpu.shadow_ms},
-                   {"surface", frame.gpu.surface_ms},
-                   {"volume", frame.gpu.volume_ms},
-                   {"composite", frame.gpu.composite_ms},
-                   {"total", frame.gpu.total_ms()}}}}},
+          {"gpu",
+           {{"shadow", frame.gpu.shadow_ms},
+            {"surface", frame.gpu.surface_ms},
+            {"volume", frame.gpu.volume_ms},
+            {"composite", frame.gpu.composite_ms},
+            {"total", frame.gpu.total_ms()}}}}},
         {"files", {stem + ".png", stem + ".exr", stem + ".json"}},
     };
 
@@ -140,11 +147,13 @@ void parse_size(const std::string& text, int& width, int& height) {
 
 Command add_render_command(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
-        "render", "Render one frame of a scene with one method: DIR/<scene>.<method>.{png,exr,json}");
+        "render",
+        "Render one frame of a scene with one method: DIR/<scene>.<method>.{png,exr,json}");
     auto args = std::make_shared<RenderArguments>();
     command->add_option("--scene", args->scene, "Canonical name, multiple:N, or a .toml file")
         ->required();
-    command->add_option("--method", args->method, "Volumetric method (none)")->capture_default_str();
+    command->add_option("--method", args->method, "Volumetric method (none)")
+        ->capture_default_str();
     command->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
     command->add_option("--out", args->out, "Output directory")->capture_default_str();
     command->add_option("--shadow", args->shadow, "Shadow map filter")

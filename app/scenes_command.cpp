@@ -14,8 +14,9 @@ Command add_scenes_command(CLI::App& app) {
     auto names_only = std::make_shared<bool>(false);
     auto generate = std::make_shared<int>(0);
     command->add_flag("--names", *names_only, "Print only the names, one per line");
-    command->add_option("--generate", *generate,
-                        "Print the TOML of the generated scene multiple:N and exit")
+    command
+        ->add_option("--generate", *generate,
+                     "Print the TOML of the generated scene multiple:N and exit")
         ->check(CLI::Range(1, 100000));
     return [=] {
         if (*generate > 0) {
@@ -29,11 +30,12 @@ Command add_scenes_command(CLI::App& app) {
                 continue;
             }
             const Scene scene = load_scene(name, paths);
-            fmt::print("{:<10} {:>3} objects {:>8} triangles  light cone {:.0f} deg  medium {}  "
-                       "{}\n",
-                       name, scene.objects.size(), scene.triangle_count(),
-                       scene.light.cone_half_angle_degrees, to_string(scene.medium.model),
-                       scene.source.string());
+            fmt::print(
+                "{:<10} {:>3} objects {:>8} triangles  light cone {:.0f} deg  medium {}  "
+                "{}\n",
+                name, scene.objects.size(), scene.triangle_count(),
+                scene.light.cone_half_angle_degrees, to_string(scene.medium.model),
+                scene.source.string());
         }
         if (!*names_only) {
             fmt::print("multiple:N  generated: N objects under one spot light\n");

@@ -18,7 +18,8 @@ public:
     ~OutputFiles();
 
     // Calls write(temporary path); the file appears as directory/name on commit().
-    void add(const std::string& name, const std::function<void(const std::filesystem::path&)>& write);
+    void add(const std::string& name,
+             const std::function<void(const std::filesystem::path&)>& write);
     void add_text(const std::string& name, const std::string& text);
     // Renames every temporary into place. Returns the final paths.
     std::vector<std::filesystem::path> commit();

@@ -15,16 +15,16 @@ std::mutex g_mutex;
 std::vector<std::string> g_errors;
 
 void APIENTRY on_debug_message(GLenum /*source*/, GLenum type, GLuint id, GLenum severity,
-                                 GLsizei length, const GLchar* message, const void* /*user*/) {
-    const bool is_error = type == GL_DEBUG_TYPE_ERROR ||
-                          type == GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR ||
+                               GLsizei length, const GLchar* message, const void* /*user*/) {
+    const bool is_error = type == GL_DEBUG_TYPE_ERROR || type == GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR ||
                           severity == GL_DEBUG_SEVERITY_HIGH;
     if (!is_error) {
         return;
     }
     std::lock_guard lock(g_mutex);
-    g_errors.push_back(fmt::format("GL error {:#x}: {}", id,
-                                   length < 0 ? std::string(message) : std::string(message, length)));
+    g_errors.push_back(
+        fmt::format("GL error {:#x}: {}", id,
+                    length < 0 ? std::string(message) : std::string(message, length)));
 }
 
 }  // namespace

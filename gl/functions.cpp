@@ -11,9 +11,9 @@ Api GL;
 void load_api(ProcAddressFn resolve) {
     Api api;
     std::string missing;
-#define SL_GL_LOAD(type, name)                                            \
-    api.name = reinterpret_cast<type>(resolve("gl" #name));               \
-    if (!api.name) {                                                      \
+#define SL_GL_LOAD(type, name)                                             \
+    api.name = reinterpret_cast<type>(resolve("gl" #name));                \
+    if (!api.name) {                                                       \
         missing += (missing.empty() ? "gl" : ", gl") + std::string(#name); \
     }
     SL_GL_FUNCTIONS(SL_GL_LOAD)

@@ -31,9 +31,10 @@ public:
                                   0};
         context_ = OSMesaCreateContextAttribs(attributes, nullptr);
         if (!context_) {
-            fail("OSMesa could not create an OpenGL 4.5 core context (is Mesa's llvmpipe "
-                 "available? GALLIUM_DRIVER={})",
-                 getenv("GALLIUM_DRIVER") ? getenv("GALLIUM_DRIVER") : "unset");
+            fail(
+                "OSMesa could not create an OpenGL 4.5 core context (is Mesa's llvmpipe "
+                "available? GALLIUM_DRIVER={})",
+                getenv("GALLIUM_DRIVER") ? getenv("GALLIUM_DRIVER") : "unset");
         }
         make_current();
         initialize_loaded_context(
@@ -57,6 +58,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Platform> create_osmesa_platform() { return std::make_unique<OsmesaPlatform>(); }
+std::unique_ptr<Platform> create_osmesa_platform() {
+    return std::make_unique<OsmesaPlatform>();
+}
 
 }  // namespace sl::gl

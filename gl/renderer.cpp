@@ -104,7 +104,8 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
         }
         GpuMesh gpu;
         gpu.vertices = create_buffer(interleaved.data(), interleaved.size() * sizeof(float));
-        gpu.indices = create_buffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
+        gpu.indices =
+            create_buffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
         gpu.index_count = GLsizei(mesh.triangles.size() * 3);
         gpu.vertex_array = create_vertex_array();
         const GLuint vao = gpu.vertex_array.id();
@@ -120,8 +121,8 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
         meshes_.emplace(&mesh, std::move(gpu));
     }
 
-    shadow_program_ = create_program(
-        {{GL_VERTEX_SHADER, "gl/shaders/shadow.vert"}, {GL_FRAGMENT_SHADER, "gl/shaders/shadow.frag"}});
+    shadow_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/shadow.vert"},
+                                      {GL_FRAGMENT_SHADER, "gl/shaders/shadow.frag"}});
     surface_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/surface.vert"},
                                        {GL_FRAGMENT_SHADER, "gl/shaders/surface.frag"}});
     composite_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
@@ -146,13 +147,16 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     surface_color_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
     surface_depth_ = create_texture_2d(GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
     surface_framebuffer_ = create_framebuffer();
-    GL.NamedFramebufferTexture(surface_framebuffer_.id(), GL_COLOR_ATTACHMENT0, surface_color_.id(), 0);
-    GL.NamedFramebufferTexture(surface_framebuffer_.id(), GL_DEPTH_ATTACHMENT, surface_depth_.id(), 0);
+    GL.NamedFramebufferTexture(surface_framebuffer_.id(), GL_COLOR_ATTACHMENT0, surface_color_.id(),
+                               0);
+    GL.NamedFramebufferTexture(surface_framebuffer_.id(), GL_DEPTH_ATTACHMENT, surface_depth_.id(),
+                               0);
     require_complete(surface_framebuffer_.id(), "surface");
 
     in_scattering_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
     volume_framebuffer_ = create_framebuffer();
-    GL.NamedFramebufferTexture(volume_framebuffer_.id(), GL_COLOR_ATTACHMENT0, in_scattering_.id(), 0);
+    GL.NamedFramebufferTexture(volume_framebuffer_.id(), GL_COLOR_ATTACHMENT0, in_scattering_.id(),
+                               0);
     require_complete(volume_framebuffer_.id(), "in-scattering");
 
     hdr_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
@@ -270,7 +274,8 @@ Frame SceneRenderer::render(VolumeMethod& method) {
     frame.surface = read_rgb(surface_color_.id());
     std::vector<uint8_t> rgba(size_t(w) * h * 4);
     GL.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    GL.GetTextureImage(display_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()), rgba.data());
+    GL.GetTextureImage(display_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()),
+                       rgba.data());
     frame.display_srgb8.resize(size_t(w) * h * 3);
     for (int y = 0; y < h; ++y) {  // GL rows run bottom to top
         for (int x = 0; x < w; ++x) {

@@ -36,9 +36,9 @@ struct PassTimings {
 };
 
 struct Frame {
-    Image radiance;       // I_eye, linear (before tone mapping)
-    Image in_scattering;  // I_s alone, linear
-    Image surface;        // I_obj·T(Z) alone, linear
+    Image radiance;                      // I_eye, linear (before tone mapping)
+    Image in_scattering;                 // I_s alone, linear
+    Image surface;                       // I_obj·T(Z) alone, linear
     std::vector<uint8_t> display_srgb8;  // the GPU tone map, RGB rows top to bottom
     PassTimings gpu;
     double cpu_ms = 0;  // wall time of render() including read-back

@@ -263,9 +263,9 @@ Mesh make_box(glm::vec3 size) {
     const glm::vec3 h = 0.5f * size;
     // Each face: outward normal and two tangents whose cross product is the normal (CCW outside).
     const glm::vec3 axes[6][3] = {
-        {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
-        {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},  {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
-        {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}},
+        {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+        {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}}, {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+        {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}},
     };
     for (const auto& [n, u, v] : axes) {
         const auto base = uint32_t(mesh.positions.size());
@@ -283,8 +283,8 @@ Mesh make_box(glm::vec3 size) {
 namespace {
 
 // A (rows+1) x (columns+1) vertex grid mapped through `point(u, v)`, u and v in [0, 1], with the
-// seam vertices welded (u always wraps, v wraps when wrap_v, poles collapse when collapse_v_ends) so the result
-// is a closed manifold where the surface is.
+// seam vertices welded (u always wraps, v wraps when wrap_v, poles collapse when collapse_v_ends)
+// so the result is a closed manifold where the surface is.
 template <typename PointFn>
 Mesh make_grid_surface(int columns, int rows, bool wrap_v, bool collapse_v_ends, PointFn point) {
     // Orientation: triangles (a, b, c) wind counter-clockwise seen from where dp/du x dp/dv points.

@@ -9,20 +9,26 @@
 
 namespace sl {
 
-glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
+glm::mat4 Camera::view() const {
+    return glm::lookAt(position, target, up);
+}
 
 glm::mat4 Camera::projection(float aspect) const {
     return glm::perspective(glm::radians(fov_y_degrees), aspect, near, far);
 }
 
-glm::vec3 SpotLight::direction() const { return glm::normalize(target - position); }
+glm::vec3 SpotLight::direction() const {
+    return glm::normalize(target - position);
+}
 
 glm::vec3 SpotLight::up() const {
     const glm::vec3 d = direction();
     return std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, -1);
 }
 
-glm::mat4 SpotLight::view() const { return glm::lookAt(position, target, up()); }
+glm::mat4 SpotLight::view() const {
+    return glm::lookAt(position, target, up());
+}
 
 glm::mat4 SpotLight::projection() const {
     // A square frustum of half-angle θ circumscribes the cone of half-angle θ.
@@ -79,13 +85,20 @@ Bounds Scene::world_bounds() const {
 
 const char* to_string(PhaseFunction phase) {
     switch (phase) {
-        case PhaseFunction::isotropic: return "isotropic";
-        case PhaseFunction::henyey_greenstein: return "henyey-greenstein";
-        case PhaseFunction::schlick: return "schlick";
-        case PhaseFunction::rayleigh: return "rayleigh";
-        case PhaseFunction::mie_hazy: return "mie-hazy";
-        case PhaseFunction::mie_murky: return "mie-murky";
-        case PhaseFunction::nishita_hazy: return "nishita-hazy";
+        case PhaseFunction::isotropic:
+            return "isotropic";
+        case PhaseFunction::henyey_greenstein:
+            return "henyey-greenstein";
+        case PhaseFunction::schlick:
+            return "schlick";
+        case PhaseFunction::rayleigh:
+            return "rayleigh";
+        case PhaseFunction::mie_hazy:
+            return "mie-hazy";
+        case PhaseFunction::mie_murky:
+            return "mie-murky";
+        case PhaseFunction::nishita_hazy:
+            return "nishita-hazy";
     }
     return "?";
 }

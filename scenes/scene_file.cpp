@@ -50,7 +50,7 @@ public:
     [[noreturn]] void error(std::string_view key, const std::string& reason) const {
         const toml::node* node = table_.get(key);
         const auto line = node ? node->source().begin.line : table_.source().begin.line;
-        fail("{}:{}: {} {}: {}", origin_, line, context_, key, reason);
+        fail("{}:{}: {}{}: {}", origin_, line, prefix(), key, reason);
     }
 
     double number(std::string_view key, double fallback) {
@@ -58,7 +58,8 @@ public:
         if (!node) {
             return fallback;
         }
-        const std::optional<double> value = node->is_number() ? node->value<double>() : std::nullopt;
+        const std::optional<double> value =
+            node->is_number() ? node->value<double>() : std::nullopt;
         if (!value) {
             error(key, "expected a number");
         }
@@ -86,7 +87,8 @@ public:
         if (!node) {
             return fallback;
         }
-        const std::optional<int64_t> value = node->as_integer() ? node->value<int64_t>() : std::nullopt;
+        const std::optional<int64_t> value =
+            node->as_integer() ? node->value<int64_t>() : std::nullopt;
         if (!value || *value < lo || *value > hi) {
             error(key, fmt::format("expected an integer in [{}, {}]", lo, hi));
         }
@@ -161,17 +163,17 @@ public:
         for (const auto& [key, node] : table_) {
             if (!used_.contains(std::string(key.str()))) {
                 const std::string name(key.str());
-                fail("{}:{}: {} {}: unknown key", origin_, node.source().begin.line, context_,
-                     name);
+                fail("{}:{}: {}{}: unknown key", origin_, node.source().begin.line, prefix(), name);
             }
         }
     }
 
 private:
+    std::string prefix() const { return context_.empty() ? "" : context_ + " "; }
     void require(std::string_view key) const {
         if (!table_.contains(key)) {
-            fail("{}:{}: {} {}: missing required key", origin_, table_.source().begin.line,
-                 context_, key);
+            fail("{}:{}: {}{}: missing required key", origin_, table_.source().begin.line, prefix(),
+                 key);
         }
     }
 
@@ -255,9 +257,9 @@ Medium read_medium(TableReader r) {
                           {"mie-murky", PhaseFunction::mie_murky},
                           {"nishita-hazy", PhaseFunction::nishita_hazy}});
     m.g = float(r.number_in("g", m.g, -1.0, 1.0, true, true));
-    m.model = parse_enum(r, "model", m.model,
-                         {{"simplified", MediumModel::simplified},
-                          {"physical", MediumModel::physical}});
+    m.model =
+        parse_enum(r, "model", m.model,
+                   {{"simplified", MediumModel::simplified}, {"physical", MediumModel::physical}});
     m.a0 = float(r.number_in("a0", m.a0, 0.0, 1e9));
     m.a1 = float(r.number_in("a1", m.a1, 0.0, 1e9));
     if (m.a0 == 0.0f && m.a1 == 0.0f) {
@@ -348,7 +350,8 @@ std::shared_ptr<const Mesh> read_shape(TableReader& r, const fs::path& base_dir,
     }
     if (shape == "sphere") {
         const float radius = positive("radius", 0.5);
-        return std::make_shared<const Mesh>(make_sphere(radius, r.integer_in("segments", 32, 4, 4096)));
+        return std::make_shared<const Mesh>(
+            make_sphere(radius, r.integer_in("segments", 32, 4, 4096)));
     }
     if (shape == "cylinder") {
         const float radius = positive("radius", 0.5);
@@ -491,7 +494,9 @@ Scene load_scene_file(const fs::path& path, const SceneSearchPaths& paths) {
     return scene;
 }
 
-std::vector<std::string> canonical_scene_names() { return {"toplight", "parallel", "multiple"}; }
+std::vector<std::string> canonical_scene_names() {
+    return {"toplight", "parallel", "multiple"};
+}
 
 Scene load_scene(const std::string& name, const SceneSearchPaths& paths) {
     constexpr std::string_view kMultiple = "multiple:";
@@ -511,9 +516,10 @@ Scene load_scene(const std::string& name, const SceneSearchPaths& paths) {
     if (fs::path(name).extension() == ".toml" || name.find('/') != std::string::npos) {
         return load_scene_file(name, paths);
     }
-    fail("unknown scene '{}' (canonical: toplight, parallel, multiple, multiple:N; or a .toml "
-         "file)",
-         name);
+    fail(
+        "unknown scene '{}' (canonical: toplight, parallel, multiple, multiple:N; or a .toml "
+        "file)",
+        name);
 }
 
 }  // namespace sl

@@ -19,7 +19,7 @@ using vec4 = glm::vec4;
 #define SL_FRAME_UNIFORMS_BINDING 0
 
 SL_UNIFORM_BLOCK(FrameUniforms, SL_FRAME_UNIFORMS_BINDING) {
-    mat4 view_projection;        // camera: world -> clip
+    mat4 view_projection;  // camera: world -> clip
     mat4 inverse_view_projection;
     mat4 light_view_projection;  // shadow map: world -> light clip
     vec4 camera_position;        // xyz

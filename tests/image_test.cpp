@@ -1,0 +1,86 @@
+// Images and result files: EXR round trip, the tone curve, all-or-nothing output.
+
+#include <fstream>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "core/output_files.h"
+#include "tests/support.h"
+
+namespace sl::test {
+namespace {
+
+// EXR stores 32-bit floats: what is written is read back bit for bit, HDR values included.
+TEST(Image, ExrRoundTripIsExact) {
+    Image image(7, 5);
+    for (size_t i = 0; i < image.rgb.size(); ++i) {
+        image.rgb[i] = float(i) * 0.37f + (i % 3 == 0 ? 1234.5f : 1e-6f);
+    }
+    TempDir dir;
+    write_exr(image, dir / "a.exr");
+    const Image back = read_exr(dir / "a.exr");
+    EXPECT_EQ(back.width, 7);
+    EXPECT_EQ(back.height, 5);
+    EXPECT_EQ(back.rgb, image.rgb);
+    EXPECT_THROW(read_exr(dir / "missing.exr"), Error);
+}
+
+// The preview curve: Reinhard after exposure, then sRGB: 0 -> 0, 1 -> 0.5 -> 188, monotonic.
+TEST(Image, ToneMapIsReinhardThenSrgb) {
+    Image image(4, 1);
+    image.set(0, 0, glm::vec3(0.0f));
+    image.set(1, 0, glm::vec3(1.0f));
+    image.set(2, 0, glm::vec3(1e6f));
+    image.set(3, 0, glm::vec3(-1.0f));
+    const std::vector<unsigned char> out = tone_map_srgb8(image, ToneMap{1.0f});
+    EXPECT_EQ(out[0], 0);
+    EXPECT_EQ(out[3], 188);  // sRGB(0.5) = 0.7354
+    EXPECT_EQ(out[6], 255);
+    EXPECT_EQ(out[9], 0);
+    EXPECT_EQ(tone_map_srgb8(image, ToneMap{2.0f})[3], 213);  // 2/3 -> 0.8360
+    unsigned char previous = 0;
+    for (float x = 0.0f; x < 50.0f; x += 0.01f) {
+        Image pixel(1, 1);
+        pixel.set(0, 0, glm::vec3(x));
+        const unsigned char v = tone_map_srgb8(pixel, ToneMap{})[0];
+        EXPECT_GE(v, previous);
+        previous = v;
+    }
+}
+
+// A PNG is written with its signature; sizes that do not match the pixels are refused.
+TEST(Image, PngIsWritten) {
+    TempDir dir;
+    write_png(Image(3, 2), ToneMap{}, dir / "a.png");
+    std::ifstream in(dir / "a.png", std::ios::binary);
+    char signature[8] = {};
+    in.read(signature, 8);
+    EXPECT_EQ(std::string(signature + 1, 3), "PNG");
+    EXPECT_THROW(write_png(std::vector<unsigned char>(5), 3, 2, dir / "b.png"), Error);
+}
+
+// Result files appear together on commit, or not at all when any step fails.
+TEST(OutputFiles, AllOrNothing) {
+    TempDir dir;
+    {
+        OutputFiles files(dir.path());
+        files.add_text("a.txt", "a");
+        files.add_text("b.txt", "b");
+        EXPECT_EQ(files.commit().size(), 2u);
+    }
+    EXPECT_EQ(dir.file_count(), 2u);
+
+    TempDir failed;
+    try {
+        OutputFiles files(failed.path());
+        files.add_text("a.txt", "a");
+        files.add("b.txt", [](const std::filesystem::path&) { fail("simulated failure"); });
+        files.commit();
+        ADD_FAILURE() << "the failure was swallowed";
+    } catch (const Error&) {
+    }
+    EXPECT_EQ(failed.file_count(), 0u) << "temporaries must be removed";
+}
+
+}  // namespace
+}  // namespace sl::test

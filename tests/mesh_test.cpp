@@ -1,0 +1,137 @@
+// Meshes: procedural shapes against closed-form volumes, the OFF and OBJ readers on real and
+// malformed files.
+
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "core/error.h"
+#include "scenes/mesh.h"
+#include "scenes/scene_file.h"
+#include "tests/support.h"
+
+namespace sl::test {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Signed volume by the divergence theorem: positive iff the triangles wind outwards.
+double signed_volume(const Mesh& mesh) {
+    double volume = 0.0;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
+        volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+    }
+    return volume;
+}
+
+// Every closed procedural shape winds outwards and encloses its closed-form volume (to the
+// accuracy of its tessellation, from below since the tessellation is inscribed).
+TEST(Mesh, ProceduralShapesAreClosedOutwardAndHaveTheirVolume) {
+    struct Case {
+        const char* name;
+        Mesh mesh;
+        double volume;
+        double tolerance;
+    };
+    const Case cases[] = {
+        {"box", make_box({1.0f, 2.0f, 3.0f}), 6.0, 1e-6},
+        {"sphere", make_sphere(0.5f, 96), 4.0 / 3.0 * kPi * 0.125, 0.005},
+        {"cylinder", make_cylinder(0.5f, 2.0f, 128), kPi * 0.25 * 2.0, 0.002},
+        {"torus", make_torus(1.0f, 0.25f, 128, 64), 2.0 * kPi * kPi * 1.0 * 0.0625, 0.003},
+    };
+    for (const Case& c : cases) {
+        EXPECT_TRUE(c.mesh.is_closed()) << c.name;
+        const double volume = signed_volume(c.mesh);
+        EXPECT_GT(volume, 0.0) << c.name << " winds inwards";
+        EXPECT_NEAR(volume / c.volume, 1.0, c.tolerance) << c.name;
+        EXPECT_LE(volume, c.volume * (1.0 + 1e-6)) << c.name << " is inscribed";
+        EXPECT_EQ(c.mesh.normals.size(), c.mesh.positions.size()) << c.name;
+    }
+    const Mesh plane = make_plane({2.0f, 3.0f});
+    EXPECT_FALSE(plane.is_closed());
+    EXPECT_NEAR(plane.area(), 6.0, 1e-6);
+}
+
+// Smooth vertex normals of a sphere point away from its centre.
+TEST(Mesh, VertexNormalsPointOutwards) {
+    const Mesh sphere = make_sphere(1.0f, 32);
+    for (size_t i = 0; i < sphere.positions.size(); ++i) {
+        EXPECT_GT(glm::dot(sphere.normals[i], glm::normalize(sphere.positions[i])), 0.99f);
+    }
+}
+
+// The Stanford bunny from libcgal-demo loads completely.
+TEST(Mesh, LoadsTheBunnyFromCgalData) {
+    const Mesh bunny = load_mesh(SceneSearchPaths::defaults().data / "meshes" / "bunny00.off");
+    EXPECT_EQ(bunny.positions.size(), 37706u);
+    EXPECT_GT(bunny.triangles.size(), 75000u);
+    EXPECT_GT(bunny.area(), 0.0);
+}
+
+// fit_mesh scales to the requested largest extent and rests the mesh on y = 0, centred in x, z.
+TEST(Mesh, FitScalesAndRestsOnTheFloor) {
+    Mesh box = make_box({2.0f, 4.0f, 1.0f});
+    fit_mesh(box, 1.0f);
+    const Bounds b = box.bounds();
+    EXPECT_NEAR(b.extent().y, 1.0f, 1e-6f);
+    EXPECT_NEAR(b.min.y, 0.0f, 1e-6f);
+    EXPECT_NEAR(b.center().x, 0.0f, 1e-6f);
+    EXPECT_NEAR(b.center().z, 0.0f, 1e-6f);
+}
+
+// Every malformed OFF file gives one error naming the file (and line) and the reason.
+TEST(Mesh, MalformedOffFilesGiveClearErrors) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"", "unexpected end of file"},
+        {"OFX\n3 1 0\n", "expected 'OFF' header"},
+        {"OFF\n3 one 0\n", "malformed counts"},
+        {"OFF\n-3 1 0\n", "malformed counts"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n", "unexpected end of file, expecting a vertex"},
+        {"OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n", "malformed vertex"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "face index 7 out of range"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", "vertex count of at least 3"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "fewer than 3 vertex indices"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n", "no triangle of non-zero area"},
+        {"OFF\n3 1 0\n0 0 0\n1e39 0 0\n0 1 0\n3 0 1 2\n", "vertex"},
+        {"OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 # counts on the header line\n", nullptr},
+    };
+    TempDir dir;
+    for (const auto& [text, expected] : cases) {
+        const auto path = dir / "mesh.off";
+        write_text(path, text);
+        if (!expected) {
+            EXPECT_EQ(load_mesh(path).triangles.size(), 1u);
+            continue;
+        }
+        try {
+            load_mesh(path);
+            ADD_FAILURE() << "no error for:\n" << text;
+        } catch (const Error& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find(expected), std::string::npos) << message;
+            EXPECT_NE(message.find("mesh.off"), std::string::npos) << message;
+            EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+        }
+    }
+    EXPECT_THROW(load_mesh(dir / "missing.off"), Error);
+    write_text(dir / "mesh.ply", "ply\n");
+    EXPECT_THROW(load_mesh(dir / "mesh.ply"), Error);
+}
+
+// OBJ files load through tinyobjloader, polygons triangulated; bad indices are errors.
+TEST(Mesh, ObjFilesLoadAndBadOnesFail) {
+    TempDir dir;
+    write_text(dir / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    const Mesh quad = load_mesh(dir / "quad.obj");
+    EXPECT_EQ(quad.triangles.size(), 2u);
+    EXPECT_NEAR(quad.area(), 1.0, 1e-6);
+    write_text(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");
+    EXPECT_THROW(load_mesh(dir / "bad.obj"), Error);
+    write_text(dir / "empty.obj", "# nothing\n");
+    EXPECT_THROW(load_mesh(dir / "empty.obj"), Error);
+}
+
+}  // namespace
+}  // namespace sl::test

@@ -1,0 +1,186 @@
+// The GPU frame against independent CPU oracles: surface radiance and shadows against a
+// brute-force ray caster and the closed-form shading of every floor pixel, determinism, and the
+// GPU tone map against the CPU one.
+
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "core/image.h"
+#include "gl/renderer.h"
+#include "tests/support.h"
+
+namespace sl::test {
+namespace {
+
+using Render = GlTest;
+
+gl::Frame render(const Scene& scene, const gl::RenderOptions& options) {
+    gl::SceneRenderer renderer(scene, options);
+    const auto method = gl::create_volume_method("none");
+    method->prepare(scene);
+    return renderer.render(*method);
+}
+
+// The same scene renders bit-identically twice, with two separate renderers.
+TEST_F(Render, SameSceneRendersBitIdenticallyTwice) {
+    const Scene scene = load_canonical("toplight");
+    const gl::RenderOptions options{.width = 96, .height = 54};
+    const gl::Frame a = render(scene, options);
+    const gl::Frame b = render(scene, options);
+    EXPECT_EQ(a.radiance.rgb, b.radiance.rgb);
+    EXPECT_EQ(a.display_srgb8, b.display_srgb8);
+}
+
+// With the `none` method, I_s is zero and the composite is exactly the surface pass; the GPU tone
+// map agrees with the CPU one (core/image.cpp) to one 8-bit step.
+TEST_F(Render, CompositeIsSurfacePlusInScatteringAndToneMapsLikeTheCpu) {
+    const Scene scene = load_canonical("multiple");
+    const gl::Frame frame = render(scene, {.width = 80, .height = 45});
+    EXPECT_EQ(frame.radiance.rgb, frame.surface.rgb);
+    for (const float v : frame.in_scattering.rgb) {
+        ASSERT_EQ(v, 0.0f);
+    }
+    const std::vector<unsigned char> cpu =
+        tone_map_srgb8(frame.radiance, ToneMap{scene.camera.exposure});
+    ASSERT_EQ(cpu.size(), frame.display_srgb8.size());
+    int worst = 0;
+    for (size_t i = 0; i < cpu.size(); ++i) {
+        worst = std::max(worst, std::abs(int(cpu[i]) - int(frame.display_srgb8[i])));
+    }
+    EXPECT_LE(worst, 1);  // float rounding of pow() on llvmpipe vs libm
+}
+
+struct FloorSample {
+    int x, y;
+    glm::vec3 expected;
+    glm::vec3 rendered;
+};
+struct FloorCheck {
+    std::vector<FloorSample> lit, shadowed, outside;
+    int mismatches = 0;
+    int checked = 0;
+};
+
+// Casts the ray through every `step`-th pixel centre onto the floor (y = 0) and computes, on the
+// CPU, the radiance the surface pass must produce there: Lambert with the cone of Nilsson eq.
+// 2.9, the falloff of eq. 2.8 / 2.13, visibility by ray casting, ambient, and T(Z). Pixels that
+// see an object rather than the floor, lie within `edge` metres of a shadow boundary or within
+// 0.75° of the cone's edge are skipped: there the shadow map's resolution decides.
+FloorCheck check_floor(const Scene& scene, const gl::RenderOptions& options, int step, float edge) {
+    const gl::Frame frame = render(scene, options);
+    const CpuRayCaster caster(scene);
+    const glm::mat4 inverse = gl::make_frame_uniforms(scene, options).inverse_view_projection;
+    const Object& floor = scene.objects.front();
+    EXPECT_EQ(floor.name, "floor");
+    const glm::vec3 albedo = scene.materials[size_t(floor.material)].albedo;
+    const Bounds floor_bounds = floor.mesh->bounds();
+    const SpotLight& light = scene.light;
+
+    auto sees_light = [&](glm::vec3 p) { return !caster.blocked(p, light.position); };
+    FloorCheck check;
+    for (int y = step / 2; y < options.height; y += step) {
+        for (int x = step / 2; x < options.width; x += step) {
+            const glm::vec2 ndc(2.0f * (float(x) + 0.5f) / float(options.width) - 1.0f,
+                                1.0f - 2.0f * (float(y) + 0.5f) / float(options.height));
+            const glm::vec4 near = inverse * glm::vec4(ndc, -1.0f, 1.0f);
+            const glm::vec4 far = inverse * glm::vec4(ndc, 1.0f, 1.0f);
+            const glm::vec3 o = glm::vec3(near) / near.w;
+            const glm::vec3 d = glm::vec3(far) / far.w - o;
+            if (d.y >= 0.0f) {
+                continue;
+            }
+            const glm::vec3 p = o + (-o.y / d.y) * d;
+            if (std::abs(p.x) > floor_bounds.max.x - 0.1f ||
+                std::abs(p.z) > floor_bounds.max.z - 0.1f ||
+                caster.blocked(scene.camera.position, p)) {
+                continue;
+            }
+            const float angle = glm::degrees(
+                std::acos(glm::dot(glm::normalize(p - light.position), light.direction())));
+            if (std::abs(angle - light.cone_half_angle_degrees) < 0.75f) {
+                continue;
+            }
+            const bool visible = sees_light(p);
+            bool near_boundary = false;
+            for (const glm::vec3 offset : {glm::vec3(edge, 0, 0), glm::vec3(-edge, 0, 0),
+                                           glm::vec3(0, 0, edge), glm::vec3(0, 0, -edge)}) {
+                near_boundary |= sees_light(p + offset) != visible;
+            }
+            if (near_boundary) {
+                continue;
+            }
+            const glm::vec3 to_light = light.position - p;
+            const float r = glm::length(to_light);
+            const float cos_theta = std::max(0.0f, to_light.y / r);
+            const float axial = glm::dot(-to_light, light.direction());
+            const float in_range = axial >= light.near && axial <= light.far ? 1.0f : 0.0f;
+            const glm::vec3 irradiance = light.intensity * light.cone_factor(p) * in_range *
+                                         scene.medium.light_falloff(r) * cos_theta *
+                                         (visible ? 1.0f : 0.0f);
+            const glm::vec3 radiance =
+                albedo / std::numbers::pi_v<float> * irradiance + albedo * scene.ambient;
+            const glm::vec3 expected =
+                radiance * scene.medium.transmittance(glm::length(p - scene.camera.position));
+            const FloorSample sample{x, y, expected, frame.surface.at(x, y)};
+            ++check.checked;
+            const glm::vec3 error = glm::abs(sample.rendered - expected);
+            if (glm::any(glm::greaterThan(error, 0.01f * expected + 2e-4f))) {
+                ++check.mismatches;
+                if (check.mismatches <= 5) {
+                    ADD_FAILURE() << "pixel (" << x << ", " << y << ") floor point (" << p.x << ", "
+                                  << p.z << "): rendered " << sample.rendered.r << ", expected "
+                                  << expected.r;
+                }
+            }
+            if (light.cone_factor(p) * in_range == 0.0f) {
+                check.outside.push_back(sample);
+            } else {
+                (visible ? check.lit : check.shadowed).push_back(sample);
+            }
+        }
+    }
+    return check;
+}
+
+glm::vec3 mean_rendered(const std::vector<FloorSample>& samples) {
+    glm::vec3 sum(0.0f);
+    for (const FloorSample& s : samples) {
+        sum += s.rendered;
+    }
+    return sum / float(std::max<size_t>(1, samples.size()));
+}
+
+// A small toplight render: the floor is lit inside the cone, dark outside, and shadowed under the
+// objects, and every floor pixel away from edges has the radiance the CPU computes for it.
+TEST_F(Render, ToplightFloorMatchesCpuShadingAndVisibility) {
+    const Scene scene = load_canonical("toplight");
+    const FloorCheck check = check_floor(scene, {.width = 192, .height = 108}, 2, 0.06f);
+    EXPECT_GE(check.lit.size(), 300u);
+    EXPECT_GE(check.shadowed.size(), 20u);
+    EXPECT_GE(check.outside.size(), 300u);
+    EXPECT_EQ(check.mismatches, 0) << "of " << check.checked << " floor pixels";
+    const float lit = mean_rendered(check.lit).g;
+    EXPECT_GT(lit, 20.0f * mean_rendered(check.outside).g);
+    EXPECT_GT(lit, 10.0f * mean_rendered(check.shadowed).g);
+}
+
+// The same with hard shadows and the physical medium model (transmittance on the light path
+// and on the eye path, Nilsson eq. 2.6-2.8), on the parallel scene.
+TEST_F(Render, ParallelFloorMatchesCpuWithHardShadowsAndPhysicalMedium) {
+    Scene scene = load_canonical("parallel");
+    scene.medium.model = MediumModel::physical;
+    scene.medium.sigma_a = glm::vec3(0.02f, 0.03f, 0.05f);
+    gl::RenderOptions options{.width = 160, .height = 90};
+    options.shadow_filter = gl::ShadowFilter::hard;
+    const FloorCheck check = check_floor(scene, options, 1, 0.08f);
+    EXPECT_GE(check.lit.size(), 100u);
+    EXPECT_GE(check.shadowed.size(), 20u);
+    EXPECT_GE(check.outside.size(), 100u);
+    EXPECT_EQ(check.mismatches, 0) << "of " << check.checked << " floor pixels";
+}
+
+}  // namespace
+}  // namespace sl::test

@@ -1,0 +1,191 @@
+// Scene files: the canonical scenes, the multiple:N generator, and every kind of bad input.
+
+#include <fstream>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <sstream>
+
+#include "core/error.h"
+#include "scenes/scene_file.h"
+#include "tests/support.h"
+
+namespace sl::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Every canonical scene loads, with a camera, a light, objects and real meshes.
+TEST(SceneFile, CanonicalScenesLoad) {
+    for (const std::string& name : canonical_scene_names()) {
+        const Scene scene = load_canonical(name);
+        EXPECT_EQ(scene.name, name);
+        EXPECT_GE(scene.objects.size(), 5u) << name;
+        EXPECT_GT(scene.triangle_count(), 1000u) << name;
+        EXPECT_GT(scene.medium.sigma_s.x, 0.0f) << name;
+    }
+    const Scene toplight = load_canonical("toplight");
+    bool has_bunny = false;
+    for (const Object& object : toplight.objects) {
+        has_bunny |= object.name == "bunny" && object.mesh->positions.size() == 37706;
+    }
+    EXPECT_TRUE(has_bunny);
+    // Toplight: the light points down, orthogonal (within 15°) to the view direction.
+    const glm::vec3 view = glm::normalize(toplight.camera.target - toplight.camera.position);
+    EXPECT_LT(toplight.light.direction().y, -0.95f);
+    EXPECT_LT(std::abs(glm::dot(view, toplight.light.direction())), std::sin(glm::radians(15.0f)));
+    // Parallel: the light's axis is within 15° of the view direction.
+    const Scene parallel = load_canonical("parallel");
+    const glm::vec3 parallel_view =
+        glm::normalize(parallel.camera.target - parallel.camera.position);
+    EXPECT_GT(glm::dot(parallel_view, parallel.light.direction()), std::cos(glm::radians(15.0f)));
+}
+
+// The checked-in scenes/multiple.toml is exactly what the generator writes for the default N.
+TEST(SceneFile, MultipleSceneFileIsTheGeneratorOutput) {
+    std::ifstream in(fs::path(SHAFTLAB_SOURCE_DIR) / "scenes" / "multiple.toml");
+    std::stringstream text;
+    text << in.rdbuf();
+    EXPECT_EQ(text.str(), generate_multiple_scene(kMultipleDefaultCount))
+        << "regenerate it: build/shaftlab scenes --generate " << kMultipleDefaultCount
+        << " > scenes/multiple.toml";
+}
+
+// multiple:N has N objects plus the floor, is deterministic in N, keeps every object under the
+// light, and no two objects overlap.
+TEST(SceneFile, MultipleNGeneratesNDisjointObjectsUnderTheLight) {
+    for (const int n : {1, 7, 50, 400}) {
+        const Scene scene = load_canonical("multiple:" + std::to_string(n));
+        ASSERT_EQ(scene.objects.size(), size_t(n) + 1);
+        EXPECT_EQ(generate_multiple_scene(n), generate_multiple_scene(n));
+        std::vector<Bounds> boxes;
+        for (size_t i = 1; i < scene.objects.size(); ++i) {
+            Bounds b;
+            for (const glm::vec3& p : scene.objects[i].mesh->positions) {
+                b.extend(glm::vec3(scene.objects[i].transform * glm::vec4(p, 1.0f)));
+            }
+            EXPECT_GE(b.min.y, -1e-4f);
+            const glm::vec3 top_center(b.center().x, b.max.y, b.center().z);
+            EXPECT_GT(scene.light.cone_factor(top_center), 0.0f) << "object " << i;
+            for (const Bounds& other : boxes) {
+                const bool apart = b.max.x < other.min.x || other.max.x < b.min.x ||
+                                   b.max.z < other.min.z || other.max.z < b.min.z;
+                EXPECT_TRUE(apart) << "multiple:" << n << " object " << i << " overlaps";
+            }
+            boxes.push_back(b);
+        }
+    }
+    EXPECT_THROW(load_canonical("multiple:0"), Error);
+    EXPECT_THROW(load_canonical("multiple:abc"), Error);
+}
+
+constexpr const char* kMinimalScene = R"([camera]
+position = [0.0, 1.0, 5.0]
+target = [0.0, 0.0, 0.0]
+fov = 45.0
+
+[light]
+position = [0.0, 5.0, 0.0]
+target = [0.0, 0.0, 0.0]
+cone_angle = 30.0
+
+[[objects]]
+shape = "box"
+inner = [{ min = [-0.25, -0.25, -0.25], max = [0.25, 0.25, 0.25] }]
+)";
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+}
+
+// A minimal scene takes the documented defaults and its explicit inner box.
+TEST(SceneFile, MinimalSceneTakesDefaults) {
+    TempDir dir;
+    write_text(dir / "minimal.toml", kMinimalScene);
+    const Scene scene = load_scene((dir / "minimal.toml").string(), SceneSearchPaths::defaults());
+    EXPECT_EQ(scene.name, "minimal");
+    EXPECT_EQ(scene.medium.model, MediumModel::simplified);
+    ASSERT_EQ(scene.objects.size(), 1u);
+    ASSERT_EQ(scene.objects[0].inner_boxes.size(), 1u);
+    EXPECT_EQ(scene.objects[0].inner_boxes[0].max, glm::vec3(0.25f));
+    EXPECT_EQ(scene.materials[size_t(scene.objects[0].material)].name, "default");
+}
+
+// Each bad input gives one error line naming the file, the line, the table and the key, and why.
+TEST(SceneFile, BadInputsGiveOneClearError) {
+    struct Case {
+        std::string text;
+        std::string expected;
+    };
+    const std::string s = kMinimalScene;
+    const Case cases[] = {
+        {"[camera\n", "malformed TOML"},
+        {s + "[extra]\nx = 1\n", "extra: unknown key"},
+        {replace(s, "fov = 45.0", "fov = 45.0\nfocus = 3.0"), ":5: [camera] focus: unknown key"},
+        {replace(s, "fov = 45.0", "fov = 0.0"), "[camera] fov: must be in (0, 180)"},
+        {replace(s, "fov = 45.0", "fov = nan"), "[camera] fov: value nan is not finite"},
+        {replace(s, "fov = 45.0", "fov = \"wide\""), "[camera] fov: expected a number"},
+        {replace(s, "target = [0.0, 0.0, 0.0]\nfov", "target = [0.0, 1.0, 5.0]\nfov"),
+         "camera target equals its position"},
+        {replace(s, "position = [0.0, 1.0, 5.0]", "position = [0.0, 1.0]"),
+         "[camera] position: expected an array of three numbers"},
+        {replace(s, "position = [0.0, 1.0, 5.0]", "position = [0.0, inf, 5.0]"),
+         "[camera] position: component 1 is not finite"},
+        {replace(s, "cone_angle = 30.0", "cone_angle = 95.0"), "[light] cone_angle: must be in"},
+        {replace(s, "cone_angle = 30.0", "cone_angle = 30.0\nintensity = [1.0, -1.0, 1.0]"),
+         "[light] intensity: components must not be negative"},
+        {replace(s, "cone_angle = 30.0", "cone_angle = 30.0\nfalloff = 40.0"),
+         "[light] falloff: must be in [0, 30]"},
+        {replace(s, "cone_angle = 30.0", "cone_angle = 30.0\nnear = 5.0\nfar = 2.0"),
+         "[light] far: must be in"},
+        {s + "[medium]\nmodel = \"exact\"\n", "[medium] model: unknown value 'exact'"},
+        {s + "[medium]\nphase = \"hg\"\n", "[medium] phase: unknown value 'hg'"},
+        {s + "[medium]\na0 = 0.0\na1 = 0.0\n", "a0 and a1 must not both be zero"},
+        {s + "[medium]\ng = 1.0\n", "[medium] g: must be in (-1, 1)"},
+        {replace(s, "shape = \"box\"", "shape = \"cone\""), "shape: unknown shape 'cone'"},
+        {replace(s, "shape = \"box\"", "shape = \"box\"\nmaterial = \"gold\""),
+         "material: unknown material 'gold'"},
+        {replace(s, "shape = \"box\"", "shape = \"box\"\nsize = [1.0, 0.0, 1.0]"),
+         "size: components must be positive"},
+        {replace(s, "shape = \"box\"", "shape = \"box\"\nscale = 0.0"), "scale: must be finite"},
+        {replace(s, "shape = \"box\"", "shape = \"mesh\"\nfile = \"nowhere.off\""),
+         "file: mesh 'nowhere.off' not found"},
+        {replace(s, "shape = \"box\"", "shape = \"sphere\"\nsegments = 2"),
+         "segments: expected an integer in [4, 4096]"},
+        {replace(s, "max = [0.25, 0.25, 0.25]", "max = [0.25, -0.5, 0.25]"),
+         "inner[0] max: must exceed min"},
+        {replace(s, "[[objects]]", "[objects]"), "objects: expected an array"},
+        {"[light]\nposition = [0.0, 5.0, 0.0]\ntarget = [0.0, 0.0, 0.0]\n",
+         "missing required table [camera]"},
+    };
+    TempDir dir;
+    for (const Case& c : cases) {
+        const fs::path path = dir / "scene.toml";
+        write_text(path, c.text);
+        try {
+            load_scene(path.string(), SceneSearchPaths::defaults());
+            ADD_FAILURE() << "no error; expected '" << c.expected << "' for:\n" << c.text;
+        } catch (const Error& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find(c.expected), std::string::npos)
+                << "expected '" << c.expected << "' in: " << message;
+            EXPECT_NE(message.find("scene.toml"), std::string::npos) << message;
+            EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+        }
+    }
+}
+
+// Missing files and unknown names are errors, not crashes.
+TEST(SceneFile, UnreadableFilesAndUnknownNamesAreErrors) {
+    TempDir dir;
+    EXPECT_THROW(load_scene((dir / "absent.toml").string(), SceneSearchPaths::defaults()), Error);
+    EXPECT_THROW(load_scene("no-such-scene", SceneSearchPaths::defaults()), Error);
+    fs::create_directory(dir / "directory.toml");
+    EXPECT_THROW(load_scene((dir / "directory.toml").string(), SceneSearchPaths::defaults()),
+                 Error);
+}
+
+}  // namespace
+}  // namespace sl::test

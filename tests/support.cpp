@@ -1,0 +1,137 @@
+#include "tests/support.h"
+
+#include <fstream>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "gl/debug.h"
+#include "scenes/scene_file.h"
+
+namespace sl::test {
+
+namespace fs = std::filesystem;
+
+gl::Platform& headless_gl() {
+    static std::unique_ptr<gl::Platform> platform = gl::create_osmesa_platform();
+    platform->make_current();
+    return *platform;
+}
+
+void GlTest::SetUp() {
+    headless_gl();
+    gl::take_errors();
+}
+
+void GlTest::TearDown() {
+    const std::vector<std::string> errors = gl::take_errors();
+    for (const std::string& error : errors) {
+        ADD_FAILURE() << error;
+    }
+}
+
+TempDir::TempDir() {
+    std::random_device random;
+    path_ = fs::temp_directory_path() / ("shaftlab-test-" + std::to_string(random()));
+    fs::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+}
+
+size_t TempDir::file_count() const {
+    size_t count = 0;
+    for ([[maybe_unused]] const auto& entry : fs::directory_iterator(path_)) {
+        ++count;
+    }
+    return count;
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+}
+
+namespace {
+
+bool segment_hits_box(glm::vec3 from, glm::vec3 to, const Bounds& box) {
+    constexpr float kMargin = 1e-4f;
+    const glm::vec3 d = to - from;
+    float t0 = 0.0f, t1 = 1.0f;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (std::abs(d[axis]) < 1e-12f) {
+            if (from[axis] < box.min[axis] - kMargin || from[axis] > box.max[axis] + kMargin) {
+                return false;
+            }
+            continue;
+        }
+        float a = (box.min[axis] - kMargin - from[axis]) / d[axis];
+        float b = (box.max[axis] + kMargin - from[axis]) / d[axis];
+        if (a > b) {
+            std::swap(a, b);
+        }
+        t0 = std::max(t0, a);
+        t1 = std::min(t1, b);
+        if (t0 > t1) {
+            return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+CpuRayCaster::CpuRayCaster(const Scene& scene) {
+    for (const Object& object : scene.objects) {
+        WorldObject world;
+        world.vertices.reserve(object.mesh->positions.size());
+        for (const glm::vec3& p : object.mesh->positions) {
+            world.vertices.emplace_back(object.transform * glm::vec4(p, 1.0f));
+            world.bounds.extend(glm::vec3(world.vertices.back()));
+        }
+        world.triangles = object.mesh->triangles;
+        objects_.push_back(std::move(world));
+    }
+}
+
+bool CpuRayCaster::blocked(glm::vec3 from, glm::vec3 to) const {
+    const glm::dvec3 origin(from), direction = glm::dvec3(to) - glm::dvec3(from);
+    constexpr double kEpsilon = 1e-6;  // relative to the segment: excludes its end points
+    for (const WorldObject& object : objects_) {
+        if (!segment_hits_box(from, to, object.bounds)) {
+            continue;
+        }
+        for (const glm::uvec3& t : object.triangles) {
+            const glm::dvec3 a = object.vertices[t.x];
+            const glm::dvec3 e1 = object.vertices[t.y] - a, e2 = object.vertices[t.z] - a;
+            const glm::dvec3 p = glm::cross(direction, e2);
+            const double det = glm::dot(e1, p);
+            if (std::abs(det) < 1e-18) {
+                continue;
+            }
+            const glm::dvec3 s = origin - a;
+            const double u = glm::dot(s, p) / det;
+            if (u < 0.0 || u > 1.0) {
+                continue;
+            }
+            const glm::dvec3 q = glm::cross(s, e1);
+            const double v = glm::dot(direction, q) / det;
+            if (v < 0.0 || u + v > 1.0) {
+                continue;
+            }
+            const double t_hit = glm::dot(e2, q) / det;
+            if (t_hit > kEpsilon && t_hit < 1.0 - kEpsilon) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+Scene load_canonical(const std::string& name) {
+    return load_scene(name, SceneSearchPaths::defaults());
+}
+
+}  // namespace sl::test

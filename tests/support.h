@@ -1,0 +1,65 @@
+#pragma once
+// Shared test support: one headless GL context per test process, a GL-error check for fixtures,
+// temporary directories, and a brute-force CPU ray caster used as an independent visibility
+// oracle for the shadow map.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "gl/platform.h"
+#include "scenes/scene.h"
+
+namespace sl::test {
+
+// The process's OSMesa context, created on first use and current from then on.
+gl::Platform& headless_gl();
+
+// A fixture for tests that use GL: the context exists, and no GL error may be left at the end.
+class GlTest : public ::testing::Test {
+protected:
+    void SetUp() override;
+    void TearDown() override;
+};
+
+// A fresh empty directory under the system temp dir, removed by the destructor.
+class TempDir {
+public:
+    TempDir();
+    ~TempDir();
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+    std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+    size_t file_count() const;
+
+private:
+    std::filesystem::path path_;
+};
+
+void write_text(const std::filesystem::path& path, const std::string& text);
+
+// Brute-force CPU visibility (Möller–Trumbore in double precision over world-space triangles,
+// culled by each object's bounding box): an oracle independent of the GPU path.
+class CpuRayCaster {
+public:
+    explicit CpuRayCaster(const Scene& scene);
+    // True when the open segment (from, to) hits a triangle of any object.
+    bool blocked(glm::vec3 from, glm::vec3 to) const;
+
+private:
+    struct WorldObject {
+        Bounds bounds;
+        std::vector<glm::dvec3> vertices;
+        std::vector<glm::uvec3> triangles;
+    };
+    std::vector<WorldObject> objects_;
+};
+
+// The canonical scenes from the source tree.
+Scene load_canonical(const std::string& name);
+
+}  // namespace sl::test
