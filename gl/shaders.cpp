@@ -1,5 +1,6 @@
 #include "gl/shaders.h"
 
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -37,20 +38,30 @@ void expand(const std::string& path, std::set<std::string>& stack, std::string& 
     stack.erase(path);
 }
 
+// The status flag of a shader or program; on failure, its info log.
+template <typename GetIv, typename GetInfoLog>
+std::optional<std::string> failure_log(GLuint id, GLenum status, GetIv get_iv, GetInfoLog get_log) {
+    GLint ok = GL_FALSE;
+    get_iv(id, status, &ok);
+    if (ok) {
+        return std::nullopt;
+    }
+    GLint length = 0;
+    get_iv(id, GL_INFO_LOG_LENGTH, &length);
+    std::string log(size_t(std::max(length, 1)), '\0');
+    get_log(id, length, nullptr, log.data());
+    return std::string(log.c_str());
+}
+
 Shader compile(const ShaderStage& stage, const std::vector<std::string>& defines) {
     const std::string source = shader_source(stage.path, defines);
     Shader shader(GL.CreateShader(stage.type));
     const char* text = source.c_str();
     GL.ShaderSource(shader.id(), 1, &text, nullptr);
     GL.CompileShader(shader.id());
-    GLint ok = GL_FALSE;
-    GL.GetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        GL.GetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(size_t(std::max(length, 1)), '\0');
-        GL.GetShaderInfoLog(shader.id(), length, nullptr, log.data());
-        fail("{}: shader does not compile: {}", stage.path, log.c_str());
+    if (const auto log =
+            failure_log(shader.id(), GL_COMPILE_STATUS, GL.GetShaderiv, GL.GetShaderInfoLog)) {
+        fail("{}: shader does not compile: {}", stage.path, *log);
     }
     return shader;
 }
@@ -84,14 +95,9 @@ Program create_program(const std::vector<ShaderStage>& stages,
         names += (names.empty() ? "" : " + ") + stage.path;
     }
     GL.LinkProgram(program.id());
-    GLint ok = GL_FALSE;
-    GL.GetProgramiv(program.id(), GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        GL.GetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(size_t(std::max(length, 1)), '\0');
-        GL.GetProgramInfoLog(program.id(), length, nullptr, log.data());
-        fail("{}: program does not link: {}", names, log.c_str());
+    if (const auto log =
+            failure_log(program.id(), GL_LINK_STATUS, GL.GetProgramiv, GL.GetProgramInfoLog)) {
+        fail("{}: program does not link: {}", names, *log);
     }
     program.label(names);
     return program;
