@@ -13,6 +13,7 @@ using Command = std::function<int()>;
 Command add_render_command(CLI::App& app);
 Command add_scenes_command(CLI::App& app);
 Command add_gl_info_command(CLI::App& app);
+Command add_regions_command(CLI::App& app);
 
 // "WxH" with both positive; throws sl::Error otherwise.
 void parse_size(const std::string& text, int& width, int& height);

@@ -283,6 +283,13 @@ Frame SceneRenderer::render(VolumeMethod& method) {
             std::copy_n(&rgba[src], 3, &frame.display_srgb8[dst]);
         }
     }
+    std::vector<float> depth(size_t(w) * h);
+    GL.GetTextureImage(surface_depth_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                       GLsizei(depth.size() * sizeof(float)), depth.data());
+    frame.depth.resize(depth.size());
+    for (int y = 0; y < h; ++y) {
+        std::copy_n(&depth[size_t(h - 1 - y) * w], w, &frame.depth[size_t(y) * w]);
+    }
     check_errors(("rendering with method " + method.name()).c_str());
     frame.cpu_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -40,6 +40,7 @@ struct Frame {
     Image in_scattering;                 // I_s alone, linear
     Image surface;                       // I_obj·T(Z) alone, linear
     std::vector<uint8_t> display_srgb8;  // the GPU tone map, RGB rows top to bottom
+    std::vector<float> depth;            // window-space depth in [0, 1], rows top to bottom
     PassTimings gpu;
     double cpu_ms = 0;  // wall time of render() including read-back
 };

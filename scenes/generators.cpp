@@ -45,6 +45,9 @@ near = 0.5
 far = 14.0
 intensity = [150.0, 150.0, 150.0]
 
+[beamtree]
+max_outer_planes = 16
+
 [medium]
 sigma_s = [0.04, 0.04, 0.04]
 model = "simplified"

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <map>
 #include <numbers>
 #include <sstream>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -41,22 +41,37 @@ double Mesh::area() const {
 
 bool Mesh::is_closed() const {
     // Weld equal positions so that flat-shaded meshes (duplicated corners) count as closed.
-    std::map<std::tuple<float, float, float>, uint32_t> weld;
-    std::vector<uint32_t> id(positions.size());
-    for (size_t i = 0; i < positions.size(); ++i) {
-        const glm::vec3 p = positions[i];
-        id[i] = weld.emplace(std::tuple{p.x, p.y, p.z}, uint32_t(weld.size())).first->second;
+    std::vector<uint32_t> order(positions.size());
+    for (uint32_t i = 0; i < order.size(); ++i) {
+        order[i] = i;
     }
-    std::map<std::pair<uint32_t, uint32_t>, int> edges;  // directed edge -> count
+    auto less = [&](uint32_t a, uint32_t b) {
+        const glm::vec3 p = positions[a], q = positions[b];
+        return std::tie(p.x, p.y, p.z) < std::tie(q.x, q.y, q.z);
+    };
+    std::sort(order.begin(), order.end(), less);
+    std::vector<uint32_t> id(positions.size());
+    uint32_t next = 0;
+    for (size_t i = 0; i < order.size(); ++i) {
+        if (i > 0 && less(order[i - 1], order[i])) {
+            ++next;
+        }
+        id[order[i]] = next;
+    }
+    // Closed and consistently oriented: every directed edge once, and its reverse once.
+    std::vector<uint64_t> edges;
+    edges.reserve(triangles.size() * 3);
     for (const glm::uvec3& t : triangles) {
         const uint32_t v[3] = {id[t.x], id[t.y], id[t.z]};
         for (int e = 0; e < 3; ++e) {
-            ++edges[{v[e], v[(e + 1) % 3]}];
+            edges.push_back(uint64_t(v[e]) << 32 | v[(e + 1) % 3]);
         }
     }
-    for (const auto& [edge, count] : edges) {
-        const auto twin = edges.find({edge.second, edge.first});
-        if (count != 1 || twin == edges.end() || twin->second != 1) {
+    std::sort(edges.begin(), edges.end());
+    for (size_t i = 0; i < edges.size(); ++i) {
+        const uint64_t twin = edges[i] << 32 | edges[i] >> 32;
+        if ((i + 1 < edges.size() && edges[i + 1] == edges[i]) ||
+            !std::binary_search(edges.begin(), edges.end(), twin)) {
             return false;
         }
     }

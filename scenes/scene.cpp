@@ -73,16 +73,6 @@ size_t Scene::triangle_count() const {
     return count;
 }
 
-Bounds Scene::world_bounds() const {
-    Bounds bounds;
-    for (const Object& object : objects) {
-        for (const glm::vec3& p : object.mesh->positions) {
-            bounds.extend(glm::vec3(object.transform * glm::vec4(p, 1.0f)));
-        }
-    }
-    return bounds;
-}
-
 const char* to_string(PhaseFunction phase) {
     switch (phase) {
         case PhaseFunction::isotropic:

@@ -99,6 +99,12 @@ struct Medium {
     glm::vec3 light_falloff(float r) const;
 };
 
+// How the beam tree bounds the objects (beamtree/bounding_volumes.h).
+struct BoundsSettings {
+    int max_outer_planes = 0;     // 0: full convex hulls; else at most this many planes each
+    bool automatic_inner = true;  // inscribed boxes for closed meshes without explicit ones
+};
+
 struct Scene {
     std::string name;
     std::filesystem::path source;  // the file it was read from, empty for generated scenes
@@ -107,11 +113,11 @@ struct Scene {
     Medium medium;
     // Constant incident radiance from every direction: a surface reflects albedo * ambient.
     glm::vec3 ambient{0.0f};
+    BoundsSettings bounds;
     std::vector<Material> materials;
     std::vector<Object> objects;
 
     size_t triangle_count() const;
-    Bounds world_bounds() const;
 };
 
 const char* to_string(PhaseFunction phase);

@@ -127,6 +127,16 @@ public:
         }
         return v;
     }
+    bool boolean(std::string_view key, bool fallback) {
+        const toml::node* node = take(key);
+        if (!node) {
+            return fallback;
+        }
+        if (!node->is_boolean()) {
+            error(key, "expected true or false");
+        }
+        return *node->value<bool>();
+    }
     std::string string(std::string_view key, std::string fallback) {
         const toml::node* node = take(key);
         if (!node) {
@@ -435,6 +445,16 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
     scene.light = read_light(TableReader(section("light"), origin, "[light]"));
     const toml::table* medium = top.table("medium");
     scene.medium = read_medium(TableReader(medium ? *medium : empty_table(), origin, "[medium]"));
+
+    if (const toml::table* bounds = top.table("beamtree")) {
+        TableReader r(*bounds, origin, "[beamtree]");
+        scene.bounds.max_outer_planes = r.integer_in("max_outer_planes", 0, 0, 100000);
+        if (scene.bounds.max_outer_planes > 0 && scene.bounds.max_outer_planes < 8) {
+            r.error("max_outer_planes", "must be 0 (full hull) or at least 8");
+        }
+        scene.bounds.automatic_inner = r.boolean("automatic_inner", true);
+        r.finish();
+    }
 
     scene.materials.push_back(Material{.name = "default"});
     std::map<std::string, int> material_index{{"default", 0}};

@@ -9,6 +9,7 @@
 //               intensity = [r, g, b], falloff (degrees, 0 = hard edge)
 //   [medium]    sigma_s, sigma_a ([r, g, b] 1/m), phase, g, model ("simplified" | "physical"),
 //               a0, a1
+//   [beamtree]  max_outer_planes (0 = full convex hulls, else 8..), automatic_inner (bool)
 //   [materials.NAME]  albedo, roughness, f0
 //   [[objects]] name, shape ("mesh" | "box" | "sphere" | "cylinder" | "torus" | "plane"),
 //               the shape's parameters, material, translate, rotate (degrees about x, y, z,

@@ -1,0 +1,252 @@
+// `shaftlab regions`: the beam tree's lit / uncertain / unlit regions of a scene, as a PLY mesh,
+// a JSON summary with timings, and a picture (Nilsson figure 5.4) seen from the scene camera.
+
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "beamtree/beam_tree.h"
+#include "beamtree/regions.h"
+#include "core/error.h"
+#include "core/output_files.h"
+#include "gl/platform.h"
+#include "gl/renderer.h"
+#include "scenes/scene_file.h"
+
+namespace sl::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using glm::dvec3;
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+struct RegionsArguments {
+    std::string scene;
+    std::string out = "out";
+    std::string size = "960x540";
+    std::string classify;
+    int max_planes = -1;  // -1: the scene's setting
+    bool no_automatic_inner = false;
+};
+
+std::vector<dvec3> read_points(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) {
+        fail("{}: cannot read points file", path);
+    }
+    std::vector<dvec3> points;
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        if (line.find_first_not_of(" \t\r") == std::string::npos) {
+            continue;
+        }
+        std::istringstream fields(line);
+        dvec3 p;
+        std::string rest;
+        if (!(fields >> p.x >> p.y >> p.z) || (fields >> rest)) {
+            fail("{}:{}: expected three numbers 'x y z'", path, number);
+        }
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+            fail("{}:{}: coordinate is not finite", path, number);
+        }
+        points.push_back(p);
+    }
+    return points;
+}
+
+// The regions seen from the camera (Nilsson figure 5.4's colours): every pixel's ray, up to the
+// first surface, composited through the influence volume with lit yellow, uncertain grey and
+// unlit black, over the rendered scene.
+std::vector<unsigned char> draw_regions(const Scene& scene, const bt::BeamTree& tree,
+                                        const gl::Frame& frame, int width, int height) {
+    const gl::RenderOptions options{.width = width, .height = height};
+    const glm::dmat4 inverse(gl::make_frame_uniforms(scene, options).inverse_view_projection);
+    const std::vector<bt::Plane>& influence = tree.influence_planes();
+    const double far = double(scene.light.far);
+    constexpr int kSamples = 128;
+    const glm::dvec3 colors[3] = {{1.0, 0.82, 0.1}, {0.55, 0.55, 0.55}, {0.0, 0.0, 0.0}};
+    std::vector<unsigned char> image = frame.display_srgb8;
+    tbb::parallel_for(0, height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            const glm::dvec2 ndc(2.0 * (x + 0.5) / width - 1.0, 1.0 - 2.0 * (y + 0.5) / height);
+            const double depth = 2.0 * double(frame.depth[size_t(y) * width + x]) - 1.0;
+            const glm::dvec4 a = inverse * glm::dvec4(ndc, -1.0, 1.0);
+            const glm::dvec4 b = inverse * glm::dvec4(ndc, std::min(depth, 1.0), 1.0);
+            const dvec3 origin = dvec3(a) / a.w, end = dvec3(b) / b.w;
+            // Clip the segment to the influence pyramid.
+            double t0 = 0.0, t1 = 1.0;
+            for (const bt::Plane& plane : influence) {
+                const double d0 = plane.distance(origin), d1 = plane.distance(end);
+                if (d0 > 0.0 && d1 > 0.0) {
+                    t0 = 1.0;
+                    t1 = 0.0;
+                    break;
+                }
+                if (d0 > 0.0)
+                    t0 = std::max(t0, d0 / (d0 - d1));
+                if (d1 > 0.0)
+                    t1 = std::min(t1, d0 / (d0 - d1));
+            }
+            if (t1 <= t0) {
+                continue;
+            }
+            // Front-to-back emission/absorption: uncertain and unlit absorb 8x more than lit so
+            // that thin shadow volumes show through the lit air in front of them.
+            const double step = (t1 - t0) * glm::length(end - origin) / kSamples;
+            const double extinction[3] = {1.5 / far, 12.0 / far, 12.0 / far};
+            dvec3 color(0.0);
+            double transparency = 1.0;
+            for (int s = 0; s < kSamples && transparency > 1e-3; ++s) {
+                const double t = t0 + (t1 - t0) * (s + 0.5) / kSamples;
+                const auto region = size_t(tree.classify(origin + t * (end - origin)));
+                const double alpha = 1.0 - std::exp(-extinction[region] * step);
+                color += transparency * alpha * colors[region];
+                transparency *= 1.0 - alpha;
+            }
+            for (int c = 0; c < 3; ++c) {
+                unsigned char& pixel = image[(size_t(y) * width + x) * 3 + c];
+                pixel = static_cast<unsigned char>(
+                    std::lround(transparency * pixel + 255.0 * std::min(1.0, color[c])));
+            }
+        }
+    });
+    return image;
+}
+
+int run_regions(const RegionsArguments& args) {
+    int width = 0, height = 0;
+    parse_size(args.size, width, height);
+    const Scene scene = load_scene(args.scene, SceneSearchPaths::defaults());
+    const std::vector<dvec3> points =
+        args.classify.empty() ? std::vector<dvec3>() : read_points(args.classify);
+
+    auto start = Clock::now();
+    const int max_planes = args.max_planes >= 0 ? args.max_planes : scene.bounds.max_outer_planes;
+    bt::VolumeLibrary library(
+        {.max_outer_planes = max_planes,
+         .automatic_inner = scene.bounds.automatic_inner && !args.no_automatic_inner});
+    std::vector<std::string> warnings;
+    const std::vector<bt::ObjectVolumes> volumes = library.build(scene, &warnings);
+    const double volumes_ms = ms_since(start);
+    for (const std::string& warning : warnings) {
+        std::fprintf(stderr, "shaftlab: warning: %s\n", warning.c_str());
+    }
+    start = Clock::now();
+    const bt::BeamTree tree(scene.light, volumes);
+    const double build_ms = ms_since(start);
+
+    if (!args.classify.empty()) {
+        std::string out;
+        for (const dvec3& p : points) {
+            out += bt::to_string(tree.classify(p));
+            out += '\n';
+        }
+        std::fputs(out.c_str(), stdout);
+        return 0;
+    }
+
+    start = Clock::now();
+    const bt::Regions regions = bt::extract_regions(tree);
+    const double extract_ms = ms_since(start);
+
+    const auto platform = gl::create_osmesa_platform();
+    gl::SceneRenderer renderer(scene, {.width = width, .height = height});
+    const auto method = gl::create_volume_method("none");
+    const gl::Frame frame = renderer.render(*method);
+    const std::vector<unsigned char> picture = draw_regions(scene, tree, frame, width, height);
+
+    const bt::BeamTreeStats stats = tree.stats();
+    size_t inner_volumes = 0, outer_faces = 0;
+    for (const bt::ObjectVolumes& v : volumes) {
+        inner_volumes += v.inner.size();
+        outer_faces += v.outer.faces.size();
+    }
+    nlohmann::ordered_json json = {
+        {"scene", scene.name},
+        {"epsilon", tree.epsilon()},
+        {"objects", scene.objects.size()},
+        {"outer_volume_faces", outer_faces},
+        {"inner_volumes", inner_volumes},
+        {"max_outer_planes", max_planes},
+        {"beams", regions.beam_count},
+        {"tree",
+         {{"nodes", stats.nodes},
+          {"max_depth", stats.max_depth},
+          {"open_leaves", stats.open_leaves},
+          {"solid_leaves", stats.solid_leaves},
+          {"blocker_leaves", stats.blocker_leaves},
+          {"outer_polygons", stats.outer_polygons},
+          {"stopper_polygons", stats.stopper_polygons}}},
+        {"regions",
+         {{"lit",
+           {{"pieces", regions.pieces[0].size()},
+            {"faces", regions.face_count(bt::Region::lit)},
+            {"volume", regions.volume[0]}}},
+          {"uncertain",
+           {{"pieces", regions.pieces[1].size()},
+            {"faces", regions.face_count(bt::Region::uncertain)},
+            {"volume", regions.volume[1]}}},
+          {"unlit",
+           {{"pieces", regions.pieces[2].size()},
+            {"faces", regions.face_count(bt::Region::unlit)},
+            {"volume", regions.volume[2]}}}}},
+        {"influence_volume", regions.influence_volume},
+        {"volumes_ms", volumes_ms},
+        {"build_ms", build_ms},
+        {"extract_ms", extract_ms},
+        {"warnings", warnings},
+    };
+    OutputFiles outputs(args.out);
+    outputs.add("regions.ply",
+                [&](const std::filesystem::path& path) { bt::write_regions_ply(regions, path); });
+    outputs.add_text("regions.json", json.dump(2) + "\n");
+    outputs.add("regions.png", [&](const std::filesystem::path& path) {
+        write_png(picture, width, height, path);
+    });
+    outputs.commit();
+    fmt::print(
+        "{}: {} beams ({} lit, {} uncertain, {} unlit pieces), build {:.2f} ms, extract "
+        "{:.2f} ms -> {}/regions.{{ply,json,png}}\n",
+        scene.name, regions.beam_count, regions.pieces[0].size(), regions.pieces[1].size(),
+        regions.pieces[2].size(), build_ms, extract_ms, args.out);
+    return 0;
+}
+
+}  // namespace
+
+Command add_regions_command(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "regions", "Beam-tree regions of a scene: DIR/regions.{ply,json,png}, or classify points");
+    auto args = std::make_shared<RegionsArguments>();
+    command->add_option("--scene", args->scene, "Canonical name, multiple:N, or a .toml file")
+        ->required();
+    command->add_option("--out", args->out, "Output directory")->capture_default_str();
+    command->add_option("--size", args->size, "Picture size WIDTHxHEIGHT")->capture_default_str();
+    command->add_option(
+        "--classify", args->classify,
+        "File of points 'x y z', one per line: print lit, uncertain or unlit for each");
+    command
+        ->add_option("--max-planes", args->max_planes,
+                     "Reduce each outer hull to at most K planes (0: full hull; default: the "
+                     "scene's [beamtree] max_outer_planes)")
+        ->check(CLI::Range(0, 100000) & !CLI::Range(1, 7));
+    command->add_flag("--no-auto-inner", args->no_automatic_inner,
+                      "Use only explicit inner boxes from the scene file");
+    return [args] { return run_regions(*args); };
+}
+
+}  // namespace sl::app

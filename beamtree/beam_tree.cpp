@@ -1,0 +1,433 @@
+#include "beamtree/beam_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "core/error.h"
+
+namespace sl::bt {
+
+const char* to_string(Region region) {
+    switch (region) {
+        case Region::lit:
+            return "lit";
+        case Region::uncertain:
+            return "uncertain";
+        case Region::unlit:
+            return "unlit";
+    }
+    return "?";
+}
+
+namespace {
+
+double distance_to_box(const dvec3& p, const ConvexVolume& volume) {
+    dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+    for (const Polygon& face : volume.faces) {
+        for (const dvec3& v : face.vertices) {
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
+    }
+    return glm::length(glm::max(dvec3(0.0), glm::max(lo - p, p - hi)));
+}
+
+}  // namespace
+
+BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& volumes)
+    : apex_(light.position), epsilon_(kRelativeEpsilon * double(light.far)) {
+    // The influence pyramid circumscribing the cone (outward planes; the same square frustum as
+    // the shadow map's projection).
+    const dvec3 d = glm::normalize(dvec3(light.direction()));
+    const dvec3 u = glm::normalize(dvec3(light.up()) - glm::dot(dvec3(light.up()), d) * d);
+    const dvec3 r = glm::cross(d, u);
+    const double t = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
+    for (const dvec3& side : {r, -r, u, -u}) {
+        const dvec3 n = glm::normalize(side - t * d);
+        influence_.push_back({n, -glm::dot(n, apex_)});
+    }
+    influence_.push_back({-d, glm::dot(d, apex_) + double(light.near)});
+    influence_.push_back({d, -glm::dot(d, apex_) - double(light.far)});
+
+    // Root: a chain through the four side planes, the inside an open leaf.
+    for (int i = 0; i < 4; ++i) {
+        Node node;
+        node.kind = Kind::split;
+        node.plane = influence_[size_t(i)];
+        nodes_.push_back(node);
+    }
+    for (int i = 0; i < 4; ++i) {
+        const int32_t out = add_leaf({Kind::out, {}, {}});
+        nodes_[size_t(i)].front = out;
+        nodes_[size_t(i)].back = i < 3 ? i + 1 : add_leaf({Kind::open, {}, {}});
+    }
+
+    for (const ObjectVolumes& object : volumes) {
+        if (object.outer.contains(apex_, -epsilon_)) {
+            fail(
+                "the light at ({}, {}, {}) is inside the outer bounding volume of object {}: the "
+                "beam tree needs the light outside every outer volume",
+                apex_.x, apex_.y, apex_.z, object.object);
+        }
+    }
+    // Front to back by distance from the light: the result does not depend on the order, but
+    // fewer fix-ups keep the tree small.
+    std::vector<const ObjectVolumes*> order;
+    for (const ObjectVolumes& object : volumes) {
+        order.push_back(&object);
+    }
+    std::sort(order.begin(), order.end(), [&](const ObjectVolumes* a, const ObjectVolumes* b) {
+        return distance_to_box(apex_, a->outer) < distance_to_box(apex_, b->outer);
+    });
+    for (const ObjectVolumes* object : order) {
+        for (size_t f = 0; f < object->outer.faces.size(); ++f) {
+            insert(object->outer.faces[f], object->outer.planes[f], false);
+        }
+    }
+    // Stopper polygons from the inner volumes turn parts of solid leaves into blocker leaves
+    // (Nilsson §5.2.1, figure 5.5).
+    for (const ObjectVolumes* object : order) {
+        for (const ConvexVolume& inner : object->inner) {
+            for (size_t f = 0; f < inner.faces.size(); ++f) {
+                insert(inner.faces[f], inner.planes[f], true);
+            }
+        }
+    }
+}
+
+int32_t BeamTree::add_leaf(const Leaf& leaf) {
+    Node node;
+    node.kind = leaf.kind;
+    node.occluder = leaf.occluder;
+    node.stopper = leaf.stopper;
+    nodes_.push_back(node);
+    return int32_t(nodes_.size() - 1);
+}
+
+void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) {
+    // Only light-facing polygons occlude; edge-on ones (L within ε of their plane) add nothing.
+    if (plane.distance(apex_) <= epsilon_ || area(polygon) <= epsilon_ * epsilon_) {
+        return;
+    }
+    // Nothing beyond the far range matters (Nilsson §4.2): clip to the backplate first.
+    Polygon clipped = split(polygon, influence_[5], epsilon_).back;
+    if (clipped.empty()) {
+        return;
+    }
+    ++(stopper ? stopper_polygons_ : outer_polygons_);
+    const Leaf inserted = stopper ? Leaf{Kind::blocker, {}, plane} : Leaf{Kind::solid, plane, {}};
+
+    std::vector<std::pair<int32_t, Polygon>> stack;
+    stack.emplace_back(0, std::move(clipped));
+    while (!stack.empty()) {
+        auto [index, fragment] = std::move(stack.back());
+        stack.pop_back();
+        if (fragment.empty() || area(fragment) <= epsilon_ * epsilon_) {
+            continue;
+        }
+        const Node node = nodes_[size_t(index)];
+        switch (node.kind) {
+            case Kind::split: {
+                Split parts = split(fragment, node.plane, epsilon_, true);
+                // A fragment on a plane through L is edge-on to the light: it occludes nothing.
+                if (!parts.front.empty())
+                    stack.emplace_back(node.front, std::move(parts.front));
+                if (!parts.back.empty())
+                    stack.emplace_back(node.back, std::move(parts.back));
+                break;
+            }
+            case Kind::out:
+                break;
+            case Kind::open:
+                if (!stopper) {  // appendix B attachPolygon
+                    attach(index, fragment, inserted, {Kind::open, {}, {}});
+                }
+                break;
+            case Kind::solid:
+                if (!stopper) {
+                    // Fix-up: the part nearer to L than the current occluder takes over.
+                    const Split parts = split(fragment, node.occluder, epsilon_);
+                    if (!parts.coplanar && !parts.front.empty()) {
+                        attach(index, parts.front, inserted, {Kind::solid, node.occluder, {}});
+                    }
+                } else {
+                    attach(index, fragment, {Kind::blocker, node.occluder, plane},
+                           {Kind::solid, node.occluder, {}});
+                }
+                break;
+            case Kind::blocker:
+                if (stopper) {
+                    // Keep the nearest stopper, as for occluders.
+                    const Split parts = split(fragment, node.stopper, epsilon_);
+                    if (!parts.coplanar && !parts.front.empty()) {
+                        attach(index, parts.front, {Kind::blocker, node.occluder, plane},
+                               {Kind::blocker, node.occluder, node.stopper});
+                    }
+                }
+                break;
+        }
+    }
+}
+
+void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside,
+                      const Leaf& outside) {
+    // Planes through L and each edge of the fragment that does not already lie on a plane of
+    // the path, oriented with the fragment behind (appendix B attachPolygon).
+    const dvec3 center = centroid(fragment);
+    std::vector<Plane> edges;
+    const size_t n = fragment.size();
+    for (size_t i = 0; i < n; ++i) {
+        if (fragment.on_split_plane[i]) {
+            continue;
+        }
+        const dvec3& a = fragment.vertices[i];
+        const dvec3& b = fragment.vertices[(i + 1) % n];
+        if (glm::length(b - a) <= epsilon_) {
+            continue;
+        }
+        Plane plane;
+        if (!Plane::through(apex_, a, b, plane)) {
+            continue;  // the edge points at the light
+        }
+        const double side = plane.distance(center);
+        if (std::abs(side) <= 0.01 * epsilon_) {
+            return;  // the whole fragment is edge-on to the light
+        }
+        edges.push_back(side > 0.0 ? plane.flipped() : plane);
+    }
+    // Rewrite the leaf in place as a chain: each edge plane's front is outside the fragment's
+    // beam; the last back is the fragment's beam.
+    int32_t current = index;
+    for (const Plane& plane : edges) {
+        const int32_t front = add_leaf(outside);
+        const int32_t back = add_leaf(outside);
+        Node& node = nodes_[size_t(current)];
+        node.kind = Kind::split;
+        node.plane = plane;
+        node.front = front;
+        node.back = back;
+        current = back;
+    }
+    Node& leaf = nodes_[size_t(current)];
+    leaf.kind = inside.kind;
+    leaf.occluder = inside.occluder;
+    leaf.stopper = inside.stopper;
+    leaf.front = leaf.back = -1;
+}
+
+Region BeamTree::classify(const dvec3& p, double* margin) const {
+    double closest = std::numeric_limits<double>::max();
+    auto record = [&](double distance) { closest = std::min(closest, std::abs(distance)); };
+    Region region = Region::unlit;
+    bool inside = true;
+    for (size_t i = 4; i < 6; ++i) {  // near and far ranges; the sides are the tree's root chain
+        const double distance = influence_[i].distance(p);
+        record(distance);
+        inside &= distance < 0.0;
+    }
+    if (inside) {
+        int32_t index = 0;
+        while (nodes_[size_t(index)].kind == Kind::split) {
+            const Node& node = nodes_[size_t(index)];
+            const double distance = node.plane.distance(p);
+            record(distance);
+            index = distance >= 0.0 ? node.front : node.back;  // Nilsson Program 2
+        }
+        const Node& leaf = nodes_[size_t(index)];
+        switch (leaf.kind) {
+            case Kind::open:
+                region = Region::lit;
+                break;
+            case Kind::solid: {
+                const double distance = leaf.occluder.distance(p);
+                record(distance);
+                region = distance > 0.0 ? Region::lit : Region::uncertain;
+                break;
+            }
+            case Kind::blocker: {
+                const double to_occluder = leaf.occluder.distance(p);
+                const double to_stopper = leaf.stopper.distance(p);
+                record(to_occluder);
+                record(to_stopper);
+                region = to_occluder > 0.0  ? Region::lit
+                         : to_stopper > 0.0 ? Region::uncertain
+                                            : Region::unlit;
+                break;
+            }
+            case Kind::out:
+            case Kind::split:
+                region = Region::unlit;
+                break;
+        }
+    }
+    if (margin) {
+        *margin = closest;
+    }
+    return region;
+}
+
+BeamTree::Partition BeamTree::partition(const Polygon& polygon) const {
+    Partition result;
+    // Outside the near and far ranges: unlit.
+    Split near_parts = split(polygon, influence_[4], epsilon_);
+    if (!near_parts.front.empty())
+        result.unlit.push_back(std::move(near_parts.front));
+    Split far_parts = split(near_parts.back, influence_[5], epsilon_);
+    if (!far_parts.front.empty())
+        result.unlit.push_back(std::move(far_parts.front));
+    if (far_parts.back.empty()) {
+        return result;
+    }
+    auto divide = [&](Polygon piece, const Plane& plane, std::vector<Polygon>& front,
+                      std::vector<Polygon>& back) {
+        Split parts = split(piece, plane, epsilon_);
+        if (parts.coplanar) {
+            back.push_back(std::move(piece));  // on the boundary: the less certain side
+            return;
+        }
+        if (!parts.front.empty())
+            front.push_back(std::move(parts.front));
+        if (!parts.back.empty())
+            back.push_back(std::move(parts.back));
+    };
+    std::vector<std::pair<int32_t, Polygon>> stack;
+    stack.emplace_back(0, std::move(far_parts.back));
+    while (!stack.empty()) {
+        auto [index, piece] = std::move(stack.back());
+        stack.pop_back();
+        const Node& node = nodes_[size_t(index)];
+        switch (node.kind) {
+            case Kind::split: {
+                Split parts = split(piece, node.plane, epsilon_);
+                if (parts.coplanar) {
+                    stack.emplace_back(node.front, std::move(piece));
+                    break;
+                }
+                if (!parts.front.empty())
+                    stack.emplace_back(node.front, std::move(parts.front));
+                if (!parts.back.empty())
+                    stack.emplace_back(node.back, std::move(parts.back));
+                break;
+            }
+            case Kind::out:
+                result.unlit.push_back(std::move(piece));
+                break;
+            case Kind::open:
+                result.lit.push_back(std::move(piece));
+                break;
+            case Kind::solid:
+                divide(std::move(piece), node.occluder, result.lit, result.uncertain);
+                break;
+            case Kind::blocker: {
+                std::vector<Polygon> behind;
+                divide(std::move(piece), node.occluder, result.lit, behind);
+                for (Polygon& part : behind) {
+                    divide(std::move(part), node.stopper, result.uncertain, result.unlit);
+                }
+                break;
+            }
+        }
+    }
+    return result;
+}
+
+std::vector<Beam> BeamTree::beams() const {
+    std::vector<Beam> beams;
+    struct Item {
+        int32_t index;
+        std::vector<Plane> walls;
+    };
+    std::vector<Item> stack;
+    stack.push_back({0, {}});
+    while (!stack.empty()) {
+        Item item = std::move(stack.back());
+        stack.pop_back();
+        const Node& node = nodes_[size_t(item.index)];
+        if (node.kind == Kind::split) {
+            Item front{node.front, item.walls};
+            front.walls.push_back(node.plane.flipped());  // the front child lies behind the flip
+            item.walls.push_back(node.plane);
+            stack.push_back({node.back, std::move(item.walls)});
+            stack.push_back(std::move(front));
+            continue;
+        }
+        if (node.kind == Kind::out) {
+            continue;
+        }
+        Beam beam;
+        beam.walls = std::move(item.walls);
+        beam.has_occluder = node.kind != Kind::open;
+        beam.occluder = node.occluder;
+        beam.has_stopper = node.kind == Kind::blocker;
+        beam.stopper = node.stopper;
+        beams.push_back(std::move(beam));
+    }
+    return beams;
+}
+
+void BeamTree::split_cells(Polyhedron cell, double epsilon,
+                           const std::function<void(Polyhedron&&, const Beam&)>& leaf) const {
+    std::vector<std::pair<int32_t, Polyhedron>> stack;
+    stack.emplace_back(0, std::move(cell));
+    while (!stack.empty()) {
+        auto [index, part] = std::move(stack.back());
+        stack.pop_back();
+        const Node& node = nodes_[size_t(index)];
+        if (node.kind == Kind::split) {
+            Polyhedron front = clip(part, node.plane.flipped(), epsilon);
+            Polyhedron back = clip(part, node.plane, epsilon);
+            if (!back.empty())
+                stack.emplace_back(node.back, std::move(back));
+            if (!front.empty())
+                stack.emplace_back(node.front, std::move(front));
+            continue;
+        }
+        if (node.kind == Kind::out) {
+            continue;
+        }
+        Beam beam;
+        beam.has_occluder = node.kind != Kind::open;
+        beam.occluder = node.occluder;
+        beam.has_stopper = node.kind == Kind::blocker;
+        beam.stopper = node.stopper;
+        leaf(std::move(part), beam);
+    }
+}
+
+BeamTreeStats BeamTree::stats() const {
+    BeamTreeStats stats;
+    stats.nodes = nodes_.size();
+    stats.outer_polygons = outer_polygons_;
+    stats.stopper_polygons = stopper_polygons_;
+    std::vector<std::pair<int32_t, size_t>> stack = {{0, 1}};
+    while (!stack.empty()) {
+        const auto [index, depth] = stack.back();
+        stack.pop_back();
+        stats.max_depth = std::max(stats.max_depth, depth);
+        const Node& node = nodes_[size_t(index)];
+        switch (node.kind) {
+            case Kind::split:
+                stack.emplace_back(node.front, depth + 1);
+                stack.emplace_back(node.back, depth + 1);
+                break;
+            case Kind::open:
+                ++stats.open_leaves;
+                break;
+            case Kind::solid:
+                ++stats.solid_leaves;
+                break;
+            case Kind::blocker:
+                ++stats.blocker_leaves;
+                break;
+            case Kind::out:
+                break;
+        }
+    }
+    return stats;
+}
+
+}  // namespace sl::bt

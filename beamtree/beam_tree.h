@@ -1,0 +1,109 @@
+#pragma once
+// The Beam Tree (Nilsson ch. 4, §5.2, appendix B): a BSP tree whose splitting planes all pass
+// through the light L, built over the outer bounding volumes' light-facing polygons and augmented
+// with the inner volumes' stopper polygons. Every leaf is a beam (a convex cone from L):
+//   out      outside the influence pyramid;
+//   open     sees the backplate: lit from the near range to the far range;
+//   solid    first hits an outer volume on its occluder plane: lit in front of it, uncertain
+//            behind it;
+//   blocker  a solid beam that also hits an inner volume: unlit behind the stopper plane.
+//
+// Polygons may be inserted in any order, so outer volumes may overlap (Nilsson could not do
+// this): a fragment that reaches a solid leaf is split by the leaf's occluder plane, and the
+// part nearer to L than the occluder subdivides the leaf (his ch. 8). The visible set is thus
+// the lower envelope of all light-facing polygons, whatever the order. Stoppers fix up blocker
+// leaves the same way, keeping the nearest stopper.
+//
+// Tolerance: planes have a thickness ε (Nilsson §4.3), ε = kRelativeEpsilon × far range (10 µm
+// for a 10 m light): far above double round-off over the tree's depth, far below any feature.
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "beamtree/bounding_volumes.h"
+#include "beamtree/geometry.h"
+#include "scenes/scene.h"
+
+namespace sl::bt {
+
+enum class Region : uint8_t { lit = 0, uncertain = 1, unlit = 2 };
+const char* to_string(Region region);
+
+struct BeamTreeStats {
+    size_t nodes = 0;
+    size_t open_leaves = 0;
+    size_t solid_leaves = 0;
+    size_t blocker_leaves = 0;
+    size_t outer_polygons = 0;    // light-facing outer-volume polygons inserted
+    size_t stopper_polygons = 0;  // light-facing inner-volume polygons inserted
+    size_t max_depth = 0;
+};
+
+// One leaf inside the influence pyramid: its walls (planes through L, outward), and the planes
+// that cut it into regions.
+struct Beam {
+    std::vector<Plane> walls;
+    bool has_occluder = false;
+    Plane occluder;  // front side (towards L) lit
+    bool has_stopper = false;
+    Plane stopper;  // back side unlit
+};
+
+class BeamTree {
+public:
+    static constexpr double kRelativeEpsilon = 1e-6;
+
+    // Throws sl::Error when the light is inside (or within ε of) an outer bounding volume.
+    BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& volumes);
+
+    // Lit, uncertain or unlit; points outside the influence volume are unlit. `margin`, when
+    // given, receives the smallest distance from p to a plane the answer depended on.
+    Region classify(const dvec3& p, double* margin = nullptr) const;
+
+    struct Partition {
+        std::vector<Polygon> lit, uncertain, unlit;
+    };
+    // Appendix B `partition`, extended with blocker leaves and the near and far ranges.
+    Partition partition(const Polygon& polygon) const;
+
+    std::vector<Beam> beams() const;
+    // Splits `cell` (a polyhedron inside the influence pyramid) down the tree and calls `leaf`
+    // with each leaf's part of it and the leaf's beam (without walls): every node clips once.
+    void split_cells(Polyhedron cell, double epsilon,
+                     const std::function<void(Polyhedron&&, const Beam&)>& leaf) const;
+    // The influence pyramid: four sides, near range, far range (outward planes).
+    const std::vector<Plane>& influence_planes() const { return influence_; }
+    double epsilon() const { return epsilon_; }
+    const dvec3& apex() const { return apex_; }
+    BeamTreeStats stats() const;
+
+private:
+    enum class Kind : uint8_t { split, out, open, solid, blocker };
+    struct Node {
+        Kind kind = Kind::open;
+        Plane plane;  // split: the splitting plane through L
+        int32_t front = -1;
+        int32_t back = -1;
+        Plane occluder;  // solid, blocker
+        Plane stopper;   // blocker
+    };
+    struct Leaf {
+        Kind kind;
+        Plane occluder;
+        Plane stopper;
+    };
+
+    void insert(const Polygon& polygon, const Plane& plane, bool stopper);
+    void attach(int32_t node, const Polygon& fragment, const Leaf& inside, const Leaf& outside);
+    int32_t add_leaf(const Leaf& leaf);
+
+    dvec3 apex_;
+    double epsilon_;
+    std::vector<Plane> influence_;
+    std::vector<Node> nodes_;
+    size_t outer_polygons_ = 0;
+    size_t stopper_polygons_ = 0;
+};
+
+}  // namespace sl::bt

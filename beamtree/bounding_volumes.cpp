@@ -1,0 +1,427 @@
+#include "beamtree/bounding_volumes.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "core/error.h"
+
+namespace sl::bt {
+
+namespace {
+
+Plane plane_of(const Polygon& face) {
+    const dvec3 n = glm::normalize(area_vector(face));
+    return {n, -glm::dot(n, centroid(face))};
+}
+
+double max_extent(const Bounds& b) {
+    const glm::vec3 e = b.extent();
+    return std::max({double(e.x), double(e.y), double(e.z), 1e-30});
+}
+
+}  // namespace
+
+bool ConvexVolume::contains(const dvec3& p, double margin) const {
+    if (planes.empty()) {
+        return false;
+    }
+    if (flat) {
+        // No interior: within -margin of the polygon's plane and inside its edges by margin.
+        if (margin >= 0.0 || std::abs(planes[0].distance(p)) > -margin) {
+            return false;
+        }
+        const Polygon& face = faces[0];
+        for (size_t i = 0; i < face.size(); ++i) {
+            const dvec3 edge = face.vertices[(i + 1) % face.size()] - face.vertices[i];
+            const dvec3 outward = glm::normalize(glm::cross(edge, planes[0].normal));
+            if (glm::dot(outward, p - face.vertices[i]) >= -margin) {
+                return false;
+            }
+        }
+        return true;
+    }
+    for (const Plane& plane : planes) {
+        if (plane.distance(p) >= -margin) {
+            return false;
+        }
+    }
+    return true;
+}
+
+ConvexVolume ConvexVolume::transformed(const glm::dmat4& transform) const {
+    ConvexVolume result;
+    result.flat = flat;
+    const bool mirrored = glm::determinant(glm::dmat3(transform)) < 0.0;
+    for (const Polygon& face : faces) {
+        std::vector<dvec3> vertices;
+        for (const dvec3& v : face.vertices) {
+            vertices.emplace_back(transform * glm::dvec4(v, 1.0));
+        }
+        if (mirrored) {
+            std::reverse(vertices.begin(), vertices.end());
+        }
+        result.faces.emplace_back(std::move(vertices));
+        result.planes.push_back(plane_of(result.faces.back()));
+    }
+    return result;
+}
+
+double ConvexVolume::volume() const {
+    if (flat) {
+        return 0.0;
+    }
+    Polyhedron p;
+    p.faces = faces;
+    return bt::volume(p);
+}
+
+ConvexVolume box_volume(const Box& box) {
+    ConvexVolume volume;
+    const dvec3 lo(box.min), hi(box.max);
+    std::vector<Plane> planes = {{{1, 0, 0}, -hi.x}, {{-1, 0, 0}, lo.x}, {{0, 1, 0}, -hi.y},
+                                 {{0, -1, 0}, lo.y}, {{0, 0, 1}, -hi.z}, {{0, 0, -1}, lo.z}};
+    const double radius = 2.0 * std::max(glm::length(lo), glm::length(hi)) + 1.0;
+    const Polyhedron p = polyhedron_from_planes(planes, radius, 1e-12 * radius);
+    for (const Polygon& face : p.faces) {
+        volume.faces.push_back(face);
+        volume.planes.push_back(plane_of(face));
+    }
+    return volume;
+}
+
+ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
+    const Bounds bounds = mesh.bounds();
+    const double extent = max_extent(bounds);
+    const double tolerance = 1e-9 * extent;
+    std::vector<dvec3> points(mesh.positions.begin(), mesh.positions.end());
+
+    // A flat mesh (all vertices on one plane) has a polygon for its hull.
+    size_t largest = 0;
+    double largest_area = 0.0;
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+        const glm::uvec3 t = mesh.triangles[i];
+        const double a =
+            glm::length(glm::cross(points[t.y] - points[t.x], points[t.z] - points[t.x]));
+        if (a > largest_area) {
+            largest_area = a;
+            largest = i;
+        }
+    }
+    Plane support;
+    const glm::uvec3 t = mesh.triangles[largest];
+    if (!Plane::through(points[t.x], points[t.y], points[t.z], support)) {
+        fail("mesh has no triangle of non-zero area");
+    }
+    const bool flat = std::all_of(points.begin(), points.end(), [&](const dvec3& p) {
+        return std::abs(support.distance(p)) <= tolerance;
+    });
+    ConvexVolume volume;
+    if (flat) {
+        Polygon up = convex_polygon_on_plane(points, support, tolerance);
+        std::vector<dvec3> reversed(up.vertices.rbegin(), up.vertices.rend());
+        Polygon down(std::move(reversed));
+        volume.flat = true;
+        volume.faces = {up, down};
+        volume.planes = {plane_of(up), plane_of(down)};
+        return volume;
+    }
+
+    using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+    using Point = Kernel::Point_3;
+    std::vector<Point> cgal_points;
+    cgal_points.reserve(points.size());
+    for (const dvec3& p : points) {
+        cgal_points.emplace_back(p.x, p.y, p.z);
+    }
+    CGAL::Surface_mesh<Point> hull;
+    CGAL::convex_hull_3(cgal_points.begin(), cgal_points.end(), hull);
+
+    // One plane per hull facet, coplanar facets merged; remember each plane's total area and
+    // the corners of its facets.
+    std::vector<std::pair<Plane, double>> planes;
+    std::vector<std::vector<dvec3>> plane_corners;
+    for (const auto face : hull.faces()) {
+        std::vector<dvec3> corners;
+        for (const auto vertex : CGAL::vertices_around_face(hull.halfedge(face), hull)) {
+            const Point& p = hull.point(vertex);
+            corners.emplace_back(p.x(), p.y(), p.z());
+        }
+        Plane plane;
+        if (corners.size() < 3 || !Plane::through(corners[0], corners[1], corners[2], plane)) {
+            continue;
+        }
+        const double a =
+            0.5 * glm::length(glm::cross(corners[1] - corners[0], corners[2] - corners[0]));
+        auto same = std::find_if(planes.begin(), planes.end(), [&](const auto& known) {
+            return glm::dot(known.first.normal, plane.normal) > 1.0 - 1e-10 &&
+                   std::abs(known.first.offset - plane.offset) <= tolerance;
+        });
+        if (same != planes.end()) {
+            same->second += a;
+            auto& corners_of_plane = plane_corners[size_t(same - planes.begin())];
+            corners_of_plane.insert(corners_of_plane.end(), corners.begin(), corners.end());
+        } else {
+            planes.emplace_back(plane, a);
+            plane_corners.push_back(corners);
+        }
+    }
+    if (max_planes <= 0 || int(planes.size()) <= max_planes) {
+        // The full hull: each face is the convex polygon of its facets' corners.
+        for (size_t i = 0; i < planes.size(); ++i) {
+            Polygon face = convex_polygon_on_plane(plane_corners[i], planes[i].first, tolerance);
+            if (!face.empty()) {
+                volume.faces.push_back(std::move(face));
+                volume.planes.push_back(planes[i].first);
+            }
+        }
+        return volume;
+    }
+    // Conservative reduction: every kept plane supports the mesh, so their intersection still
+    // encloses it; the axis-aligned support planes keep it bounded.
+    const dvec3 lo(bounds.min), hi(bounds.max);
+    std::vector<Plane> chosen = {{{1, 0, 0}, -hi.x}, {{-1, 0, 0}, lo.x}, {{0, 1, 0}, -hi.y},
+                                 {{0, -1, 0}, lo.y}, {{0, 0, 1}, -hi.z}, {{0, 0, -1}, lo.z}};
+    std::sort(planes.begin(), planes.end(),
+              [](const auto& a, const auto& b) { return a.second > b.second; });
+    for (const auto& [plane, a] : planes) {
+        if (int(chosen.size()) >= max_planes) {
+            break;
+        }
+        const bool axis_aligned = std::any_of(
+            chosen.begin(), chosen.begin() + 6,
+            [&](const Plane& c) { return glm::dot(c.normal, plane.normal) > 1.0 - 1e-10; });
+        if (!axis_aligned) {
+            chosen.push_back(plane);
+        }
+    }
+    const double radius =
+        2.0 * std::max(glm::length(dvec3(bounds.min)), glm::length(dvec3(bounds.max))) + extent;
+    const Polyhedron polyhedron = polyhedron_from_planes(chosen, radius, 1e-12 * radius);
+    for (const Polygon& face : polyhedron.faces) {
+        volume.faces.push_back(face);
+        volume.planes.push_back(plane_of(face));
+    }
+    return volume;
+}
+
+bool point_inside_mesh(const Mesh& mesh, const dvec3& p) {
+    // Generalised winding number: the solid angles of the triangles seen from p, summed
+    // (Van Oosterom & Strackee); 1 inside a closed outward mesh, 0 outside.
+    double solid_angle = 0.0;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const dvec3 a = dvec3(mesh.positions[t.x]) - p;
+        const dvec3 b = dvec3(mesh.positions[t.y]) - p;
+        const dvec3 c = dvec3(mesh.positions[t.z]) - p;
+        const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+        const double numerator = glm::dot(a, glm::cross(b, c));
+        const double denominator =
+            la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+        solid_angle += 2.0 * std::atan2(numerator, denominator);
+    }
+    return solid_angle / (4.0 * std::numbers::pi) > 0.5;
+}
+
+namespace {
+
+// Triangle/box overlap by the separating axis theorem (Akenine-Möller 2001). Touching counts as
+// overlapping: only a strict gap separates.
+bool triangle_overlaps_box(dvec3 v0, dvec3 v1, dvec3 v2, const dvec3& center, const dvec3& half) {
+    v0 -= center;
+    v1 -= center;
+    v2 -= center;
+    const dvec3 e[3] = {v1 - v0, v2 - v1, v0 - v2};
+    auto separated_on = [&](const dvec3& axis) {
+        const double p0 = glm::dot(v0, axis), p1 = glm::dot(v1, axis), p2 = glm::dot(v2, axis);
+        const double r =
+            half.x * std::abs(axis.x) + half.y * std::abs(axis.y) + half.z * std::abs(axis.z);
+        return std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r;
+    };
+    for (int i = 0; i < 3; ++i) {
+        dvec3 axis(0.0);
+        axis[i] = 1.0;
+        if (separated_on(axis)) {
+            return false;
+        }
+    }
+    if (separated_on(glm::cross(e[0], e[1]))) {
+        return false;
+    }
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            dvec3 box_axis(0.0);
+            box_axis[i] = 1.0;
+            const dvec3 axis = glm::cross(box_axis, e[j]);
+            if (glm::dot(axis, axis) > 0.0 && separated_on(axis)) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+// A mesh's triangles in double precision with their bounding boxes, for many box queries.
+class TriangleSet {
+public:
+    explicit TriangleSet(const Mesh& mesh) {
+        for (const glm::uvec3& t : mesh.triangles) {
+            const dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
+            corners_.push_back({a, b, c});
+            lo_.push_back(glm::min(a, glm::min(b, c)));
+            hi_.push_back(glm::max(a, glm::max(b, c)));
+        }
+    }
+    // True when no triangle touches the closed box.
+    bool misses(const Box& box) const {
+        const dvec3 lo(box.min), hi(box.max);
+        const dvec3 center = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+        for (size_t i = 0; i < corners_.size(); ++i) {
+            if (hi_[i].x < lo.x || hi_[i].y < lo.y || hi_[i].z < lo.z || lo_[i].x > hi.x ||
+                lo_[i].y > hi.y || lo_[i].z > hi.z) {
+                continue;
+            }
+            const auto& [a, b, c] = corners_[i];
+            if (triangle_overlaps_box(a, b, c, center, half)) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+private:
+    std::vector<std::array<dvec3, 3>> corners_;
+    std::vector<dvec3> lo_, hi_;
+};
+
+}  // namespace
+
+bool box_inside_mesh(const Mesh& mesh, const Box& box) {
+    const glm::vec3 center = 0.5f * (box.min + box.max);
+    return TriangleSet(mesh).misses(box) && point_inside_mesh(mesh, dvec3(center));
+}
+
+std::optional<Box> inscribed_box(const Mesh& mesh) {
+    const Bounds bounds = mesh.bounds();
+    const glm::vec3 half = 0.5f * bounds.extent();
+    auto box_at = [](glm::vec3 c, glm::vec3 h) { return Box{c - h, c + h}; };
+
+    // Seeds: the box centre and a coarse grid of cell centres that lie inside the mesh; from each,
+    // the largest box of the mesh's proportions (binary search on its scale).
+    std::vector<glm::vec3> seeds = {bounds.center()};
+    constexpr int kGrid = 4;
+    for (int i = 0; i < kGrid; ++i) {
+        for (int j = 0; j < kGrid; ++j) {
+            for (int k = 0; k < kGrid; ++k) {
+                const glm::vec3 f((i + 0.5f) / kGrid, (j + 0.5f) / kGrid, (k + 0.5f) / kGrid);
+                seeds.push_back(bounds.min + f * bounds.extent());
+            }
+        }
+    }
+    const TriangleSet triangles(mesh);
+    auto no_triangle_touches = [&](const Mesh&, const Box& box) { return triangles.misses(box); };
+    float best_scale = 0.0f;
+    glm::vec3 best_center(0.0f);
+    for (const glm::vec3& seed : seeds) {
+        if (!point_inside_mesh(mesh, dvec3(seed))) {
+            continue;
+        }
+        float lo = 0.0f, hi = 1.0f;
+        if (!no_triangle_touches(mesh, box_at(seed, lo + 1e-6f * half))) {
+            continue;
+        }
+        for (int iteration = 0; iteration < 16; ++iteration) {
+            const float mid = 0.5f * (lo + hi);
+            (no_triangle_touches(mesh, box_at(seed, mid * half)) ? lo : hi) = mid;
+        }
+        if (lo > best_scale) {
+            best_scale = lo;
+            best_center = seed;
+        }
+    }
+    if (best_scale <= 0.0f) {
+        return std::nullopt;
+    }
+    // Then push each face out as far as it goes.
+    Box box = box_at(best_center, best_scale * half);
+    for (int round = 0; round < 2; ++round) {
+        for (int axis = 0; axis < 3; ++axis) {
+            for (const bool upper : {false, true}) {
+                float lo = 0.0f, hi = bounds.extent()[axis];
+                for (int iteration = 0; iteration < 14; ++iteration) {
+                    const float mid = 0.5f * (lo + hi);
+                    Box grown = box;
+                    (upper ? grown.max[axis] : grown.min[axis]) += upper ? mid : -mid;
+                    (no_triangle_touches(mesh, grown) ? lo : hi) = mid;
+                }
+                (upper ? box.max[axis] : box.min[axis]) += upper ? lo : -lo;
+            }
+        }
+    }
+    return box;
+}
+
+const LocalVolumes& VolumeLibrary::local(const std::shared_ptr<const Mesh>& mesh) {
+    auto it = cache_.find(mesh.get());
+    if (it != cache_.end()) {
+        return it->second.second;
+    }
+    LocalVolumes volumes;
+    volumes.outer = convex_hull(*mesh, options_.max_outer_planes);
+    volumes.closed = mesh->is_closed();
+    if (volumes.outer.flat) {
+        const double hull_area = area(volumes.outer.faces[0]);
+        volumes.self_inner = std::abs(mesh->area() - hull_area) <= 1e-6 * hull_area;
+    } else if (options_.automatic_inner && volumes.closed) {
+        if (const std::optional<Box> box = inscribed_box(*mesh)) {
+            volumes.automatic_inner.push_back(box_volume(*box));
+        }
+    }
+    return cache_.emplace(mesh.get(), std::pair{mesh, std::move(volumes)}).first->second.second;
+}
+
+std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
+                                                std::vector<std::string>* warnings) {
+    std::vector<ObjectVolumes> result;
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const Object& object = scene.objects[i];
+        const LocalVolumes& local = this->local(object.mesh);
+        const glm::dmat4 transform(object.transform);
+        ObjectVolumes volumes;
+        volumes.object = int(i);
+        volumes.outer = local.outer.transformed(transform);
+        if (!object.inner_boxes.empty()) {
+            for (size_t b = 0; b < object.inner_boxes.size(); ++b) {
+                if (!box_inside_mesh(*object.mesh, object.inner_boxes[b])) {
+                    fail("object '{}': inner box {} is not strictly inside its mesh", object.name,
+                         b);
+                }
+                volumes.inner.push_back(box_volume(object.inner_boxes[b]).transformed(transform));
+            }
+        } else if (local.self_inner) {
+            volumes.inner.push_back(volumes.outer);
+        } else {
+            for (const ConvexVolume& inner : local.automatic_inner) {
+                volumes.inner.push_back(inner.transformed(transform));
+            }
+            if (!local.closed && options_.automatic_inner && warnings) {
+                warnings->push_back(fmt::format(
+                    "object '{}': mesh is not closed, so it gets no automatic inner volume",
+                    object.name));
+            }
+        }
+        result.push_back(std::move(volumes));
+    }
+    return result;
+}
+
+}  // namespace sl::bt

@@ -1,0 +1,245 @@
+#include "beamtree/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace sl::bt {
+
+bool Plane::through(const dvec3& a, const dvec3& b, const dvec3& c, Plane& plane) {
+    const dvec3 n = glm::cross(b - a, c - a);
+    const double length = glm::length(n);
+    if (!(length > 0.0) || !std::isfinite(length)) {
+        return false;
+    }
+    plane.normal = n / length;
+    plane.offset = -glm::dot(plane.normal, a);
+    return true;
+}
+
+dvec3 area_vector(const Polygon& polygon) {
+    dvec3 sum(0.0);
+    const size_t n = polygon.size();
+    if (n < 3) {
+        return sum;
+    }
+    // Relative to the first vertex: smaller round-off far from the origin.
+    const dvec3 origin = polygon.vertices[0];
+    for (size_t i = 1; i + 1 < n; ++i) {
+        sum += glm::cross(polygon.vertices[i] - origin, polygon.vertices[i + 1] - origin);
+    }
+    return 0.5 * sum;
+}
+
+double area(const Polygon& polygon) {
+    return glm::length(area_vector(polygon));
+}
+
+dvec3 centroid(const Polygon& polygon) {
+    dvec3 sum(0.0);
+    for (const dvec3& v : polygon.vertices) {
+        sum += v;
+    }
+    return polygon.vertices.empty() ? sum : sum / double(polygon.size());
+}
+
+Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut_on_split_plane) {
+    Split result;
+    const size_t n = polygon.size();
+    if (n < 3) {
+        return result;
+    }
+    std::vector<double> d(n);
+    bool any_front = false, any_back = false;
+    for (size_t i = 0; i < n; ++i) {
+        d[i] = plane.distance(polygon.vertices[i]);
+        any_front |= d[i] > epsilon;
+        any_back |= d[i] < -epsilon;
+    }
+    if (!any_front && !any_back) {
+        result.coplanar = true;
+        return result;
+    }
+    if (!any_back) {
+        result.front = polygon;
+        return result;
+    }
+    if (!any_front) {
+        result.back = polygon;
+        return result;
+    }
+    // It straddles the plane: split exactly at distance 0, so that the two parts share the cut
+    // and conserve the area (ε only decided that there is a split at all).
+    auto add = [](Polygon& p, const dvec3& v, bool edge_flag) {
+        p.vertices.push_back(v);
+        p.on_split_plane.push_back(edge_flag);
+    };
+    for (size_t i = 0; i < n; ++i) {
+        const size_t j = (i + 1) % n;
+        const dvec3& a = polygon.vertices[i];
+        const dvec3& b = polygon.vertices[j];
+        const bool edge_flag = polygon.on_split_plane[i];
+        const bool a_front = d[i] > 0.0, a_back = d[i] < 0.0;
+        const bool b_front = d[j] > 0.0, b_back = d[j] < 0.0;
+        // Vertex a and the flag of the edge leaving it: the original edge's, except for a vertex
+        // on the plane whose edge dives to the other side, where the polygon continues along
+        // the cut.
+        if (!a_back && !a_front) {
+            result.cut.push_back(a);
+        }
+        if (!a_back) {
+            add(result.front, a, (!a_front && b_back) ? cut_on_split_plane : edge_flag);
+        }
+        if (!a_front) {
+            add(result.back, a, (!a_back && b_front) ? cut_on_split_plane : edge_flag);
+        }
+        if ((a_front && b_back) || (a_back && b_front)) {
+            const double t = d[i] / (d[i] - d[j]);
+            const dvec3 p = a + t * (b - a);
+            // Leaving the front side, the front polygon continues from p along the cut; entering
+            // it, the rest of the original edge follows. Likewise for the back polygon.
+            add(result.front, p, a_front ? cut_on_split_plane : edge_flag);
+            add(result.back, p, a_back ? cut_on_split_plane : edge_flag);
+            result.cut.push_back(p);
+        }
+    }
+    if (result.front.size() < 3) {
+        result.front = Polygon();
+    }
+    if (result.back.size() < 3) {
+        result.back = Polygon();
+    }
+    return result;
+}
+
+Polygon convex_polygon_on_plane(std::vector<dvec3> points, const Plane& plane, double epsilon) {
+    // Andrew's monotone chain in the plane's basis; interior and repeated points drop out.
+    if (points.size() < 3) {
+        return Polygon();
+    }
+    const dvec3 n = plane.normal;
+    const dvec3 u = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, dvec3(1, 0, 0))
+                                                       : glm::cross(n, dvec3(0, 1, 0)));
+    const dvec3 v = glm::cross(n, u);
+    std::sort(points.begin(), points.end(), [&](const dvec3& a, const dvec3& b) {
+        const double au = glm::dot(a, u), bu = glm::dot(b, u);
+        return au < bu || (au == bu && glm::dot(a, v) < glm::dot(b, v));
+    });
+    // A left turn by more than epsilon (as a distance from the chord) keeps the middle point.
+    auto left_turn = [&](const dvec3& o, const dvec3& a, const dvec3& b) {
+        const double chord = glm::length(b - o);
+        return glm::dot(glm::cross(a - o, b - o), n) > epsilon * chord;
+    };
+    std::vector<dvec3> hull(2 * points.size());
+    size_t k = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        while (k >= 2 && !left_turn(hull[k - 2], hull[k - 1], points[i]))
+            --k;
+        hull[k++] = points[i];
+    }
+    for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+        while (k >= lower && !left_turn(hull[k - 2], hull[k - 1], points[i]))
+            --k;
+        hull[k++] = points[i];
+    }
+    hull.resize(k > 0 ? k - 1 : 0);
+    if (hull.size() < 3) {
+        return Polygon();
+    }
+    return Polygon(std::move(hull));
+}
+
+Polyhedron clip(const Polyhedron& polyhedron, const Plane& plane, double epsilon) {
+    // Decided as split() decides for polygons, so that clip(P, plane) and clip(P, flipped)
+    // partition P: within ε of one side means wholly on it; otherwise every face is cut exactly.
+    bool any_front = false, any_back = false;
+    for (const Polygon& face : polyhedron.faces) {
+        for (const dvec3& v : face.vertices) {
+            const double d = plane.distance(v);
+            any_front |= d > epsilon;
+            any_back |= d < -epsilon;
+        }
+    }
+    if (!any_front) {
+        return polyhedron;
+    }
+    if (!any_back) {
+        return Polyhedron();
+    }
+    Polyhedron result;
+    std::vector<dvec3> cap_points;
+    for (const Polygon& face : polyhedron.faces) {
+        Split parts = split(face, plane, 0.0);
+        if (parts.coplanar) {
+            continue;  // on the cap
+        }
+        if (parts.back.empty()) {
+            // Wholly in front, but it may touch the plane at vertices on it.
+            for (const dvec3& v : face.vertices) {
+                if (plane.distance(v) == 0.0)
+                    cap_points.push_back(v);
+            }
+            continue;
+        }
+        if (parts.front.empty()) {
+            for (const dvec3& v : face.vertices) {
+                if (plane.distance(v) == 0.0)
+                    cap_points.push_back(v);
+            }
+        }
+        cap_points.insert(cap_points.end(), parts.cut.begin(), parts.cut.end());
+        result.faces.push_back(std::move(parts.back));
+    }
+    // The cap spans exactly the points where the faces meet the plane.
+    Polygon cap = convex_polygon_on_plane(std::move(cap_points), plane, epsilon);
+    if (!cap.empty()) {
+        result.faces.push_back(std::move(cap));
+    }
+    if (result.faces.size() < 4) {
+        return Polyhedron();
+    }
+    return result;
+}
+
+double volume(const Polyhedron& polyhedron) {
+    // Divergence theorem over fan triangles, relative to one vertex for accuracy.
+    if (polyhedron.empty()) {
+        return 0.0;
+    }
+    const dvec3 origin = polyhedron.faces[0].vertices[0];
+    double sum = 0.0;
+    for (const Polygon& face : polyhedron.faces) {
+        const dvec3 a = face.vertices[0] - origin;
+        for (size_t i = 1; i + 1 < face.size(); ++i) {
+            sum +=
+                glm::dot(a, glm::cross(face.vertices[i] - origin, face.vertices[i + 1] - origin));
+        }
+    }
+    return sum / 6.0;
+}
+
+Polyhedron polyhedron_from_planes(const std::vector<Plane>& planes, double bounds_radius,
+                                  double epsilon) {
+    // Start from a cube of half-size bounds_radius and clip by every plane.
+    const double r = bounds_radius;
+    Polyhedron cube;
+    const dvec3 corner[8] = {{-r, -r, -r}, {r, -r, -r}, {r, r, -r}, {-r, r, -r},
+                             {-r, -r, r},  {r, -r, r},  {r, r, r},  {-r, r, r}};
+    const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                             {2, 3, 7, 6}, {0, 4, 7, 3}, {1, 2, 6, 5}};
+    for (const auto& f : faces) {
+        cube.faces.emplace_back(
+            std::vector<dvec3>{corner[f[0]], corner[f[1]], corner[f[2]], corner[f[3]]});
+    }
+    Polyhedron result = cube;
+    for (const Plane& plane : planes) {
+        result = clip(result, plane, epsilon);
+        if (result.empty()) {
+            break;
+        }
+    }
+    return result;
+}
+
+}  // namespace sl::bt

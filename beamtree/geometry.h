@@ -1,0 +1,76 @@
+#pragma once
+// The beam tree's geometry kernel, in double precision: oriented planes, convex polygons split by
+// planes with a thickness ε (Nilsson §4.3), and convex polyhedra clipped by planes.
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace sl::bt {
+
+using glm::dvec3;
+
+// The points x with dot(normal, x) + offset = 0; `normal` is unit length. distance() > 0 is the
+// front side.
+struct Plane {
+    dvec3 normal{0.0, 0.0, 1.0};
+    double offset = 0.0;
+
+    double distance(const dvec3& p) const {
+        return normal.x * p.x + normal.y * p.y + normal.z * p.z + offset;
+    }
+    Plane flipped() const { return {-normal, -offset}; }
+    // Through a, b, c with the normal along (b - a) x (c - a). Returns false when degenerate.
+    static bool through(const dvec3& a, const dvec3& b, const dvec3& c, Plane& plane);
+};
+
+// A convex planar polygon. `on_split_plane[i]` marks the edge from vertex i to i + 1 as lying on
+// a plane through the light (created by splitting with a beam plane): attaching the polygon to
+// the tree needs no new plane along such an edge.
+struct Polygon {
+    std::vector<dvec3> vertices;
+    std::vector<bool> on_split_plane;
+
+    Polygon() = default;
+    explicit Polygon(std::vector<dvec3> v)
+        : vertices(std::move(v)), on_split_plane(vertices.size(), false) {}
+    bool empty() const { return vertices.size() < 3; }
+    size_t size() const { return vertices.size(); }
+};
+
+// Area vector: normal times area (Newell's method), exact for planar polygons of any winding.
+dvec3 area_vector(const Polygon& polygon);
+double area(const Polygon& polygon);
+dvec3 centroid(const Polygon& polygon);
+
+struct Split {
+    Polygon front;           // may be empty
+    Polygon back;            // may be empty
+    bool coplanar = false;   // every vertex within ε of the plane (then both sides are empty)
+    std::vector<dvec3> cut;  // when it straddles: the points where it meets the plane
+};
+// Splits a convex polygon by a plane of thickness ε (Nilsson §4.3): a polygon within ε of one
+// side goes to that side whole; one that straddles the slab is cut exactly at the plane, so the
+// parts conserve its area. The new edge is marked with `cut_on_split_plane`.
+Split split(const Polygon& polygon, const Plane& plane, double epsilon,
+            bool cut_on_split_plane = false);
+
+// The convex polygon spanned by points lying on `plane`, counter-clockwise around its normal,
+// with duplicates (within epsilon) removed; empty when fewer than three remain.
+Polygon convex_polygon_on_plane(std::vector<dvec3> points, const Plane& plane, double epsilon);
+
+// A convex polyhedron as outward-facing convex faces (counter-clockwise seen from outside).
+struct Polyhedron {
+    std::vector<Polygon> faces;
+    bool empty() const { return faces.size() < 4; }
+};
+
+// Keeps the part with distance <= 0 (the back side), closing it with a cap on the plane.
+Polyhedron clip(const Polyhedron& polyhedron, const Plane& plane, double epsilon);
+double volume(const Polyhedron& polyhedron);
+// The polyhedron bounded by the given planes (outward normals), inside `bounds_radius` of the
+// origin; faces of redundant planes are dropped.
+Polyhedron polyhedron_from_planes(const std::vector<Plane>& planes, double bounds_radius,
+                                  double epsilon);
+
+}  // namespace sl::bt

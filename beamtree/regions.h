@@ -1,0 +1,36 @@
+#pragma once
+// Regions (Nilsson §5.2.1, figure 5.4): every beam of the tree cut into its lit part (from the
+// near range to the occluder plane, or to the backplate for open beams), its uncertain part
+// (from the occluder plane to the stopper plane or the backplate) and its unlit rest (behind
+// the stopper). Each is a closed convex polyhedron with outward faces; together they tile the
+// influence volume, ready to upload as one mesh per region type.
+
+#include <array>
+#include <filesystem>
+#include <vector>
+
+#include "beamtree/beam_tree.h"
+
+namespace sl::bt {
+
+struct RegionPiece {
+    uint32_t beam;
+    Polyhedron polyhedron;
+};
+
+struct Regions {
+    size_t beam_count = 0;
+    std::array<std::vector<RegionPiece>, 3> pieces;  // indexed by Region
+    std::array<double, 3> volume{};
+    double influence_volume = 0.0;
+
+    size_t face_count(Region region) const;
+};
+
+Regions extract_regions(const BeamTree& tree);
+
+// ASCII PLY: vertices, then faces with `uchar region` (0 lit, 1 uncertain, 2 unlit) and
+// `int beam`. Written to `path` directly; callers stage it (core/output_files.h).
+void write_regions_ply(const Regions& regions, const std::filesystem::path& path);
+
+}  // namespace sl::bt

@@ -1,0 +1,542 @@
+// The beam tree and its geometry against independent oracles: area and volume conservation,
+// hulls against their meshes, inner boxes against ray parity, and classification against Embree
+// ray casts through the bounding volumes and the true meshes on random scenes.
+
+#include <cmath>
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "beamtree/beam_tree.h"
+#include "beamtree/bounding_volumes.h"
+#include "beamtree/regions.h"
+#include "core/error.h"
+#include "scenes/scene_file.h"
+#include "tests/embree_oracle.h"
+#include "tests/support.h"
+
+namespace sl::test {
+namespace {
+
+using bt::dvec3;
+
+double uniform(std::mt19937& rng, double lo, double hi) {
+    return lo + (hi - lo) * double(rng() >> 5) * (1.0 / 134217728.0);
+}
+
+dvec3 random_unit(std::mt19937& rng) {
+    for (;;) {
+        const dvec3 v(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+        const double l = glm::length(v);
+        if (l > 0.1 && l <= 1.0) {
+            return v / l;
+        }
+    }
+}
+
+bt::Polygon random_convex_polygon(std::mt19937& rng, const dvec3& center, double radius) {
+    // Points on a circle at increasing angles: convex, counter-clockwise around `normal`.
+    const dvec3 normal = random_unit(rng);
+    const dvec3 u = glm::normalize(
+        glm::cross(normal, std::abs(normal.x) < 0.9 ? dvec3(1, 0, 0) : dvec3(0, 1, 0)));
+    const dvec3 v = glm::cross(normal, u);
+    const int n = 3 + int(rng() % 8);
+    std::vector<double> angles;
+    for (int i = 0; i < n; ++i) {
+        angles.push_back(uniform(rng, 0, 2 * M_PI));
+    }
+    std::sort(angles.begin(), angles.end());
+    std::vector<dvec3> vertices;
+    for (const double a : angles) {
+        vertices.push_back(center + radius * (std::cos(a) * u + std::sin(a) * v));
+    }
+    return bt::Polygon(vertices);
+}
+
+// Splitting a convex polygon by a plane conserves its area, and each side lies on its side.
+TEST(Geometry, SplitConservesArea) {
+    std::mt19937 rng(1);
+    for (int i = 0; i < 2000; ++i) {
+        const bt::Polygon polygon =
+            random_convex_polygon(rng, dvec3(uniform(rng, -5, 5)), uniform(rng, 0.01, 3));
+        bt::Plane plane{random_unit(rng), 0.0};
+        plane.offset =
+            -glm::dot(plane.normal, bt::centroid(polygon) + uniform(rng, -1, 1) * random_unit(rng));
+        const double epsilon = 1e-9;
+        const bt::Split parts = bt::split(polygon, plane, epsilon);
+        ASSERT_FALSE(parts.coplanar);
+        const double total = bt::area(parts.front) + bt::area(parts.back);
+        EXPECT_NEAR(total, bt::area(polygon), 1e-9 * bt::area(polygon) + 1e-15);
+        for (const dvec3& v : parts.front.vertices)
+            EXPECT_GE(plane.distance(v), -epsilon);
+        for (const dvec3& v : parts.back.vertices)
+            EXPECT_LE(plane.distance(v), epsilon);
+        EXPECT_EQ(parts.front.on_split_plane.size(), parts.front.size());
+    }
+    // A polygon on the plane is reported coplanar, with both sides empty.
+    const bt::Polygon square({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+    const bt::Split on = bt::split(square, {{0, 0, 1}, 0.0}, 1e-9);
+    EXPECT_TRUE(on.coplanar);
+    EXPECT_TRUE(on.front.empty() && on.back.empty());
+}
+
+// Clipping a convex polyhedron by a plane and by its flip conserves the volume.
+TEST(Geometry, ClipConservesVolume) {
+    std::mt19937 rng(2);
+    const bt::ConvexVolume box =
+        bt::box_volume({glm::vec3(-1.0f, -2.0f, -0.5f), glm::vec3(1.0f, 1.0f, 2.0f)});
+    bt::Polyhedron cube;
+    cube.faces = box.faces;
+    EXPECT_NEAR(bt::volume(cube), 2.0 * 3.0 * 2.5, 1e-12);
+    for (int i = 0; i < 500; ++i) {
+        bt::Plane plane{random_unit(rng), uniform(rng, -1.5, 1.5)};
+        const double v = bt::volume(bt::clip(cube, plane, 1e-12)) +
+                         bt::volume(bt::clip(cube, plane.flipped(), 1e-12));
+        EXPECT_NEAR(v, 15.0, 1e-10);
+    }
+}
+
+struct Shapes {
+    std::shared_ptr<const Mesh> box = std::make_shared<const Mesh>(make_box(glm::vec3(1.0f)));
+    std::shared_ptr<const Mesh> sphere = std::make_shared<const Mesh>(make_sphere(0.5f, 16));
+    std::shared_ptr<const Mesh> torus = std::make_shared<const Mesh>(make_torus(0.5f, 0.2f, 16, 8));
+    std::shared_ptr<const Mesh> plane = std::make_shared<const Mesh>(make_plane({1.0f, 1.0f}));
+    std::shared_ptr<const Mesh> bunny = [] {
+        Mesh mesh = load_mesh(SceneSearchPaths::defaults().data / "meshes" / "bunny00.off");
+        fit_mesh(mesh, 1.0f);
+        return std::make_shared<const Mesh>(std::move(mesh));
+    }();
+};
+
+Shapes& shapes() {
+    static Shapes s;
+    return s;
+}
+
+// The hull encloses every vertex of the mesh, also when reduced to K planes, and has at most K.
+TEST(BoundingVolumes, HullsEncloseTheirMeshesAlsoWhenReduced) {
+    for (const auto& mesh : {shapes().bunny, shapes().torus, shapes().sphere}) {
+        const bt::ConvexVolume full = bt::convex_hull(*mesh, 0);
+        const bt::ConvexVolume reduced = bt::convex_hull(*mesh, 12);
+        EXPECT_LE(reduced.faces.size(), 12u);
+        EXPECT_GE(reduced.volume(), full.volume() * (1.0 - 1e-9));
+        const double tolerance = 1e-7;
+        for (const glm::vec3& p : mesh->positions) {
+            for (const auto* volume : {&full, &reduced}) {
+                for (const bt::Plane& plane : volume->planes) {
+                    ASSERT_LE(plane.distance(dvec3(p)), tolerance);
+                }
+            }
+        }
+    }
+    const bt::ConvexVolume flat = bt::convex_hull(*shapes().plane, 0);
+    EXPECT_TRUE(flat.flat);
+    ASSERT_EQ(flat.faces.size(), 2u);
+    EXPECT_NEAR(bt::area(flat.faces[0]), 1.0, 1e-12);
+}
+
+// Crossings of the ray from p along +x with the mesh (brute force): odd means inside.
+int crossings(const Mesh& mesh, const glm::vec3& p) {
+    const CpuRayCaster* unused = nullptr;
+    (void)unused;
+    int count = 0;
+    const dvec3 o(p), d(1.0, 1e-3, 2e-3);  // skewed to avoid edges
+    for (const glm::uvec3& t : mesh.triangles) {
+        const dvec3 a(mesh.positions[t.x]), e1 = dvec3(mesh.positions[t.y]) - a,
+                                            e2 = dvec3(mesh.positions[t.z]) - a;
+        const dvec3 q = glm::cross(d, e2);
+        const double det = glm::dot(e1, q);
+        if (std::abs(det) < 1e-20)
+            continue;
+        const dvec3 s = o - a;
+        const double u = glm::dot(s, q) / det;
+        const dvec3 r = glm::cross(s, e1);
+        const double v = glm::dot(d, r) / det;
+        const double h = glm::dot(e2, r) / det;
+        count += u >= 0 && v >= 0 && u + v <= 1 && h > 0;
+    }
+    return count;
+}
+
+// Automatic inner boxes lie inside their meshes (ray parity at random points of the box, and no
+// crossing from its centre), and explicit boxes that stick out are rejected with an error.
+TEST(BoundingVolumes, InnerBoxesAreInsideTheirMeshes) {
+    std::mt19937 rng(3);
+    for (const auto& mesh : {shapes().bunny, shapes().torus, shapes().sphere, shapes().box}) {
+        const std::optional<Box> box = bt::inscribed_box(*mesh);
+        ASSERT_TRUE(box.has_value());
+        EXPECT_TRUE(bt::box_inside_mesh(*mesh, *box));
+        for (int i = 0; i < 50; ++i) {
+            const glm::vec3 f(uniform(rng, 0, 1), uniform(rng, 0, 1), uniform(rng, 0, 1));
+            EXPECT_EQ(crossings(*mesh, box->min + f * (box->max - box->min)) % 2, 1);
+        }
+    }
+    const Box outside{glm::vec3(-0.2f), glm::vec3(0.6f)};  // pokes out of the unit box
+    EXPECT_FALSE(bt::box_inside_mesh(*shapes().box, outside));
+    Scene scene = load_canonical("toplight");
+    scene.objects[2].inner_boxes = {outside};
+    bt::VolumeLibrary library;
+    EXPECT_THROW(library.build(scene, nullptr), Error);
+}
+
+Object make_object(const std::string& name, std::shared_ptr<const Mesh> mesh,
+                   const glm::mat4& transform) {
+    Object object;
+    object.name = name;
+    object.mesh = std::move(mesh);
+    object.transform = transform;
+    return object;
+}
+
+struct RandomScene {
+    Scene scene;
+    std::string kinds;  // what it contains, for failure messages
+};
+
+// A random scene under one spot light: boxes (some with explicit inner boxes), spheres, tori, the
+// bunny, flat polygons (some edge-on to the light), pairs of boxes sharing a face, overlapping
+// objects, and objects around and behind the light. Objects whose outer volume would contain the
+// light are drawn again.
+RandomScene random_scene(int seed, bt::VolumeLibrary& library) {
+    std::mt19937 rng(seed);
+    RandomScene result;
+    Scene& scene = result.scene;
+    SpotLight& light = scene.light;
+    light.position = glm::vec3(uniform(rng, -2, 2), uniform(rng, 2, 5), uniform(rng, -2, 2));
+    const dvec3 axis =
+        glm::normalize(dvec3(uniform(rng, -0.7, 0.7), -1.0, uniform(rng, -0.7, 0.7)));
+    light.target = light.position + glm::vec3(5.0 * axis);
+    light.cone_half_angle_degrees = float(uniform(rng, 15, 55));
+    light.near = float(uniform(rng, 0.05, 0.8));
+    light.far = float(uniform(rng, 6, 12));
+    const double spread = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
+    const bool around_light = seed % 4 == 0;
+    const int count = 1 + int(rng() % 7);
+    for (int i = 0; i < count; ++i) {
+        for (int attempt = 0; attempt < 20; ++attempt) {
+            dvec3 center;
+            if (around_light && rng() % 2) {
+                center = dvec3(light.position) + uniform(rng, 0.8, 3.0) * random_unit(rng);
+            } else {
+                const double depth = uniform(rng, 1.0, 0.9 * light.far);
+                const dvec3 lateral = random_unit(rng) * uniform(rng, 0, spread * depth);
+                center =
+                    dvec3(light.position) + depth * axis + lateral - glm::dot(lateral, axis) * axis;
+            }
+            const double size = uniform(rng, 0.3, 1.6);
+            glm::mat4 transform = glm::translate(glm::mat4(1.0f), glm::vec3(center));
+            transform =
+                glm::rotate(transform, float(uniform(rng, 0, 6.3)), glm::vec3(random_unit(rng)));
+            Object object;
+            const int kind = int(rng() % 6);
+            std::vector<Object> extra;
+            switch (kind) {
+                case 0:
+                    object.mesh = shapes().box;
+                    transform = glm::scale(transform, glm::vec3(size * uniform(rng, 0.4, 1.0), size,
+                                                                size * uniform(rng, 0.4, 1.6)));
+                    if (rng() % 2)
+                        object.inner_boxes = {{glm::vec3(-0.4f), glm::vec3(0.4f)}};
+                    break;
+                case 1:
+                    object.mesh = shapes().sphere;
+                    transform = glm::scale(transform, glm::vec3(size));
+                    break;
+                case 2:
+                    object.mesh = shapes().torus;
+                    transform = glm::scale(transform, glm::vec3(size));
+                    break;
+                case 3:
+                    object.mesh = shapes().bunny;
+                    transform = glm::scale(transform, glm::vec3(size));
+                    break;
+                case 4: {
+                    object.mesh = shapes().plane;
+                    if (rng() % 2) {
+                        // Edge-on: the plane's normal is perpendicular to the direction to the
+                        // light.
+                        const dvec3 to_light = glm::normalize(dvec3(light.position) - center);
+                        const dvec3 normal = glm::normalize(glm::cross(to_light, random_unit(rng)));
+                        const dvec3 tangent = glm::cross(normal, to_light);
+                        glm::dmat4 m(1.0);
+                        m[0] = glm::dvec4(to_light, 0.0);
+                        m[1] = glm::dvec4(normal, 0.0);
+                        m[2] = glm::dvec4(tangent, 0.0);
+                        m[3] = glm::dvec4(center, 1.0);
+                        transform = glm::mat4(m);
+                    }
+                    transform = glm::scale(transform, glm::vec3(2.0 * size, 1.0, 2.0 * size));
+                    break;
+                }
+                default: {
+                    // Two boxes sharing a face (coplanar faces), overlapping a third.
+                    object.mesh = shapes().box;
+                    transform = glm::scale(transform, glm::vec3(size));
+                    extra = {make_object("twin", shapes().box,
+                                         glm::translate(transform, glm::vec3(1.0f, 0.0f, 0.0f))),
+                             make_object(
+                                 "overlap", shapes().box,
+                                 glm::scale(glm::translate(transform, glm::vec3(0.5f, 0.4f, 0.3f)),
+                                            glm::vec3(0.9f)))};
+                    break;
+                }
+            }
+            object.transform = transform;
+            object.name = fmt::format("object{}-kind{}", i, kind);
+            extra.insert(extra.begin(), object);
+            bool contains_light = false;
+            for (const Object& o : extra) {
+                const bt::ConvexVolume outer =
+                    library.local(o.mesh).outer.transformed(glm::dmat4(o.transform));
+                contains_light |= outer.contains(dvec3(light.position), -1e-3);
+            }
+            if (contains_light) {
+                continue;
+            }
+            for (Object& o : extra) {
+                scene.objects.push_back(std::move(o));
+            }
+            result.kinds += fmt::format("{} ", kind);
+            break;
+        }
+    }
+    return result;
+}
+
+dvec3 random_point(std::mt19937& rng, const SpotLight& light) {
+    const dvec3 d = glm::normalize(dvec3(light.direction()));
+    const dvec3 u = glm::normalize(dvec3(light.up()) - glm::dot(dvec3(light.up()), d) * d);
+    const dvec3 r = glm::cross(d, u);
+    const double spread = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
+    if (rng() % 8 == 0) {  // anywhere around, mostly outside the influence volume
+        return dvec3(light.position) + double(light.far) * dvec3(uniform(rng, -1, 1),
+                                                                 uniform(rng, -1, 1),
+                                                                 uniform(rng, -1, 1));
+    }
+    const double depth = uniform(rng, 0.0, 1.05 * light.far);
+    return dvec3(light.position) + depth * (d + uniform(rng, -1.05, 1.05) * spread * r +
+                                            uniform(rng, -1.05, 1.05) * spread * u);
+}
+
+struct Oracles {
+    EmbreeOccluder outer, inner, meshes;
+};
+
+void add_volumes(const std::vector<bt::ObjectVolumes>& volumes, const Scene& scene,
+                 Oracles& oracles) {
+    for (const bt::ObjectVolumes& v : volumes) {
+        for (const bt::Polygon& face : v.outer.faces)
+            oracles.outer.add(face);
+        for (const bt::ConvexVolume& inner : v.inner) {
+            for (const bt::Polygon& face : inner.faces)
+                oracles.inner.add(face);
+        }
+        const Object& object = scene.objects[size_t(v.object)];
+        std::vector<dvec3> world;
+        for (const glm::vec3& p : object.mesh->positions) {
+            world.emplace_back(glm::dmat4(object.transform) * glm::dvec4(dvec3(p), 1.0));
+        }
+        oracles.meshes.add(world, object.mesh->triangles);
+    }
+    oracles.outer.commit();
+    oracles.inner.commit();
+    oracles.meshes.commit();
+}
+
+// On 200 random scenes and 10^4 points each, away from every plane the answer depends on (10ε):
+// classify() equals the ray-cast answer through the bounding volumes (agreement), lit points see
+// the light past every true mesh and unlit points do not (soundness), and the regions tile the
+// influence volume (conservation).
+TEST(BeamTree, AgreesWithRayCastsIsSoundAndConservesVolumeOnRandomScenes) {
+    bt::VolumeLibrary library;
+    size_t compared = 0, counts[3] = {0, 0, 0};
+    int failures = 0;
+    for (int seed = 1; seed <= 200; ++seed) {
+        const RandomScene random = random_scene(seed, library);
+        const Scene& scene = random.scene;
+        const std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
+        const bt::BeamTree tree(scene.light, volumes);
+        Oracles oracles;
+        add_volumes(volumes, scene, oracles);
+        const dvec3 light(scene.light.position);
+        std::mt19937 rng(1000 + seed);
+        for (int i = 0; i < 10000; ++i) {
+            const dvec3 p = random_point(rng, scene.light);
+            double margin = 0.0;
+            const bt::Region region = tree.classify(p, &margin);
+            if (margin < 10.0 * tree.epsilon()) {
+                continue;
+            }
+            bool inside = true;
+            for (const bt::Plane& plane : tree.influence_planes())
+                inside &= plane.distance(p) < 0.0;
+            const bt::Region expected = !inside                            ? bt::Region::unlit
+                                        : !oracles.outer.blocked(light, p) ? bt::Region::lit
+                                        : oracles.inner.blocked(light, p)  ? bt::Region::unlit
+                                                                           : bt::Region::uncertain;
+            const bool sound =
+                region == bt::Region::uncertain ||
+                (region == bt::Region::lit) == !(inside ? oracles.meshes.blocked(light, p) : true);
+            ++compared;
+            ++counts[size_t(region)];
+            if ((region != expected || !sound) && ++failures <= 10) {
+                ADD_FAILURE() << "scene " << seed << " (kinds " << random.kinds << ") point ("
+                              << p.x << ", " << p.y << ", " << p.z << "): tree "
+                              << bt::to_string(region) << ", ray cast " << bt::to_string(expected)
+                              << (sound ? "" : ", unsound against the meshes") << ", margin "
+                              << margin;
+            }
+        }
+        const bt::Regions regions = bt::extract_regions(tree);
+        const double total = regions.volume[0] + regions.volume[1] + regions.volume[2];
+        EXPECT_NEAR(total / regions.influence_volume, 1.0, 1e-6)
+            << "scene " << seed << " (kinds " << random.kinds << "): lit " << regions.volume[0]
+            << " uncertain " << regions.volume[1] << " unlit " << regions.volume[2];
+    }
+    EXPECT_EQ(failures, 0) << "of " << compared << " points";
+    EXPECT_GT(compared, 1'500'000u);
+    for (const size_t count : counts) {
+        EXPECT_GT(count, 20'000u) << "every region type must be exercised";
+    }
+}
+
+// Each region piece's interior classifies as its region, and partition() splits a polygon into
+// pieces that conserve its area and classify as the list they are in.
+TEST(BeamTree, RegionsAndPartitionMatchClassify) {
+    bt::VolumeLibrary library;
+    std::mt19937 rng(7);
+    for (int seed = 300; seed < 320; ++seed) {
+        const Scene scene = random_scene(seed, library).scene;
+        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        const bt::Regions regions = bt::extract_regions(tree);
+        for (size_t r = 0; r < 3; ++r) {
+            for (const bt::RegionPiece& piece : regions.pieces[r]) {
+                dvec3 center(0.0);
+                size_t n = 0;
+                for (const bt::Polygon& face : piece.polyhedron.faces) {
+                    for (const dvec3& v : face.vertices) {
+                        center += v;
+                        ++n;
+                    }
+                }
+                center /= double(n);
+                double margin = 0.0;
+                const bt::Region region = tree.classify(center, &margin);
+                if (margin > 10.0 * tree.epsilon()) {
+                    EXPECT_EQ(size_t(region), r) << "scene " << seed;
+                }
+            }
+        }
+        for (int i = 0; i < 50; ++i) {
+            const bt::Polygon polygon =
+                random_convex_polygon(rng, random_point(rng, scene.light), uniform(rng, 0.2, 4));
+            const bt::BeamTree::Partition parts = tree.partition(polygon);
+            double total = 0.0;
+            const std::vector<bt::Polygon>* lists[3] = {&parts.lit, &parts.uncertain, &parts.unlit};
+            for (size_t r = 0; r < 3; ++r) {
+                for (const bt::Polygon& piece : *lists[r]) {
+                    total += bt::area(piece);
+                    double margin = 0.0;
+                    const bt::Region region = tree.classify(bt::centroid(piece), &margin);
+                    if (margin > 10.0 * tree.epsilon()) {
+                        EXPECT_EQ(size_t(region), r) << "scene " << seed;
+                    }
+                }
+            }
+            EXPECT_NEAR(total, bt::area(polygon), 1e-6 * bt::area(polygon))
+                << "scene " << seed << ": " << parts.lit.size() << " lit, "
+                << parts.uncertain.size() << " uncertain, " << parts.unlit.size()
+                << " unlit pieces";
+        }
+    }
+}
+
+// Overlapping volumes: the answer does not depend on the order the volumes are inserted in.
+TEST(BeamTree, InsertionOrderDoesNotChangeTheAnswer) {
+    bt::VolumeLibrary library;
+    for (int seed = 400; seed < 430; ++seed) {
+        const Scene scene = random_scene(seed, library).scene;
+        std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
+        const bt::BeamTree forward(scene.light, volumes);
+        // Insert the farthest first: move the objects away from the front of the sort by
+        // reversing and nudging nothing; the tree sorts by distance, so also shuffle faces.
+        for (bt::ObjectVolumes& v : volumes) {
+            std::reverse(v.outer.faces.begin(), v.outer.faces.end());
+            std::reverse(v.outer.planes.begin(), v.outer.planes.end());
+        }
+        std::reverse(volumes.begin(), volumes.end());
+        const bt::BeamTree reversed(scene.light, volumes);
+        std::mt19937 rng(seed);
+        for (int i = 0; i < 2000; ++i) {
+            const dvec3 p = random_point(rng, scene.light);
+            double m1 = 0.0, m2 = 0.0;
+            const bt::Region a = forward.classify(p, &m1), b = reversed.classify(p, &m2);
+            if (std::min(m1, m2) > 10.0 * forward.epsilon()) {
+                ASSERT_EQ(a, b) << "scene " << seed;
+            }
+        }
+    }
+}
+
+// A light inside (or on) an outer volume is one clear error; edge-on and zero-area polygons and
+// an empty scene give correct answers.
+TEST(BeamTree, DegenerateInputs) {
+    Scene scene;
+    scene.light.position = glm::vec3(0.0f, 5.0f, 0.0f);
+    scene.light.target = glm::vec3(0.0f);
+    scene.light.far = 10.0f;
+    bt::VolumeLibrary library;
+    {
+        const bt::BeamTree empty(scene.light, {});
+        EXPECT_EQ(empty.classify({0.0, 1.0, 0.0}), bt::Region::lit);
+        EXPECT_EQ(empty.classify({0.0, -6.0, 0.0}), bt::Region::unlit);  // beyond the far range
+        EXPECT_EQ(empty.classify({0.0, 6.0, 0.0}), bt::Region::unlit);   // behind the light
+    }
+    scene.objects = {make_object(
+        "box", shapes().box,
+        glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0, 5, 0)), glm::vec3(2.0f)))};
+    try {
+        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        ADD_FAILURE() << "no error for a light inside an outer volume";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("inside the outer bounding volume"),
+                  std::string::npos);
+    }
+    scene.objects[0].transform =
+        glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 4.5f, 0.0f));  // light on its top face
+    EXPECT_THROW(bt::BeamTree(scene.light, library.build(scene, nullptr)), Error);
+
+    // An edge-on square through the light and a zero-area polygon occlude nothing.
+    bt::ObjectVolumes edge_on;
+    edge_on.outer.flat = true;
+    edge_on.outer.faces = {bt::Polygon({{-1, 5, 0}, {1, 5, 0}, {1, 1, 0}, {-1, 1, 0}})};
+    edge_on.outer.planes = {{{0, 0, 1}, 0.0}};
+    bt::ObjectVolumes degenerate;
+    degenerate.object = 1;
+    degenerate.outer.faces = {bt::Polygon({{0, 2, 0}, {1, 2, 0}, {2, 2, 0}})};
+    degenerate.outer.planes = {{{0, 1, 0}, -2.0}};
+    const bt::BeamTree tree(scene.light, {edge_on, degenerate});
+    EXPECT_EQ(tree.classify({0.3, 0.5, 0.2}), bt::Region::lit);
+    EXPECT_EQ(tree.classify({1.5, 0.5, 0.1}), bt::Region::lit);
+}
+
+// The canonical scenes build, and their regions tile the influence volume.
+TEST(BeamTree, CanonicalScenesConserveVolume) {
+    for (const std::string& name : canonical_scene_names()) {
+        const Scene scene = load_canonical(name);
+        bt::VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes});
+        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        const bt::Regions regions = bt::extract_regions(tree);
+        EXPECT_NEAR(
+            (regions.volume[0] + regions.volume[1] + regions.volume[2]) / regions.influence_volume,
+            1.0, 1e-6)
+            << name;
+        EXPECT_GT(regions.volume[1], 0.0) << name << " has uncertain space behind its objects";
+        EXPECT_GT(regions.volume[2], 0.0) << name << " has unlit space behind its floor";
+    }
+}
+
+}  // namespace
+}  // namespace sl::test
