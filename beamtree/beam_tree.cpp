@@ -71,18 +71,28 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
             fail(
                 "the light at ({}, {}, {}) is inside the outer bounding volume of object {}: the "
                 "beam tree needs the light outside every outer volume",
-                apex_.x, apex_.y, apex_.z, object.object);
+                apex_.x, apex_.y, apex_.z,
+                object.name.empty() ? std::to_string(object.object) : "'" + object.name + "'");
         }
     }
     // Front to back by distance from the light: the result does not depend on the order, but
     // fewer fix-ups keep the tree small.
-    std::vector<const ObjectVolumes*> order;
+    std::vector<std::pair<double, const ObjectVolumes*>> by_distance;
+    size_t faces = 0;
     for (const ObjectVolumes& object : volumes) {
-        order.push_back(&object);
+        by_distance.emplace_back(distance_to_box(apex_, object.outer), &object);
+        faces += object.outer.faces.size();
+        for (const ConvexVolume& inner : object.inner) {
+            faces += inner.faces.size();
+        }
     }
-    std::sort(order.begin(), order.end(), [&](const ObjectVolumes* a, const ObjectVolumes* b) {
-        return distance_to_box(apex_, a->outer) < distance_to_box(apex_, b->outer);
-    });
+    std::sort(by_distance.begin(), by_distance.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<const ObjectVolumes*> order;
+    for (const auto& [distance, object] : by_distance) {
+        order.push_back(object);
+    }
+    nodes_.reserve(nodes_.size() + 16 * faces);
     for (const ObjectVolumes* object : order) {
         for (size_t f = 0; f < object->outer.faces.size(); ++f) {
             insert(object->outer.faces[f], object->outer.planes[f], false);
@@ -126,20 +136,37 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
     while (!stack.empty()) {
         auto [index, fragment] = std::move(stack.back());
         stack.pop_back();
-        if (fragment.empty() || area(fragment) <= epsilon_ * epsilon_) {
+        // Descend while the fragment lies on one side: no copies on the way down.
+        while (nodes_[size_t(index)].kind == Kind::split) {
+            const Node& node = nodes_[size_t(index)];
+            const Side where = side(fragment, node.plane, epsilon_);
+            if (where == Side::coplanar) {
+                index = -1;  // on a plane through L: edge-on to the light, occludes nothing
+                break;
+            }
+            if (where != Side::straddling) {
+                index = where == Side::front ? node.front : node.back;
+                continue;
+            }
+            Split parts = split(fragment, node.plane, epsilon_, true);
+            // Slivers thinner than the planes' thickness add nothing but nodes.
+            if (area(parts.back) > epsilon_ * epsilon_) {
+                stack.emplace_back(node.back, std::move(parts.back));
+            }
+            if (area(parts.front) <= epsilon_ * epsilon_) {
+                index = -1;
+                break;
+            }
+            fragment = std::move(parts.front);
+            index = node.front;
+        }
+        if (index < 0) {
             continue;
         }
         const Node node = nodes_[size_t(index)];
         switch (node.kind) {
-            case Kind::split: {
-                Split parts = split(fragment, node.plane, epsilon_, true);
-                // A fragment on a plane through L is edge-on to the light: it occludes nothing.
-                if (!parts.front.empty())
-                    stack.emplace_back(node.front, std::move(parts.front));
-                if (!parts.back.empty())
-                    stack.emplace_back(node.back, std::move(parts.back));
+            case Kind::split:
                 break;
-            }
             case Kind::out:
                 break;
             case Kind::open:
@@ -150,10 +177,8 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
             case Kind::solid:
                 if (!stopper) {
                     // Fix-up: the part nearer to L than the current occluder takes over.
-                    const Split parts = split(fragment, node.occluder, epsilon_);
-                    if (!parts.coplanar && !parts.front.empty()) {
-                        attach(index, parts.front, inserted, {Kind::solid, node.occluder, {}});
-                    }
+                    attach_nearer(index, fragment, node.occluder, inserted,
+                                  {Kind::solid, node.occluder, {}});
                 } else {
                     attach(index, fragment, {Kind::blocker, node.occluder, plane},
                            {Kind::solid, node.occluder, {}});
@@ -162,14 +187,27 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
             case Kind::blocker:
                 if (stopper) {
                     // Keep the nearest stopper, as for occluders.
-                    const Split parts = split(fragment, node.stopper, epsilon_);
-                    if (!parts.coplanar && !parts.front.empty()) {
-                        attach(index, parts.front, {Kind::blocker, node.occluder, plane},
-                               {Kind::blocker, node.occluder, node.stopper});
-                    }
+                    attach_nearer(index, fragment, node.stopper,
+                                  {Kind::blocker, node.occluder, plane},
+                                  {Kind::blocker, node.occluder, node.stopper});
                 }
                 break;
         }
+    }
+}
+
+void BeamTree::attach_nearer(int32_t index, const Polygon& fragment, const Plane& current,
+                             const Leaf& inside, const Leaf& outside) {
+    switch (side(fragment, current, epsilon_)) {
+        case Side::front:
+            attach(index, fragment, inside, outside);
+            break;
+        case Side::straddling:
+            attach(index, split(fragment, current, epsilon_).front, inside, outside);
+            break;
+        case Side::back:
+        case Side::coplanar:
+            break;  // hidden behind, or on, what the leaf already has
     }
 }
 
@@ -181,7 +219,7 @@ void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside
     std::vector<Plane> edges;
     const size_t n = fragment.size();
     for (size_t i = 0; i < n; ++i) {
-        if (fragment.on_split_plane[i]) {
+        if (fragment.edge_on_split_plane(i)) {
             continue;
         }
         const dvec3& a = fragment.vertices[i];

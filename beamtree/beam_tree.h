@@ -96,6 +96,9 @@ private:
 
     void insert(const Polygon& polygon, const Plane& plane, bool stopper);
     void attach(int32_t node, const Polygon& fragment, const Leaf& inside, const Leaf& outside);
+    // Attaches the part of the fragment nearer to L than `current` (Nilsson ch. 8's fix-up).
+    void attach_nearer(int32_t node, const Polygon& fragment, const Plane& current,
+                       const Leaf& inside, const Leaf& outside);
     int32_t add_leaf(const Leaf& leaf);
 
     dvec3 apex_;

@@ -398,6 +398,7 @@ std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
         const glm::dmat4 transform(object.transform);
         ObjectVolumes volumes;
         volumes.object = int(i);
+        volumes.name = object.name;
         volumes.outer = local.outer.transformed(transform);
         if (!object.inner_boxes.empty()) {
             for (size_t b = 0; b < object.inner_boxes.size(); ++b) {

@@ -42,6 +42,7 @@ struct BoundingVolumeOptions {
 // The volumes of one object in world space.
 struct ObjectVolumes {
     int object = 0;  // index into Scene::objects
+    std::string name;
     ConvexVolume outer;
     std::vector<ConvexVolume> inner;
 };

@@ -44,6 +44,17 @@ dvec3 centroid(const Polygon& polygon) {
     return polygon.vertices.empty() ? sum : sum / double(polygon.size());
 }
 
+Side side(const Polygon& polygon, const Plane& plane, double epsilon) {
+    bool any_front = false, any_back = false;
+    for (const dvec3& v : polygon.vertices) {
+        const double d = plane.distance(v);
+        any_front |= d > epsilon;
+        any_back |= d < -epsilon;
+    }
+    return any_front ? (any_back ? Side::straddling : Side::front)
+                     : (any_back ? Side::back : Side::coplanar);
+}
+
 Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut_on_split_plane) {
     Split result;
     const size_t n = polygon.size();
@@ -71,15 +82,19 @@ Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut
     }
     // It straddles the plane: split exactly at distance 0, so that the two parts share the cut
     // and conserve the area (ε only decided that there is a split at all).
+    result.front.vertices.reserve(n + 1);
+    result.back.vertices.reserve(n + 1);
     auto add = [](Polygon& p, const dvec3& v, bool edge_flag) {
+        if (edge_flag && p.vertices.size() < 64) {
+            p.on_split_plane |= uint64_t(1) << p.vertices.size();
+        }
         p.vertices.push_back(v);
-        p.on_split_plane.push_back(edge_flag);
     };
     for (size_t i = 0; i < n; ++i) {
         const size_t j = (i + 1) % n;
         const dvec3& a = polygon.vertices[i];
         const dvec3& b = polygon.vertices[j];
-        const bool edge_flag = polygon.on_split_plane[i];
+        const bool edge_flag = polygon.edge_on_split_plane(i);
         const bool a_front = d[i] > 0.0, a_back = d[i] < 0.0;
         const bool b_front = d[j] > 0.0, b_back = d[j] < 0.0;
         // Vertex a and the flag of the edge leaving it: the original edge's, except for a vertex

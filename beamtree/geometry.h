@@ -2,6 +2,7 @@
 // The beam tree's geometry kernel, in double precision: oriented planes, convex polygons split by
 // planes with a thickness ε (Nilsson §4.3), and convex polyhedra clipped by planes.
 
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -24,24 +25,29 @@ struct Plane {
     static bool through(const dvec3& a, const dvec3& b, const dvec3& c, Plane& plane);
 };
 
-// A convex planar polygon. `on_split_plane[i]` marks the edge from vertex i to i + 1 as lying on
-// a plane through the light (created by splitting with a beam plane): attaching the polygon to
-// the tree needs no new plane along such an edge.
+// A convex planar polygon. Bit i of `on_split_plane` marks the edge from vertex i to i + 1 as
+// lying on a plane through the light (created by splitting with a beam plane): attaching the
+// polygon to the tree needs no new plane along such an edge. Edges past the 64th are never
+// marked, which costs at most a redundant plane.
 struct Polygon {
     std::vector<dvec3> vertices;
-    std::vector<bool> on_split_plane;
+    uint64_t on_split_plane = 0;
 
     Polygon() = default;
-    explicit Polygon(std::vector<dvec3> v)
-        : vertices(std::move(v)), on_split_plane(vertices.size(), false) {}
+    explicit Polygon(std::vector<dvec3> v) : vertices(std::move(v)) {}
     bool empty() const { return vertices.size() < 3; }
     size_t size() const { return vertices.size(); }
+    bool edge_on_split_plane(size_t i) const { return i < 64 && (on_split_plane >> i & 1u); }
 };
 
 // Area vector: normal times area (Newell's method), exact for planar polygons of any winding.
 dvec3 area_vector(const Polygon& polygon);
 double area(const Polygon& polygon);
 dvec3 centroid(const Polygon& polygon);
+
+// Where a polygon lies relative to a plane of thickness ε, without building any part of it.
+enum class Side { front, back, straddling, coplanar };
+Side side(const Polygon& polygon, const Plane& plane, double epsilon);
 
 struct Split {
     Polygon front;           // may be empty

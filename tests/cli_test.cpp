@@ -122,5 +122,79 @@ TEST(Cli, UnwritableOutputIsAnError) {
     EXPECT_NE(run.output.find("cannot create output directory"), std::string::npos) << run.output;
 }
 
+// `regions` writes the PLY, JSON and PNG; the JSON's region volumes tile the influence volume and
+// the PLY's header counts match its body.
+TEST(Cli, RegionsWritesPlyJsonAndPng) {
+    TempDir out;
+    const CommandResult run =
+        run_shaftlab("regions --scene multiple:5 --size 64x36 --out " + out.path().string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_EQ(out.file_count(), 3u);
+    std::ifstream json_file(out / "regions.json");
+    const nlohmann::json json = nlohmann::json::parse(json_file);
+    EXPECT_GT(json["beams"].get<int>(), 5);
+    EXPECT_GE(json["build_ms"].get<double>(), 0.0);
+    EXPECT_GE(json["extract_ms"].get<double>(), 0.0);
+    const double sum = json["regions"]["lit"]["volume"].get<double>() +
+                       json["regions"]["uncertain"]["volume"].get<double>() +
+                       json["regions"]["unlit"]["volume"].get<double>();
+    EXPECT_NEAR(sum / json["influence_volume"].get<double>(), 1.0, 1e-6);
+
+    std::ifstream ply(out / "regions.ply");
+    std::string line;
+    size_t vertices = 0, faces = 0, body = 0;
+    bool header = true;
+    while (std::getline(ply, line)) {
+        if (header) {
+            std::sscanf(line.c_str(), "element vertex %zu", &vertices);
+            std::sscanf(line.c_str(), "element face %zu", &faces);
+            header = line != "end_header";
+        } else {
+            ++body;
+        }
+    }
+    EXPECT_GT(faces, 0u);
+    EXPECT_EQ(body, vertices + faces);
+    size_t json_faces = 0;
+    for (const char* region : {"lit", "uncertain", "unlit"}) {
+        json_faces += json["regions"][region]["faces"].get<size_t>();
+    }
+    EXPECT_EQ(json_faces, faces);
+}
+
+// `regions --classify` prints one region per point: lit in the open cone under the light, unlit
+// under the floor (a flat object is its own inner volume) and outside the influence volume.
+TEST(Cli, RegionsClassifiesPoints) {
+    TempDir dir;
+    write_text(dir / "points.txt", "0.1 8 0.1\n0 -0.5 0\n50 50 50\n\n0 9 0.2\n");
+    const CommandResult run =
+        run_shaftlab("regions --scene multiple:3 --classify " + (dir / "points.txt").string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_EQ(run.output, "lit\nunlit\nunlit\nlit\n");
+
+    write_text(dir / "bad.txt", "0 1 0\n1 2\n");
+    const CommandResult bad =
+        run_shaftlab("regions --scene multiple:3 --classify " + (dir / "bad.txt").string());
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.output.find("bad.txt:2: expected three numbers"), std::string::npos)
+        << bad.output;
+}
+
+// A light inside an object's outer volume is one clear error, with no output.
+TEST(Cli, RegionsRejectsALightInsideABoundingVolume) {
+    TempDir dir;
+    write_text(dir / "inside.toml",
+               "[camera]\nposition = [0.0, 1.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n"
+               "[light]\nposition = [0.0, 0.0, 0.0]\ntarget = [0.0, -1.0, 0.0]\n"
+               "[[objects]]\nname = \"crate\"\nshape = \"box\"\nsize = [2.0, 2.0, 2.0]\n");
+    const CommandResult run = run_shaftlab("regions --scene " + (dir / "inside.toml").string() +
+                                           " --size 32x18 --out " + (dir / "out").string());
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("inside the outer bounding volume of object 'crate'"),
+              std::string::npos)
+        << run.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "regions.json"));
+}
+
 }  // namespace
 }  // namespace sl::test

@@ -1,0 +1,94 @@
+// Beam-tree speed (issue targets, one core): build time against the number of light-facing
+// outer-volume polygons (multiple:N, hulls reduced to 16 planes), and the time to partition 100
+// view-aligned planes. Bounding volumes are computed outside the timed region: they are cached
+// per mesh and do not change while a light moves.
+
+#include <benchmark/benchmark.h>
+
+#include <glm/geometric.hpp>
+
+#include "beamtree/beam_tree.h"
+#include "beamtree/regions.h"
+#include "scenes/scene_file.h"
+
+namespace sl::bt {
+namespace {
+
+struct Prepared {
+    Scene scene;
+    std::vector<ObjectVolumes> volumes;
+};
+
+Prepared prepare(int objects) {
+    Prepared p{load_scene("multiple:" + std::to_string(objects), SceneSearchPaths::defaults()), {}};
+    VolumeLibrary library({.max_outer_planes = p.scene.bounds.max_outer_planes});
+    p.volumes = library.build(p.scene, nullptr);
+    return p;
+}
+
+void build_tree(benchmark::State& state) {
+    const Prepared p = prepare(int(state.range(0)));
+    for (auto _ : state) {
+        const BeamTree tree(p.scene.light, p.volumes);
+        benchmark::DoNotOptimize(&tree);
+    }
+    const BeamTreeStats stats = BeamTree(p.scene.light, p.volumes).stats();
+    state.counters["polygons"] = double(stats.outer_polygons);
+    state.counters["stoppers"] = double(stats.stopper_polygons);
+    state.counters["nodes"] = double(stats.nodes);
+    state.counters["depth"] = double(stats.max_depth);
+}
+// About 10, 100, 1k and 10k light-facing outer polygons.
+BENCHMARK(build_tree)->Arg(2)->Arg(16)->Arg(165)->Arg(1650)->Unit(benchmark::kMillisecond);
+
+void extract_regions_bench(benchmark::State& state) {
+    const Prepared p = prepare(int(state.range(0)));
+    const BeamTree tree(p.scene.light, p.volumes);
+    size_t faces = 0;
+    for (auto _ : state) {
+        const Regions regions = extract_regions(tree);
+        faces = regions.face_count(Region::lit) + regions.face_count(Region::uncertain) +
+                regions.face_count(Region::unlit);
+        benchmark::DoNotOptimize(faces);
+    }
+    state.counters["faces"] = double(faces);
+}
+BENCHMARK(extract_regions_bench)->Arg(16)->Arg(165)->Unit(benchmark::kMillisecond);
+
+// 100 planes facing the camera, spaced evenly through the influence volume's depth range as
+// the sampling-plane methods will place them, partitioned into lit / uncertain / unlit.
+void partition_view_planes(benchmark::State& state) {
+    const Prepared p = prepare(int(state.range(0)));
+    const BeamTree tree(p.scene.light, p.volumes);
+    const Camera& camera = p.scene.camera;
+    const glm::dvec3 eye(camera.position),
+        forward = glm::normalize(glm::dvec3(camera.target) - eye);
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(camera.up)));
+    const glm::dvec3 up = glm::cross(right, forward);
+    std::vector<Polygon> planes;
+    for (int i = 0; i < 100; ++i) {
+        const double depth = 2.0 + 28.0 * i / 99.0;
+        const double half = depth * 0.6;
+        const glm::dvec3 c = eye + depth * forward;
+        planes.emplace_back(
+            std::vector<glm::dvec3>{c - half * right - half * up, c + half * right - half * up,
+                                    c + half * right + half * up, c - half * right + half * up});
+    }
+    size_t pieces = 0;
+    for (auto _ : state) {
+        pieces = 0;
+        for (const Polygon& plane : planes) {
+            const BeamTree::Partition parts = tree.partition(plane);
+            pieces += parts.lit.size() + parts.uncertain.size() + parts.unlit.size();
+        }
+        benchmark::DoNotOptimize(pieces);
+    }
+    state.counters["pieces"] = double(pieces);
+    state.counters["polygons"] = double(tree.stats().outer_polygons);
+}
+BENCHMARK(partition_view_planes)->Arg(16)->Arg(165)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace sl::bt
+
+BENCHMARK_MAIN();
