@@ -15,6 +15,23 @@ size_t Regions::face_count(Region region) const {
     return count;
 }
 
+RegionMesh Regions::mesh(Region region) const {
+    RegionMesh mesh;
+    for (const RegionPiece& piece : pieces[size_t(region)]) {
+        for (const Polygon& face : piece.polyhedron.faces) {
+            const auto base = uint32_t(mesh.positions.size());
+            for (const dvec3& v : face.vertices) {
+                mesh.positions.emplace_back(v);
+            }
+            for (uint32_t i = 1; i + 1 < face.size(); ++i) {
+                mesh.triangles.emplace_back(base, base + i, base + i + 1);
+                mesh.beams.push_back(piece.beam);
+            }
+        }
+    }
+    return mesh;
+}
+
 Regions extract_regions(const BeamTree& tree) {
     Regions regions;
     // Vertices within this distance of a clipping plane count as on it; well below the tree's ε
@@ -38,11 +55,15 @@ Regions extract_regions(const BeamTree& tree) {
     }
     regions.influence_volume = volume(influence);
 
+    // Pieces thinner than round-off (slivers of cells that only touch a plane) are dropped:
+    // they carry no volume, only faces.
+    const double negligible = 1e-12 * regions.influence_volume;
     auto keep = [&](Region region, uint32_t beam, Polyhedron polyhedron) {
-        if (polyhedron.empty()) {
+        const double v = volume(polyhedron);
+        if (polyhedron.empty() || v <= negligible) {
             return;
         }
-        regions.volume[size_t(region)] += volume(polyhedron);
+        regions.volume[size_t(region)] += v;
         regions.pieces[size_t(region)].push_back({beam, std::move(polyhedron)});
     };
     uint32_t next_beam = 0;

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "beamtree/beam_tree.h"
 
 namespace sl::bt {
@@ -18,6 +20,14 @@ struct RegionPiece {
     Polyhedron polyhedron;
 };
 
+// One region type as a triangle mesh for the GPU: float positions, outward-wound triangles and
+// the beam each triangle bounds.
+struct RegionMesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::uvec3> triangles;
+    std::vector<uint32_t> beams;  // per triangle
+};
+
 struct Regions {
     size_t beam_count = 0;
     std::array<std::vector<RegionPiece>, 3> pieces;  // indexed by Region
@@ -25,6 +35,7 @@ struct Regions {
     double influence_volume = 0.0;
 
     size_t face_count(Region region) const;
+    RegionMesh mesh(Region region) const;
 };
 
 Regions extract_regions(const BeamTree& tree);

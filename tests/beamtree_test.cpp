@@ -401,7 +401,8 @@ TEST(BeamTree, AgreesWithRayCastsIsSoundAndConservesVolumeOnRandomScenes) {
     }
 }
 
-// Each region piece's interior classifies as its region, and partition() splits a polygon into
+// Each region piece is a closed convex polyhedron with outward faces whose interior classifies
+// as its region; the meshes for the GPU hold every face; and partition() splits a polygon into
 // pieces that conserve its area and classify as the list they are in.
 TEST(BeamTree, RegionsAndPartitionMatchClassify) {
     bt::VolumeLibrary library;
@@ -411,6 +412,9 @@ TEST(BeamTree, RegionsAndPartitionMatchClassify) {
         const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
         const bt::Regions regions = bt::extract_regions(tree);
         for (size_t r = 0; r < 3; ++r) {
+            const bt::RegionMesh mesh = regions.mesh(bt::Region(r));
+            EXPECT_EQ(mesh.triangles.size(), mesh.beams.size());
+            EXPECT_GE(mesh.triangles.size(), regions.face_count(bt::Region(r)));
             for (const bt::RegionPiece& piece : regions.pieces[r]) {
                 dvec3 center(0.0);
                 size_t n = 0;
@@ -421,6 +425,16 @@ TEST(BeamTree, RegionsAndPartitionMatchClassify) {
                     }
                 }
                 center /= double(n);
+                EXPECT_GT(bt::volume(piece.polyhedron), 0.0);
+                for (const bt::Polygon& face : piece.polyhedron.faces) {
+                    // Outward: the piece's vertex centroid lies behind every face (round-off
+                    // aside: 1e-9 of the light's range).
+                    const dvec3 normal = bt::area_vector(face);
+                    if (glm::length(normal) > 1e-9 * scene.light.far * scene.light.far) {
+                        EXPECT_GE(glm::dot(glm::normalize(normal), bt::centroid(face) - center),
+                                  -1e-9 * scene.light.far);
+                    }
+                }
                 double margin = 0.0;
                 const bt::Region region = tree.classify(center, &margin);
                 if (margin > 10.0 * tree.epsilon()) {
