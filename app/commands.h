@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <functional>
 
 namespace sl::app {
@@ -14,6 +15,13 @@ Command add_render_command(CLI::App& app);
 Command add_scenes_command(CLI::App& app);
 Command add_gl_info_command(CLI::App& app);
 Command add_regions_command(CLI::App& app);
+
+using Clock = std::chrono::steady_clock;
+
+// Milliseconds of wall time since `start`, for the stage timings the commands report.
+inline double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
 
 // "WxH" with both positive; throws sl::Error otherwise.
 void parse_size(const std::string& text, int& width, int& height);

@@ -27,12 +27,7 @@ namespace sl::app {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using glm::dvec3;
-
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 struct RegionsArguments {
     std::string scene;

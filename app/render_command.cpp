@@ -17,12 +17,6 @@ namespace sl::app {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
 struct RenderArguments {
     std::string scene;
     std::string method = "none";
