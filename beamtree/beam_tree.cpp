@@ -61,9 +61,9 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         nodes_.push_back(node);
     }
     for (int i = 0; i < 4; ++i) {
-        const int32_t out = add_leaf({Kind::out, {}, {}});
+        const int32_t out = add_leaf({Kind::out, {}, -1});
         nodes_[size_t(i)].front = out;
-        nodes_[size_t(i)].back = i < 3 ? i + 1 : add_leaf({Kind::open, {}, {}});
+        nodes_[size_t(i)].back = i < 3 ? i + 1 : add_leaf({Kind::open, {}, -1});
     }
 
     for (const ObjectVolumes& object : volumes) {
@@ -109,12 +109,17 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     }
 }
 
-int32_t BeamTree::add_leaf(const Leaf& leaf) {
-    Node node;
+void BeamTree::set_leaf(int32_t index, const Leaf& leaf) {
+    Node& node = nodes_[size_t(index)];
     node.kind = leaf.kind;
-    node.occluder = leaf.occluder;
-    node.stopper = leaf.stopper;
-    nodes_.push_back(node);
+    node.plane = leaf.occluder;
+    node.front = -1;
+    node.back = leaf.stopper;
+}
+
+int32_t BeamTree::add_leaf(const Leaf& leaf) {
+    nodes_.emplace_back();
+    set_leaf(int32_t(nodes_.size() - 1), leaf);
     return int32_t(nodes_.size() - 1);
 }
 
@@ -129,7 +134,12 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
         return;
     }
     ++(stopper ? stopper_polygons_ : outer_polygons_);
-    const Leaf inserted = stopper ? Leaf{Kind::blocker, {}, plane} : Leaf{Kind::solid, plane, {}};
+    int32_t stopper_index = -1;
+    if (stopper) {
+        stopper_index = int32_t(stoppers_.size());
+        stoppers_.push_back(plane);
+    }
+    const Leaf inserted{Kind::solid, plane, -1};
 
     std::vector<std::pair<int32_t, Polygon>> stack;
     stack.emplace_back(0, std::move(clipped));
@@ -171,25 +181,25 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
                 break;
             case Kind::open:
                 if (!stopper) {  // appendix B attachPolygon
-                    attach(index, fragment, inserted, {Kind::open, {}, {}});
+                    attach(index, fragment, inserted, {Kind::open, {}, -1});
                 }
                 break;
             case Kind::solid:
                 if (!stopper) {
                     // Fix-up: the part nearer to L than the current occluder takes over.
-                    attach_nearer(index, fragment, node.occluder, inserted,
-                                  {Kind::solid, node.occluder, {}});
+                    attach_nearer(index, fragment, node.plane, inserted,
+                                  {Kind::solid, node.plane, -1});
                 } else {
-                    attach(index, fragment, {Kind::blocker, node.occluder, plane},
-                           {Kind::solid, node.occluder, {}});
+                    attach(index, fragment, {Kind::blocker, node.plane, stopper_index},
+                           {Kind::solid, node.plane, -1});
                 }
                 break;
             case Kind::blocker:
                 if (stopper) {
                     // Keep the nearest stopper, as for occluders.
-                    attach_nearer(index, fragment, node.stopper,
-                                  {Kind::blocker, node.occluder, plane},
-                                  {Kind::blocker, node.occluder, node.stopper});
+                    attach_nearer(index, fragment, stopper_of(node),
+                                  {Kind::blocker, node.plane, stopper_index},
+                                  {Kind::blocker, node.plane, node.back});
                 }
                 break;
         }
@@ -250,11 +260,7 @@ void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside
         node.back = back;
         current = back;
     }
-    Node& leaf = nodes_[size_t(current)];
-    leaf.kind = inside.kind;
-    leaf.occluder = inside.occluder;
-    leaf.stopper = inside.stopper;
-    leaf.front = leaf.back = -1;
+    set_leaf(current, inside);
 }
 
 Region BeamTree::classify(const dvec3& p, double* margin) const {
@@ -281,14 +287,14 @@ Region BeamTree::classify(const dvec3& p, double* margin) const {
                 region = Region::lit;
                 break;
             case Kind::solid: {
-                const double distance = leaf.occluder.distance(p);
+                const double distance = leaf.plane.distance(p);
                 record(distance);
                 region = distance > 0.0 ? Region::lit : Region::uncertain;
                 break;
             }
             case Kind::blocker: {
-                const double to_occluder = leaf.occluder.distance(p);
-                const double to_stopper = leaf.stopper.distance(p);
+                const double to_occluder = leaf.plane.distance(p);
+                const double to_stopper = stopper_of(leaf).distance(p);
                 record(to_occluder);
                 record(to_stopper);
                 region = to_occluder > 0.0  ? Region::lit
@@ -358,13 +364,13 @@ BeamTree::Partition BeamTree::partition(const Polygon& polygon) const {
                 result.lit.push_back(std::move(piece));
                 break;
             case Kind::solid:
-                divide(std::move(piece), node.occluder, result.lit, result.uncertain);
+                divide(std::move(piece), node.plane, result.lit, result.uncertain);
                 break;
             case Kind::blocker: {
                 std::vector<Polygon> behind;
-                divide(std::move(piece), node.occluder, result.lit, behind);
+                divide(std::move(piece), node.plane, result.lit, behind);
                 for (Polygon& part : behind) {
-                    divide(std::move(part), node.stopper, result.uncertain, result.unlit);
+                    divide(std::move(part), stopper_of(node), result.uncertain, result.unlit);
                 }
                 break;
             }
@@ -399,9 +405,11 @@ std::vector<Beam> BeamTree::beams() const {
         Beam beam;
         beam.walls = std::move(item.walls);
         beam.has_occluder = node.kind != Kind::open;
-        beam.occluder = node.occluder;
+        beam.occluder = node.plane;
         beam.has_stopper = node.kind == Kind::blocker;
-        beam.stopper = node.stopper;
+        if (beam.has_stopper) {
+            beam.stopper = stopper_of(node);
+        }
         beams.push_back(std::move(beam));
     }
     return beams;
@@ -429,9 +437,11 @@ void BeamTree::split_cells(Polyhedron cell, double epsilon,
         }
         Beam beam;
         beam.has_occluder = node.kind != Kind::open;
-        beam.occluder = node.occluder;
+        beam.occluder = node.plane;
         beam.has_stopper = node.kind == Kind::blocker;
-        beam.stopper = node.stopper;
+        if (beam.has_stopper) {
+            beam.stopper = stopper_of(node);
+        }
         leaf(std::move(part), beam);
     }
 }

@@ -80,19 +80,20 @@ public:
 
 private:
     enum class Kind : uint8_t { split, out, open, solid, blocker };
+    // 48 bytes: the descent is bound by memory traffic, so leaves reuse the split fields.
     struct Node {
+        Plane plane;         // split: the splitting plane through L; solid, blocker: occluder
+        int32_t front = -1;  // split: children
+        int32_t back = -1;   // split: children; blocker: index into stoppers_
         Kind kind = Kind::open;
-        Plane plane;  // split: the splitting plane through L
-        int32_t front = -1;
-        int32_t back = -1;
-        Plane occluder;  // solid, blocker
-        Plane stopper;   // blocker
     };
     struct Leaf {
         Kind kind;
         Plane occluder;
-        Plane stopper;
+        int32_t stopper = -1;  // index into stoppers_
     };
+    const Plane& stopper_of(const Node& node) const { return stoppers_[size_t(node.back)]; }
+    void set_leaf(int32_t index, const Leaf& leaf);
 
     void insert(const Polygon& polygon, const Plane& plane, bool stopper);
     void attach(int32_t node, const Polygon& fragment, const Leaf& inside, const Leaf& outside);
@@ -105,6 +106,7 @@ private:
     double epsilon_;
     std::vector<Plane> influence_;
     std::vector<Node> nodes_;
+    std::vector<Plane> stoppers_;
     size_t outer_polygons_ = 0;
     size_t stopper_polygons_ = 0;
 };
