@@ -379,42 +379,6 @@ BeamTree::Partition BeamTree::partition(const Polygon& polygon) const {
     return result;
 }
 
-std::vector<Beam> BeamTree::beams() const {
-    std::vector<Beam> beams;
-    struct Item {
-        int32_t index;
-        std::vector<Plane> walls;
-    };
-    std::vector<Item> stack;
-    stack.push_back({0, {}});
-    while (!stack.empty()) {
-        Item item = std::move(stack.back());
-        stack.pop_back();
-        const Node& node = nodes_[size_t(item.index)];
-        if (node.kind == Kind::split) {
-            Item front{node.front, item.walls};
-            front.walls.push_back(node.plane.flipped());  // the front child lies behind the flip
-            item.walls.push_back(node.plane);
-            stack.push_back({node.back, std::move(item.walls)});
-            stack.push_back(std::move(front));
-            continue;
-        }
-        if (node.kind == Kind::out) {
-            continue;
-        }
-        Beam beam;
-        beam.walls = std::move(item.walls);
-        beam.has_occluder = node.kind != Kind::open;
-        beam.occluder = node.plane;
-        beam.has_stopper = node.kind == Kind::blocker;
-        if (beam.has_stopper) {
-            beam.stopper = stopper_of(node);
-        }
-        beams.push_back(std::move(beam));
-    }
-    return beams;
-}
-
 void BeamTree::split_cells(Polyhedron cell, double epsilon,
                            const std::function<void(Polyhedron&&, const Beam&)>& leaf) const {
     std::vector<std::pair<int32_t, Polyhedron>> stack;

@@ -40,10 +40,8 @@ struct BeamTreeStats {
     size_t max_depth = 0;
 };
 
-// One leaf inside the influence pyramid: its walls (planes through L, outward), and the planes
-// that cut it into regions.
+// One leaf inside the influence pyramid: the planes that cut it into regions.
 struct Beam {
-    std::vector<Plane> walls;
     bool has_occluder = false;
     Plane occluder;  // front side (towards L) lit
     bool has_stopper = false;
@@ -67,9 +65,8 @@ public:
     // Appendix B `partition`, extended with blocker leaves and the near and far ranges.
     Partition partition(const Polygon& polygon) const;
 
-    std::vector<Beam> beams() const;
     // Splits `cell` (a polyhedron inside the influence pyramid) down the tree and calls `leaf`
-    // with each leaf's part of it and the leaf's beam (without walls): every node clips once.
+    // with each leaf's part of it and the leaf's beam: every node clips once.
     void split_cells(Polyhedron cell, double epsilon,
                      const std::function<void(Polyhedron&&, const Beam&)>& leaf) const;
     // The influence pyramid: four sides, near range, far range (outward planes).

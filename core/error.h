@@ -19,7 +19,4 @@ template <typename... Args>
     throw Error(fmt::format(format, std::forward<Args>(args)...));
 }
 
-// Throws unless every component is finite: NaN and infinity never enter the pipeline.
-void require_finite(float value, const std::string& what);
-
 }  // namespace sl

@@ -33,21 +33,6 @@ void Image::set(int x, int y, glm::vec3 value) {
     rgb[i + 2] = value.b;
 }
 
-glm::vec3 Image::mean(int x0, int y0, int x1, int y1) const {
-    x0 = std::clamp(x0, 0, width);
-    x1 = std::clamp(x1, 0, width);
-    y0 = std::clamp(y0, 0, height);
-    y1 = std::clamp(y1, 0, height);
-    glm::dvec3 sum(0.0);
-    for (int y = y0; y < y1; ++y) {
-        for (int x = x0; x < x1; ++x) {
-            sum += glm::dvec3(at(x, y));
-        }
-    }
-    const int count = std::max(1, (x1 - x0) * (y1 - y0));
-    return glm::vec3(sum / double(count));
-}
-
 namespace {
 
 unsigned char encode_srgb8(float linear) {

@@ -20,8 +20,6 @@ struct Image {
 
     glm::vec3 at(int x, int y) const;
     void set(int x, int y, glm::vec3 value);
-    // Mean of the pixels in [x0, x1) x [y0, y1), clamped to the image.
-    glm::vec3 mean(int x0, int y0, int x1, int y1) const;
 };
 
 struct ToneMap {

@@ -14,18 +14,13 @@ namespace sl::gl {
 #define SL_GL_FUNCTIONS(X)                                               \
     X(PFNGLGETERRORPROC, GetError)                                       \
     X(PFNGLGETSTRINGPROC, GetString)                                     \
-    X(PFNGLGETSTRINGIPROC, GetStringi)                                   \
     X(PFNGLGETINTEGERVPROC, GetIntegerv)                                 \
     X(PFNGLENABLEPROC, Enable)                                           \
     X(PFNGLDISABLEPROC, Disable)                                         \
-    X(PFNGLISENABLEDPROC, IsEnabled)                                     \
     X(PFNGLVIEWPORTPROC, Viewport)                                       \
-    X(PFNGLCULLFACEPROC, CullFace)                                       \
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                                     \
     X(PFNGLDEPTHMASKPROC, DepthMask)                                     \
     X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                             \
-    X(PFNGLBLENDFUNCPROC, BlendFunc)                                     \
-    X(PFNGLFINISHPROC, Finish)                                           \
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                                 \
     X(PFNGLDRAWARRAYSPROC, DrawArrays)                                   \
     X(PFNGLDRAWELEMENTSPROC, DrawElements)                               \
@@ -44,24 +39,19 @@ namespace sl::gl {
     X(PFNGLDELETETEXTURESPROC, DeleteTextures)                           \
     X(PFNGLISTEXTUREPROC, IsTexture)                                     \
     X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                       \
-    X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)                     \
     X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                     \
-    X(PFNGLTEXTUREPARAMETERFVPROC, TextureParameterfv)                   \
     X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                         \
     X(PFNGLGETTEXTUREIMAGEPROC, GetTextureImage)                         \
     X(PFNGLCREATEFRAMEBUFFERSPROC, CreateFramebuffers)                   \
     X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                   \
-    X(PFNGLISFRAMEBUFFERPROC, IsFramebuffer)                             \
     X(PFNGLNAMEDFRAMEBUFFERTEXTUREPROC, NamedFramebufferTexture)         \
     X(PFNGLNAMEDFRAMEBUFFERDRAWBUFFERSPROC, NamedFramebufferDrawBuffers) \
     X(PFNGLNAMEDFRAMEBUFFERDRAWBUFFERPROC, NamedFramebufferDrawBuffer)   \
     X(PFNGLCHECKNAMEDFRAMEBUFFERSTATUSPROC, CheckNamedFramebufferStatus) \
     X(PFNGLCLEARNAMEDFRAMEBUFFERFVPROC, ClearNamedFramebufferfv)         \
     X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                         \
-    X(PFNGLBLITNAMEDFRAMEBUFFERPROC, BlitNamedFramebuffer)               \
     X(PFNGLCREATEVERTEXARRAYSPROC, CreateVertexArrays)                   \
     X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                   \
-    X(PFNGLISVERTEXARRAYPROC, IsVertexArray)                             \
     X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                         \
     X(PFNGLVERTEXARRAYVERTEXBUFFERPROC, VertexArrayVertexBuffer)         \
     X(PFNGLVERTEXARRAYELEMENTBUFFERPROC, VertexArrayElementBuffer)       \
@@ -76,27 +66,21 @@ namespace sl::gl {
     X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                       \
     X(PFNGLCREATEPROGRAMPROC, CreateProgram)                             \
     X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                             \
-    X(PFNGLISPROGRAMPROC, IsProgram)                                     \
     X(PFNGLATTACHSHADERPROC, AttachShader)                               \
     X(PFNGLLINKPROGRAMPROC, LinkProgram)                                 \
     X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                               \
     X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                     \
     X(PFNGLUSEPROGRAMPROC, UseProgram)                                   \
-    X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                       \
-    X(PFNGLPROGRAMUNIFORM1FPROC, ProgramUniform1f)                       \
     X(PFNGLPROGRAMUNIFORM3FVPROC, ProgramUniform3fv)                     \
     X(PFNGLPROGRAMUNIFORMMATRIX4FVPROC, ProgramUniformMatrix4fv)         \
-    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                   \
     X(PFNGLGETUNIFORMBLOCKINDEXPROC, GetUniformBlockIndex)               \
     X(PFNGLGETACTIVEUNIFORMBLOCKIVPROC, GetActiveUniformBlockiv)         \
     X(PFNGLGETUNIFORMINDICESPROC, GetUniformIndices)                     \
     X(PFNGLGETACTIVEUNIFORMSIVPROC, GetActiveUniformsiv)                 \
     X(PFNGLCREATEQUERIESPROC, CreateQueries)                             \
     X(PFNGLDELETEQUERIESPROC, DeleteQueries)                             \
-    X(PFNGLISQUERYPROC, IsQuery)                                         \
     X(PFNGLBEGINQUERYPROC, BeginQuery)                                   \
     X(PFNGLENDQUERYPROC, EndQuery)                                       \
-    X(PFNGLGETQUERYOBJECTIVPROC, GetQueryObjectiv)                       \
     X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
 
 struct Api {
