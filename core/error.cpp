@@ -1,5 +1,0 @@
-#include "core/error.h"
-
-#include <cmath>
-
-namespace sl {}  // namespace sl
