@@ -160,7 +160,7 @@ int run_regions(const RegionsArguments& args) {
 
     const auto platform = gl::create_osmesa_platform();
     gl::SceneRenderer renderer(scene, {.width = width, .height = height});
-    const auto method = gl::create_volume_method("none");
+    const auto method = methods::create_volume_method("none");
     const gl::Frame frame = renderer.render(*method);
     const std::vector<unsigned char> picture = draw_regions(scene, tree, frame, width, height);
 

@@ -42,7 +42,7 @@ int run_render(const RenderArguments& args) {
     options.pcf_radius = args.pcf_radius;
     options.shadow_map_size = args.shadow_map_size;
     // Fail on an unknown method before any expensive work.
-    std::unique_ptr<gl::VolumeMethod> method = gl::create_volume_method(args.method);
+    std::unique_ptr<gl::VolumeMethod> method = methods::create_volume_method(args.method);
 
     auto start = Clock::now();
     const Scene scene = load_scene(args.scene, SceneSearchPaths::defaults());
@@ -107,7 +107,7 @@ int run_render(const RenderArguments& args) {
             {"volume", frame.gpu.volume_ms},
             {"composite", frame.gpu.composite_ms},
             {"total", frame.gpu.total_ms()}}}}},
-        {"files", {stem + ".png", stem + ".exr", stem + ".json"}},
+        {"files", {stem + ".png", stem + ".exr", stem + ".inscatter.exr", stem + ".json"}},
     };
 
     OutputFiles outputs(args.out);
@@ -116,11 +116,14 @@ int run_render(const RenderArguments& args) {
     });
     outputs.add(stem + ".exr",
                 [&](const std::filesystem::path& path) { write_exr(frame.radiance, path); });
+    outputs.add(stem + ".inscatter.exr",
+                [&](const std::filesystem::path& path) { write_exr(frame.in_scattering, path); });
     outputs.add_text(stem + ".json", json.dump(2) + "\n");
     outputs.commit();
-    fmt::print("{}: {}x{} {} in {:.1f} ms GPU ({:.1f} ms CPU) -> {}/{}.{{png,exr,json}}\n",
-               scene.name, options.width, options.height, method->name(), frame.gpu.total_ms(),
-               frame.cpu_ms, args.out, stem);
+    fmt::print(
+        "{}: {}x{} {} in {:.1f} ms GPU ({:.1f} ms CPU) -> {}/{}.{{png,exr,inscatter.exr,json}}\n",
+        scene.name, options.width, options.height, method->name(), frame.gpu.total_ms(),
+        frame.cpu_ms, args.out, stem);
     return 0;
 }
 

@@ -39,6 +39,7 @@ namespace sl::gl {
     X(PFNGLDELETETEXTURESPROC, DeleteTextures)                           \
     X(PFNGLISTEXTUREPROC, IsTexture)                                     \
     X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                       \
+    X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)                     \
     X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                     \
     X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                         \
     X(PFNGLGETTEXTUREIMAGEPROC, GetTextureImage)                         \

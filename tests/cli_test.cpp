@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/image.h"
+
 #include "tests/support.h"
 
 namespace sl::test {
@@ -17,8 +19,10 @@ struct CommandResult {
     std::string output;  // stdout and stderr together
 };
 
-CommandResult run_shaftlab(const std::string& arguments) {
-    const std::string command = std::string(SHAFTLAB_BINARY) + " " + arguments + " 2>&1";
+// Runs the binary with `environment` ("NAME=value " pairs) in front of it.
+CommandResult run_shaftlab_with(const std::string& environment, const std::string& arguments) {
+    const std::string command =
+        environment + std::string(SHAFTLAB_BINARY) + " " + arguments + " 2>&1";
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) {
         return {-1, "popen failed"};
@@ -32,6 +36,10 @@ CommandResult run_shaftlab(const std::string& arguments) {
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }
 
+CommandResult run_shaftlab(const std::string& arguments) {
+    return run_shaftlab_with("", arguments);
+}
+
 // `render` writes <scene>.<method>.{png,exr,json}; the JSON records the renderer and timings.
 TEST(Cli, RenderWritesPngExrAndJson) {
     TempDir out;
@@ -40,7 +48,7 @@ TEST(Cli, RenderWritesPngExrAndJson) {
         "--frames 2 --out " +
         out.path().string());
     ASSERT_EQ(run.exit_code, 0) << run.output;
-    EXPECT_EQ(out.file_count(), 3u);
+    EXPECT_EQ(out.file_count(), 4u);
     std::ifstream in(out / "multiple-6.none.json");
     const nlohmann::json json = nlohmann::json::parse(in);
     EXPECT_EQ(json["scene"], "multiple-6");
@@ -53,6 +61,28 @@ TEST(Cli, RenderWritesPngExrAndJson) {
     EXPECT_LT(gpu_ms, 60'000.0) << "a GPU timer reported nonsense";
     EXPECT_TRUE(std::filesystem::exists(out / "multiple-6.none.png"));
     EXPECT_TRUE(std::filesystem::exists(out / "multiple-6.none.exr"));
+}
+
+// `render --method reference` computes the reference once, caches it, and composites it.
+TEST(Cli, ReferenceIsCachedAndComposited) {
+    TempDir cache, out;
+    const std::string env = "SHAFTLAB_CACHE=" + cache.path().string() + " ";
+    const std::string args =
+        "render --scene toplight --method reference --size 48x27 --warmup 0 --frames 1 --out " +
+        out.path().string();
+    const CommandResult first = run_shaftlab_with(env, args);
+    ASSERT_EQ(first.exit_code, 0) << first.output;
+    EXPECT_EQ(cache.file_count(), 1u);
+    const CommandResult second = run_shaftlab_with(env, args);
+    ASSERT_EQ(second.exit_code, 0) << second.output;
+    const Image in_scattering = read_exr(out / "toplight.reference.inscatter.exr");
+    const Image composite = read_exr(out / "toplight.reference.exr");
+    double scattered = 0.0;
+    for (size_t i = 0; i < composite.rgb.size(); ++i) {
+        scattered += in_scattering.rgb[i];
+        EXPECT_GE(composite.rgb[i] + 1e-6f, in_scattering.rgb[i]);
+    }
+    EXPECT_GT(scattered, 0.0);
 }
 
 // `scenes` lists the canonical scenes; `--generate` prints a scene that renders.
@@ -81,7 +111,7 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
                "[[objects]]\nshape = \"mesh\"\nfile = \"bad-mesh.off\"\n");
     const std::string dir = scenes.path().string();
     const std::pair<std::string, std::string> cases[] = {
-        {"--scene toplight --method magic", "unknown method 'magic' (known: none)"},
+        {"--scene toplight --method magic", "unknown method 'magic' (known: none, reference)"},
         {"--scene toplight --size=-64x36", "--size '-64x36'"},
         {"--scene toplight --size 0x36", "width and height must be in 1..16384"},
         {"--scene toplight --size 64", "expected WIDTHxHEIGHT"},

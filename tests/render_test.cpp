@@ -19,7 +19,7 @@ using Render = GlTest;
 
 gl::Frame render(const Scene& scene, const gl::RenderOptions& options) {
     gl::SceneRenderer renderer(scene, options);
-    const auto method = gl::create_volume_method("none");
+    const auto method = methods::create_volume_method("none");
     method->prepare(scene);
     return renderer.render(*method);
 }

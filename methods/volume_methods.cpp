@@ -1,0 +1,158 @@
+// The registry of volumetric methods, and the methods that live outside a folder of their own.
+
+#include "gl/volume_method.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <functional>
+#include <map>
+
+#include <unistd.h>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+
+#include "core/error.h"
+#include "gl/objects.h"
+#include "gl/shaders.h"
+#include "reference/reference.h"
+
+namespace sl::methods {
+
+using gl::GL;
+using gl::VolumeInputs;
+using gl::VolumeMethod;
+
+namespace {
+
+// `none`: no participating medium is rendered, I_s = 0; the frame is the surfaces alone
+// (I_obj·T(Z)). The baseline every method's cost is measured against.
+class NoVolume final : public VolumeMethod {
+public:
+    std::string name() const override { return "none"; }
+    void prepare(const Scene&) override {}
+    void render(const VolumeInputs&) override {}
+};
+
+// `reference`: the exact CPU reference (reference/), computed once per scene and size, cached on
+// disk under $SHAFTLAB_CACHE (default ~/.cache/shaftlab) by a hash of everything it depends on,
+// and copied into the frame's in-scattering target.
+class ReferenceMethod final : public VolumeMethod {
+public:
+    std::string name() const override { return "reference"; }
+    void prepare(const Scene&) override {}
+    void render(const VolumeInputs& inputs) override {
+        if (!texture_ || width_ != inputs.width || height_ != inputs.height) {
+            upload(compute(inputs.scene, inputs.width, inputs.height));
+        }
+        GL.UseProgram(program_.id());
+        GL.BindTextureUnit(0, texture_.id());
+        GL.BindVertexArray(vertex_array_.id());
+        GL.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    const Image& in_scattering() const { return image_; }
+
+private:
+    static std::filesystem::path cache_directory() {
+        if (const char* dir = std::getenv("SHAFTLAB_CACHE"); dir && *dir)
+            return dir;
+        if (const char* home = std::getenv("HOME"); home && *home) {
+            return std::filesystem::path(home) / ".cache" / "shaftlab";
+        }
+        return std::filesystem::temp_directory_path() / "shaftlab-cache";
+    }
+
+    Image compute(const Scene& scene, int width, int height) {
+        const reference::ReferenceOptions options;
+        const std::filesystem::path file =
+            cache_directory() /
+            fmt::format("reference-{:016x}.exr",
+                        reference::reference_key(scene, width, height, options));
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(file, ec)) {
+            return read_exr(file);
+        }
+        const reference::ReferenceRenderer renderer(scene);
+        const bool show = isatty(STDERR_FILENO);
+        std::atomic<int> shown = -1;
+        const Image image = renderer.render(width, height, options, [&](double done) {
+            const int percent = int(100.0 * done);
+            if (show && percent / 2 > shown.exchange(percent / 2)) {
+                std::fprintf(stderr, "\rreference %dx%d [%-50s] %3d%%", width, height,
+                             std::string(size_t(percent / 2), '#').c_str(), percent);
+            }
+        });
+        if (show) {
+            std::fputs("\n", stderr);
+        }
+        // Cache it: a failure here only costs the next run the time again.
+        std::filesystem::create_directories(file.parent_path(), ec);
+        const std::filesystem::path temporary = file.string() + fmt::format(".{}.tmp", getpid());
+        try {
+            write_exr(image, temporary);
+            std::filesystem::rename(temporary, file, ec);
+        } catch (const Error&) {
+            std::filesystem::remove(temporary, ec);
+        }
+        return image;
+    }
+
+    void upload(Image image) {
+        image_ = std::move(image);
+        width_ = image_.width;
+        height_ = image_.height;
+        std::vector<float> rgb(image_.rgb.size());
+        for (int y = 0; y < height_; ++y) {  // GL rows run bottom to top
+            std::copy_n(&image_.rgb[size_t(height_ - 1 - y) * width_ * 3], size_t(width_) * 3,
+                        &rgb[size_t(y) * width_ * 3]);
+        }
+        texture_ = gl::create_texture_2d(GL_RGBA32F, width_, height_, GL_NEAREST);
+        GL.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        GL.TextureSubImage2D(texture_.id(), 0, 0, 0, width_, height_, GL_RGB, GL_FLOAT, rgb.data());
+        if (!program_) {
+            program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                           {GL_FRAGMENT_SHADER, "gl/shaders/copy.frag"}});
+            vertex_array_ = gl::create_vertex_array();
+        }
+    }
+
+    Image image_;
+    int width_ = 0, height_ = 0;
+    gl::Texture texture_;
+    gl::Program program_;
+    gl::VertexArray vertex_array_;
+};
+
+using Factory = std::function<std::unique_ptr<VolumeMethod>()>;
+
+const std::vector<std::pair<std::string, Factory>>& registry() {
+    static const std::vector<std::pair<std::string, Factory>> methods = {
+        {"none", [] { return std::make_unique<NoVolume>(); }},
+        {"reference", [] { return std::make_unique<ReferenceMethod>(); }},
+    };
+    return methods;
+}
+
+}  // namespace
+
+std::vector<std::string> volume_method_names() {
+    std::vector<std::string> names;
+    for (const auto& [name, factory] : registry()) {
+        names.push_back(name);
+    }
+    return names;
+}
+
+std::unique_ptr<VolumeMethod> create_volume_method(const std::string& name) {
+    for (const auto& [known, factory] : registry()) {
+        if (known == name) {
+            return factory();
+        }
+    }
+    fail("unknown method '{}' (known: {})", name, fmt::join(volume_method_names(), ", "));
+}
+
+}  // namespace sl::methods

@@ -1,0 +1,202 @@
+#include "reference/reference.h"
+
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+
+namespace sl::reference {
+
+using analytic::dvec3;
+
+ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
+    device_ = rtcNewDevice(nullptr);
+    if (!device_) {
+        fail("Embree could not create a device");
+    }
+    rtc_scene_ = rtcNewScene(device_);
+    rtcSetSceneFlags(rtc_scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(rtc_scene_, RTC_BUILD_QUALITY_HIGH);
+    for (const Object& object : scene.objects) {
+        const Mesh& mesh = *object.mesh;
+        RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vertices = static_cast<float*>(
+            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                    3 * sizeof(float), mesh.positions.size()));
+        for (size_t i = 0; i < mesh.positions.size(); ++i) {
+            const glm::vec4 p = object.transform * glm::vec4(mesh.positions[i], 1.0f);
+            vertices[3 * i] = p.x;
+            vertices[3 * i + 1] = p.y;
+            vertices[3 * i + 2] = p.z;
+        }
+        auto* indices = static_cast<unsigned*>(
+            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                    3 * sizeof(unsigned), mesh.triangles.size()));
+        std::memcpy(indices, mesh.triangles.data(), mesh.triangles.size() * 3 * sizeof(unsigned));
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometry(rtc_scene_, geometry);
+        rtcReleaseGeometry(geometry);
+    }
+    rtcCommitScene(rtc_scene_);
+}
+
+ReferenceRenderer::~ReferenceRenderer() {
+    rtcReleaseScene(rtc_scene_);
+    rtcReleaseDevice(device_);
+}
+
+namespace {
+
+RTCRay make_ray(const dvec3& origin, const dvec3& direction, double t_near, double t_far) {
+    RTCRay ray{};
+    ray.org_x = float(origin.x);
+    ray.org_y = float(origin.y);
+    ray.org_z = float(origin.z);
+    ray.dir_x = float(direction.x);
+    ray.dir_y = float(direction.y);
+    ray.dir_z = float(direction.z);
+    ray.tnear = float(t_near);
+    ray.tfar = float(t_far);
+    ray.mask = 0xFFFFFFFFu;
+    return ray;
+}
+
+}  // namespace
+
+double ReferenceRenderer::first_hit(const analytic::EyeRay& ray, double far) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit hit{};
+    hit.ray = make_ray(ray.origin, ray.direction, 0.0, far);
+    hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(rtc_scene_, &context, &hit);
+    return hit.hit.geomID == RTC_INVALID_GEOMETRY_ID ? far : double(hit.ray.tfar);
+}
+
+bool ReferenceRenderer::occluded(const dvec3& from, const dvec3& to) const {
+    const dvec3 d = to - from;
+    const double length = glm::length(d);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    // Start a hair off the sample point so that a point on a surface does not shadow itself.
+    RTCRay ray = make_ray(from, d / length, 1e-5 * length, length * (1.0 - 1e-6));
+    rtcOccluded1(rtc_scene_, &context, &ray);
+    return ray.tfar == -std::numeric_limits<float>::infinity();
+}
+
+dvec3 ReferenceRenderer::in_scattering(const analytic::EyeRay& ray, double t_max,
+                                       const ReferenceOptions& options) const {
+    const SpotLight& light = scene_.light;
+    const analytic::Interval span = analytic::light_interval(ray, light, t_max);
+    if (span.empty()) {
+        return dvec3(0.0);
+    }
+    const dvec3 L(light.position);
+    auto lit = [&](double z) { return !occluded(ray.origin + z * ray.direction, L); };
+    // Visibility at both ends (a hair inside) and at stratified points between; each change
+    // between neighbours is refined by bisection to the tolerance.
+    const int n = std::max(2, options.shadow_samples);
+    const double step = (span.end - span.begin) / n;
+    const double hair = 0.5 * std::min(step, options.transition_tolerance);
+    dvec3 total(0.0);
+    double start = span.begin, previous_z = span.begin + hair;
+    bool state = lit(previous_z);
+    for (int k = 0; k <= n; ++k) {
+        const double z = k < n ? span.begin + (k + 0.5) * step : span.end - hair;
+        const bool current = lit(z);
+        if (current != state) {
+            double a = previous_z, b = z;
+            while (b - a > options.transition_tolerance) {
+                const double m = 0.5 * (a + b);
+                (lit(m) == state ? a : b) = m;
+            }
+            const double transition = 0.5 * (a + b);
+            if (state) {
+                total += analytic::in_scattering(ray, start, transition, light, scene_.medium);
+            }
+            start = transition;
+            state = current;
+        }
+        previous_z = z;
+    }
+    if (state) {
+        total += analytic::in_scattering(ray, start, span.end, light, scene_.medium);
+    }
+    return total;
+}
+
+Image ReferenceRenderer::render(int width, int height, const ReferenceOptions& options,
+                                const std::function<void(double)>& progress) const {
+    const Camera& camera = scene_.camera;
+    const glm::dmat4 inverse = glm::inverse(
+        glm::dmat4(camera.projection(float(width) / float(height))) * glm::dmat4(camera.view()));
+    Image image(width, height);
+    std::atomic<int> rows_done = 0;
+    tbb::parallel_for(0, height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            const glm::dvec2 ndc(2.0 * (x + 0.5) / width - 1.0, 1.0 - 2.0 * (y + 0.5) / height);
+            const glm::dvec4 far = inverse * glm::dvec4(ndc, 1.0, 1.0);
+            const dvec3 b = dvec3(far) / far.w;
+            const analytic::EyeRay ray{dvec3(camera.position),
+                                       glm::normalize(b - dvec3(camera.position))};
+            const double t_max = first_hit(ray, glm::length(b - dvec3(camera.position)));
+            image.set(x, y, glm::vec3(in_scattering(ray, t_max, options)));
+        }
+        const int done = ++rows_done;
+        if (progress) {
+            progress(double(done) / height);
+        }
+    });
+    return image;
+}
+
+uint64_t reference_key(const Scene& scene, int width, int height, const ReferenceOptions& options) {
+    // FNV-1a over the bytes of every input.
+    uint64_t hash = 1469598103934665603ull;
+    auto mix = [&](const void* data, size_t bytes) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < bytes; ++i) {
+            hash = (hash ^ p[i]) * 1099511628211ull;
+        }
+    };
+    auto mix_value = [&](const auto& value) { mix(&value, sizeof(value)); };
+    const char version[] = "shaftlab-reference-1";
+    mix(version, sizeof(version));
+    mix_value(width);
+    mix_value(height);
+    mix_value(options.shadow_samples);
+    mix_value(options.transition_tolerance);
+    const Camera& c = scene.camera;
+    for (const float v : {c.position.x, c.position.y, c.position.z, c.target.x, c.target.y,
+                          c.target.z, c.up.x, c.up.y, c.up.z, c.fov_y_degrees, c.near, c.far}) {
+        mix_value(v);
+    }
+    const SpotLight& l = scene.light;
+    for (const float v : {l.position.x, l.position.y, l.position.z, l.target.x, l.target.y,
+                          l.target.z, l.cone_half_angle_degrees, l.near, l.far, l.intensity.r,
+                          l.intensity.g, l.intensity.b, l.falloff_degrees}) {
+        mix_value(v);
+    }
+    const Medium& m = scene.medium;
+    for (const float v : {m.sigma_s.r, m.sigma_s.g, m.sigma_s.b, m.sigma_a.r, m.sigma_a.g,
+                          m.sigma_a.b, m.g, m.a0, m.a1}) {
+        mix_value(v);
+    }
+    mix_value(m.phase);
+    mix_value(m.model);
+    for (const Object& object : scene.objects) {
+        mix_value(object.transform);
+        mix(object.mesh->positions.data(), object.mesh->positions.size() * sizeof(glm::vec3));
+        mix(object.mesh->triangles.data(), object.mesh->triangles.size() * sizeof(glm::uvec3));
+    }
+    return hash;
+}
+
+}  // namespace sl::reference

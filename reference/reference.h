@@ -1,0 +1,51 @@
+#pragma once
+// The exact CPU reference for I_s (DESIGN.md §3 `reference`): for every pixel, the eye ray to its
+// first hit on the true meshes (Embree), the lit intervals along it from shadow rays at many
+// points with every light/shadow transition refined by bisection, and each interval integrated
+// by analytic::in_scattering (closed form where one exists). Multithreaded (TBB).
+
+#include <embree3/rtcore.h>
+
+#include <functional>
+
+#include "analytic/in_scattering.h"
+#include "core/image.h"
+#include "scenes/scene.h"
+
+namespace sl::reference {
+
+struct ReferenceOptions {
+    int shadow_samples = 256;            // visibility samples along each ray's lit interval
+    double transition_tolerance = 1e-6;  // metres: bisection of light/shadow transitions
+};
+
+class ReferenceRenderer {
+public:
+    explicit ReferenceRenderer(const Scene& scene);
+    ~ReferenceRenderer();
+    ReferenceRenderer(const ReferenceRenderer&) = delete;
+    ReferenceRenderer& operator=(const ReferenceRenderer&) = delete;
+
+    // I_s for the ray up to distance t_max (its first hit).
+    analytic::dvec3 in_scattering(const analytic::EyeRay& ray, double t_max,
+                                  const ReferenceOptions& options) const;
+    // Distance to the first hit on the scene's meshes, or `far` when there is none.
+    double first_hit(const analytic::EyeRay& ray, double far) const;
+    bool occluded(const analytic::dvec3& from, const analytic::dvec3& to) const;
+
+    // I_s of every pixel of the scene's camera at the given size (rows top to bottom); `progress`
+    // receives the fraction done.
+    Image render(int width, int height, const ReferenceOptions& options,
+                 const std::function<void(double)>& progress = {}) const;
+
+private:
+    const Scene& scene_;
+    RTCDevice device_ = nullptr;
+    RTCScene rtc_scene_ = nullptr;
+};
+
+// A 64-bit hash of everything the reference image depends on (scene geometry, camera, light,
+// medium, size, options), naming its cache file.
+uint64_t reference_key(const Scene& scene, int width, int height, const ReferenceOptions& options);
+
+}  // namespace sl::reference
