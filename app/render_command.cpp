@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <optional>
 #include <regex>
 
 #include <fmt/format.h>
@@ -8,6 +10,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/metrics.h"
 #include "core/output_files.h"
 #include "gl/platform.h"
 #include "gl/renderer.h"
@@ -27,6 +30,7 @@ struct RenderArguments {
     int shadow_map_size = 2048;
     int warmup = 2;
     int frames = 5;
+    std::string compare;  // "reference": score I_s against it
 };
 
 double median(std::vector<double> values) {
@@ -43,6 +47,9 @@ int run_render(const RenderArguments& args) {
     options.shadow_map_size = args.shadow_map_size;
     // Fail on an unknown method before any expensive work.
     std::unique_ptr<gl::VolumeMethod> method = methods::create_volume_method(args.method);
+    if (!args.compare.empty() && args.compare != "reference") {
+        fail("--compare '{}': only 'reference' can be compared against", args.compare);
+    }
 
     auto start = Clock::now();
     const Scene scene = load_scene(args.scene, SceneSearchPaths::defaults());
@@ -75,6 +82,13 @@ int run_render(const RenderArguments& args) {
     }
     frame.cpu_ms = median(cpu_ms);
     frame.gpu = {median(gpu_ms[0]), median(gpu_ms[1]), median(gpu_ms[2]), median(gpu_ms[3])};
+
+    // Error against the reference on the I_s buffer, rendered by the same renderer (and cached).
+    std::optional<ErrorMetrics> error;
+    if (!args.compare.empty()) {
+        const auto reference = methods::create_volume_method(args.compare);
+        error = compare_images(frame.in_scattering, renderer.render(*reference).in_scattering);
+    }
 
     const std::string stem = fmt::format("{}.{}", scene.name, method->name());
     nlohmann::ordered_json json = {
@@ -110,6 +124,14 @@ int run_render(const RenderArguments& args) {
         {"files", {stem + ".png", stem + ".exr", stem + ".inscatter.exr", stem + ".json"}},
     };
 
+    if (error) {
+        // JSON has no infinity: an exact match has psnr null.
+        json["error"] = {
+            {"against", args.compare},
+            {"rel_rmse", error->rel_rmse},
+            {"max_abs", error->max_abs},
+            {"psnr", std::isfinite(error->psnr) ? nlohmann::json(error->psnr) : nlohmann::json()}};
+    }
     OutputFiles outputs(args.out);
     outputs.add(stem + ".png", [&](const std::filesystem::path& path) {
         write_png(frame.display_srgb8, options.width, options.height, path);
@@ -124,6 +146,10 @@ int run_render(const RenderArguments& args) {
         "{}: {}x{} {} in {:.1f} ms GPU ({:.1f} ms CPU) -> {}/{}.{{png,exr,inscatter.exr,json}}\n",
         scene.name, options.width, options.height, method->name(), frame.gpu.total_ms(),
         frame.cpu_ms, args.out, stem);
+    if (error) {
+        fmt::print("  against {}: rel_rmse {:.3g}, max_abs {:.3g}, psnr {:.1f} dB\n", args.compare,
+                   error->rel_rmse, error->max_abs, error->psnr);
+    }
     return 0;
 }
 
@@ -168,6 +194,9 @@ Command add_render_command(CLI::App& app) {
     command->add_option("--frames", args->frames, "Measured frames (timings are medians)")
         ->check(CLI::Range(1, 10000))
         ->capture_default_str();
+    command->add_option("--compare", args->compare,
+                        "Score I_s against this method (reference): rel_rmse, max_abs, psnr in the "
+                        "JSON");
     return [args] { return run_render(*args); };
 }
 

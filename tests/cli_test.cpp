@@ -83,6 +83,23 @@ TEST(Cli, ReferenceIsCachedAndComposited) {
         EXPECT_GE(composite.rgb[i] + 1e-6f, in_scattering.rgb[i]);
     }
     EXPECT_GT(scattered, 0.0);
+
+    // `--compare reference`: the reference scores exactly against itself, `none` scores 1.
+    const CommandResult compared = run_shaftlab_with(
+        env,
+        "render --scene toplight --method none --compare reference --size 48x27 --warmup 0 "
+        "--frames 1 --out " +
+            out.path().string());
+    ASSERT_EQ(compared.exit_code, 0) << compared.output;
+    std::ifstream json_file(out / "toplight.none.json");
+    const nlohmann::json json = nlohmann::json::parse(json_file);
+    EXPECT_EQ(json["error"]["against"], "reference");
+    EXPECT_NEAR(json["error"]["rel_rmse"].get<double>(), 1.0, 1e-9);
+    EXPECT_GT(json["error"]["max_abs"].get<double>(), 0.0);
+    const CommandResult bad =
+        run_shaftlab("render --scene toplight --compare none --out " + out.path().string());
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.output.find("--compare 'none'"), std::string::npos) << bad.output;
 }
 
 // `scenes` lists the canonical scenes; `--generate` prints a scene that renders.

@@ -1,9 +1,11 @@
 // Images and result files: EXR round trip, the tone curve, all-or-nothing output.
 
+#include <cmath>
 #include <fstream>
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/metrics.h"
 #include "core/output_files.h"
 #include "tests/support.h"
 
@@ -57,6 +59,27 @@ TEST(Image, PngIsWritten) {
     in.read(signature, 8);
     EXPECT_EQ(std::string(signature + 1, 3), "PNG");
     EXPECT_THROW(write_png(std::vector<unsigned char>(5), 3, 2, dir / "b.png"), Error);
+}
+
+// The error metrics on known images: equal images score 0 and +inf dB; a black image scores
+// rel_rmse 1; a uniform offset gives its closed-form PSNR; sizes must match.
+TEST(ErrorMetrics, KnownValues) {
+    Image reference(4, 2);
+    for (size_t i = 0; i < reference.rgb.size(); ++i) {
+        reference.rgb[i] = 0.5f + 0.1f * float(i % 5);
+    }
+    const ErrorMetrics same = compare_images(reference, reference);
+    EXPECT_EQ(same.rel_rmse, 0.0);
+    EXPECT_EQ(same.max_abs, 0.0);
+    EXPECT_TRUE(std::isinf(same.psnr));
+    EXPECT_NEAR(compare_images(Image(4, 2), reference).rel_rmse, 1.0, 1e-12);
+    Image offset = reference;
+    for (float& v : offset.rgb)
+        v += 0.01f;
+    const ErrorMetrics shifted = compare_images(offset, reference);
+    EXPECT_NEAR(shifted.max_abs, 0.01, 1e-6);
+    EXPECT_NEAR(shifted.psnr, 20.0 * std::log10(0.9 / 0.01), 1e-3);  // peak 0.9, rmse 0.01
+    EXPECT_THROW(compare_images(Image(3, 2), reference), Error);
 }
 
 // Result files appear together on commit, or not at all when any step fails.
