@@ -30,7 +30,8 @@ struct RenderArguments {
     int shadow_map_size = 2048;
     int warmup = 2;
     int frames = 5;
-    std::string compare;  // "reference": score I_s against it
+    std::string compare;                // "reference": score I_s against it
+    std::vector<std::string> settings;  // NAME=VALUE for the method's parameters
 };
 
 double median(std::vector<double> values) {
@@ -47,6 +48,13 @@ int run_render(const RenderArguments& args) {
     options.shadow_map_size = args.shadow_map_size;
     // Fail on an unknown method before any expensive work.
     std::unique_ptr<gl::VolumeMethod> method = methods::create_volume_method(args.method);
+    for (const std::string& setting : args.settings) {
+        const size_t equals = setting.find('=');
+        if (equals == std::string::npos || equals == 0) {
+            fail("--set '{}': expected NAME=VALUE", setting);
+        }
+        method->set(setting.substr(0, equals), setting.substr(equals + 1));
+    }
     if (!args.compare.empty() && args.compare != "reference") {
         fail("--compare '{}': only 'reference' can be compared against", args.compare);
     }
@@ -95,6 +103,13 @@ int run_render(const RenderArguments& args) {
         {"scene", scene.name},
         {"scene_file", scene.source.string()},
         {"method", method->name()},
+        {"parameters",
+         [&] {
+             nlohmann::ordered_json parameters = nlohmann::ordered_json::object();
+             for (const gl::Parameter& p : method->parameters())
+                 parameters[p.name] = p.value;
+             return parameters;
+         }()},
         {"width", options.width},
         {"height", options.height},
         {"shadow",
@@ -194,6 +209,9 @@ Command add_render_command(CLI::App& app) {
     command->add_option("--frames", args->frames, "Measured frames (timings are medians)")
         ->check(CLI::Range(1, 10000))
         ->capture_default_str();
+    command->add_option("--set", args->settings,
+                        "Set a parameter of the method, NAME=VALUE (repeatable; `shaftlab methods` "
+                        "lists them)");
     command->add_option("--compare", args->compare,
                         "Score I_s against this method (reference): rel_rmse, max_abs, psnr in the "
                         "JSON");

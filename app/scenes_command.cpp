@@ -4,6 +4,7 @@
 
 #include "app/commands.h"
 #include "gl/platform.h"
+#include "gl/volume_method.h"
 #include "scenes/scene_file.h"
 
 namespace sl::app {
@@ -39,6 +40,22 @@ Command add_scenes_command(CLI::App& app) {
         }
         if (!*names_only) {
             fmt::print("multiple:N  generated: N objects under one spot light\n");
+        }
+        return 0;
+    };
+}
+
+Command add_methods_command(CLI::App& app) {
+    app.add_subcommand("methods", "List the volumetric methods and their parameters");
+    return [] {
+        for (const std::string& name : methods::volume_method_names()) {
+            const auto method = methods::create_volume_method(name);
+            fmt::print("{}\n", name);
+            for (const gl::Parameter& p : method->parameters()) {
+                fmt::print("  {:<22} {:<8} default {:<8} range [{}, {}]  {}\n", p.name,
+                           p.type == gl::Parameter::Type::integer ? "integer" : "real",
+                           p.default_value, p.min, p.max, p.description);
+            }
         }
         return 0;
     };

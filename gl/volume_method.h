@@ -23,15 +23,39 @@ struct VolumeInputs {
     int height;
 };
 
+// A parameter a method declares (Mitsuba style: documented where it is read), settable from the
+// command line (`--set name=value`), configs and the viewer.
+struct Parameter {
+    enum class Type { integer, real };
+    std::string name;
+    Type type = Type::real;
+    double value = 0.0;
+    double default_value = 0.0;
+    double min = 0.0;
+    double max = 0.0;
+    std::string description;
+};
+
 class VolumeMethod {
 public:
     virtual ~VolumeMethod() = default;
+    const std::vector<Parameter>& parameters() const { return parameters_; }
+    double parameter(const std::string& name) const;
+    // Parses and sets one parameter; throws sl::Error naming the method and the parameter when
+    // the name is unknown, the text is not a number of its type, or it is out of range.
+    void set(const std::string& name, const std::string& text);
     virtual std::string name() const = 0;
     // Called once per scene before the first frame (CPU work such as building regions).
     virtual void prepare(const Scene& scene) = 0;
     // Adds I_s (linear RGB, alpha ignored) into the bound framebuffer, which is cleared to zero
     // and has no depth attachment; the viewport covers it.
     virtual void render(const VolumeInputs& inputs) = 0;
+
+protected:
+    void declare(Parameter parameter);
+
+private:
+    std::vector<Parameter> parameters_;
 };
 
 }  // namespace sl::gl

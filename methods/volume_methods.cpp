@@ -15,6 +15,8 @@
 #include <filesystem>
 #include <optional>
 
+#include <cmath>
+
 #include "core/error.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
@@ -23,6 +25,7 @@
 namespace sl::methods {
 
 using gl::GL;
+using gl::Parameter;
 using gl::VolumeInputs;
 using gl::VolumeMethod;
 
@@ -42,10 +45,24 @@ public:
 // and copied into the frame's in-scattering target.
 class ReferenceMethod final : public VolumeMethod {
 public:
+    ReferenceMethod() {
+        declare({.name = "shadow_samples",
+                 .type = Parameter::Type::integer,
+                 .default_value = 256,
+                 .min = 2,
+                 .max = 65536,
+                 .description = "visibility samples along each ray's lit interval"});
+        declare({.name = "transition_tolerance",
+                 .default_value = 1e-6,
+                 .min = 1e-9,
+                 .max = 1e-2,
+                 .description = "metres: bisection of each light/shadow transition"});
+    }
     std::string name() const override { return "reference"; }
     void prepare(const Scene&) override {}
     void render(const VolumeInputs& inputs) override {
-        if (!texture_ || width_ != inputs.width || height_ != inputs.height) {
+        if (!texture_ || width_ != inputs.width || height_ != inputs.height ||
+            computed_with_ != parameters_key()) {
             upload(compute(inputs.scene, inputs.width, inputs.height));
         }
         GL.UseProgram(program_.id());
@@ -66,7 +83,9 @@ private:
     }
 
     Image compute(const Scene& scene, int width, int height) {
-        const reference::ReferenceOptions options;
+        const reference::ReferenceOptions options{
+            .shadow_samples = int(parameter("shadow_samples")),
+            .transition_tolerance = parameter("transition_tolerance")};
         const std::filesystem::path file =
             cache_directory() /
             fmt::format("reference-{:016x}.exr",
@@ -100,7 +119,12 @@ private:
         return image;
     }
 
+    std::pair<double, double> parameters_key() const {
+        return {parameter("shadow_samples"), parameter("transition_tolerance")};
+    }
+
     void upload(Image image) {
+        computed_with_ = parameters_key();
         image_ = std::move(image);
         width_ = image_.width;
         height_ = image_.height;
@@ -121,6 +145,7 @@ private:
 
     Image image_;
     int width_ = 0, height_ = 0;
+    std::pair<double, double> computed_with_;
     gl::Texture texture_;
     gl::Program program_;
     gl::VertexArray vertex_array_;

@@ -102,6 +102,45 @@ TEST(Cli, ReferenceIsCachedAndComposited) {
     EXPECT_NE(bad.output.find("--compare 'none'"), std::string::npos) << bad.output;
 }
 
+// `methods` lists every method's parameters; `--set` sets them, recorded in the JSON, and an
+// unknown name or a value out of range is an error naming both.
+TEST(Cli, MethodParametersAreListedAndSet) {
+    const CommandResult list = run_shaftlab("methods");
+    ASSERT_EQ(list.exit_code, 0) << list.output;
+    EXPECT_NE(list.output.find("shadow_samples"), std::string::npos) << list.output;
+    EXPECT_NE(list.output.find("range [2, 65536]"), std::string::npos) << list.output;
+
+    TempDir cache, out;
+    const std::string env = "SHAFTLAB_CACHE=" + cache.path().string() + " ";
+    const CommandResult set = run_shaftlab_with(
+        env,
+        "render --scene multiple:2 --method reference --set shadow_samples=16 --size 24x16 "
+        "--warmup 0 --frames 1 --out " +
+            out.path().string());
+    ASSERT_EQ(set.exit_code, 0) << set.output;
+    std::ifstream json_file(out / "multiple-2.reference.json");
+    const nlohmann::json json = nlohmann::json::parse(json_file);
+    EXPECT_EQ(json["parameters"]["shadow_samples"].get<double>(), 16.0);
+
+    const std::pair<std::string, std::string> bad[] = {
+        {"--method reference --set shadow_samples=1",
+         "parameter 'shadow_samples': 1 is out of range [2, 65536]"},
+        {"--method reference --set shadow_samples=2.5", "'2.5' is not an integer"},
+        {"--method reference --set shadow_samples=nan", "'nan' is not an integer"},
+        {"--method reference --set rays=4", "method 'reference' has no parameter 'rays'"},
+        {"--method none --set x", "--set 'x': expected NAME=VALUE"},
+    };
+    for (const auto& [arguments, expected] : bad) {
+        TempDir nothing;
+        const CommandResult run =
+            run_shaftlab_with(env, "render --scene multiple:2 " + arguments +
+                                       " --size 24x16 --out " + nothing.path().string());
+        EXPECT_NE(run.exit_code, 0) << arguments;
+        EXPECT_NE(run.output.find(expected), std::string::npos) << arguments << ": " << run.output;
+        EXPECT_EQ(nothing.file_count(), 0u);
+    }
+}
+
 // `scenes` lists the canonical scenes; `--generate` prints a scene that renders.
 TEST(Cli, ScenesListsCanonicalScenes) {
     const CommandResult run = run_shaftlab("scenes --names");
