@@ -19,7 +19,8 @@ namespace sl::gl {
     X(PFNGLDISABLEPROC, Disable)                                         \
     X(PFNGLVIEWPORTPROC, Viewport)                                       \
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                                     \
-    X(PFNGLDEPTHMASKPROC, DepthMask)                                     \
+    X(PFNGLDEPTHMASKPROC, DepthMask)                                                     \
+    X(PFNGLBLENDFUNCPROC, BlendFunc)                                     \
     X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                             \
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                                 \
     X(PFNGLDRAWARRAYSPROC, DrawArrays)                                   \

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gl/functions.h"
+#include "gl/objects.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "scenes/scene.h"
 
@@ -66,5 +67,10 @@ namespace sl::methods {
 std::vector<std::string> volume_method_names();
 // Throws sl::Error naming the known methods when `name` is not one of them.
 std::unique_ptr<gl::VolumeMethod> create_volume_method(const std::string& name);
+
+// Sun et al. 2005's F(u, v) = ∫_0^v exp(-u tan ζ) dζ on u in [0, 32], v in [0, π/2], 1024², for
+// gl/shaders/in_scattering.glsl's `sun_table` at texture unit kSunTableUnit.
+constexpr GLuint kSunTableUnit = 7;
+gl::Texture create_sun_table();
 
 }  // namespace sl::methods

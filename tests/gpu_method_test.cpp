@@ -1,0 +1,155 @@
+// The GPU side of the light model and the `beamtree` method: the GLSL antiderivative against the
+// C++ closed forms, and the method's I_s against the CPU reference where the objects are their
+// own bounding volumes (boxes), with the camera inside the beam and the light in view too.
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "analytic/in_scattering.h"
+#include "core/metrics.h"
+#include "gl/debug.h"
+#include "gl/renderer.h"
+#include "gl/shaders.h"
+#include "gl/volume_method.h"
+#include "reference/reference.h"
+#include "tests/support.h"
+
+namespace sl::test {
+namespace {
+
+using GpuMethod = GlTest;
+
+// Floor and rotated boxes under a spot light: every object is its own outer volume.
+Scene boxes_scene(MediumModel model) {
+    Scene scene;
+    scene.name = "boxes";
+    scene.camera.position = glm::vec3(0.5f, 3.0f, 9.0f);
+    scene.camera.target = glm::vec3(0.0f, 1.0f, 0.0f);
+    scene.light.position = glm::vec3(0.8f, 6.0f, -0.5f);
+    scene.light.target = glm::vec3(0.0f);
+    scene.light.cone_half_angle_degrees = 32.0f;
+    scene.light.near = 0.3f;
+    scene.light.far = 8.0f;
+    scene.light.intensity = glm::vec3(60.0f, 50.0f, 40.0f);
+    scene.medium.sigma_s = glm::vec3(0.08f, 0.1f, 0.12f);
+    scene.medium.sigma_a = glm::vec3(0.02f);
+    scene.medium.model = model;
+    scene.materials.push_back(Material{.name = "default"});
+    auto add = [&](std::shared_ptr<const Mesh> mesh, glm::mat4 transform) {
+        Object object;
+        object.name = "object" + std::to_string(scene.objects.size());
+        object.mesh = std::move(mesh);
+        object.transform = transform;
+        scene.objects.push_back(std::move(object));
+    };
+    add(std::make_shared<const Mesh>(make_plane({16.0f, 16.0f})), glm::mat4(1.0f));
+    const auto box = std::make_shared<const Mesh>(make_box(glm::vec3(1.0f)));
+    add(box, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-1.2f, 0.6f, 0.4f)), 0.5f,
+                         glm::vec3(0, 1, 0)));
+    add(box, glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 1.5f, -0.8f)),
+                        glm::vec3(0.6f, 3.0f, 0.6f)));
+    add(box, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 2.5f, 1.2f)), 0.8f,
+                         glm::vec3(1, 0, 1)));
+    return scene;
+}
+
+gl::Frame render(const Scene& scene, const std::string& method_name, int width, int height) {
+    gl::SceneRenderer renderer(scene, {.width = width, .height = height});
+    const auto method = methods::create_volume_method(method_name);
+    method->prepare(scene);
+    return renderer.render(*method);
+}
+
+// The GLSL antiderivative (gl/shaders/in_scattering.glsl) integrates the same E(0, t) as the C++
+// closed forms (analytic/in_scattering.cpp) on every pixel's ray, to 1e-4 relative, for both
+// models; the physical one goes through the Sun et al. F(u, v) table.
+TEST_F(GpuMethod, GlslAntiderivativeMatchesCpp) {
+    for (const MediumModel model : {MediumModel::simplified, MediumModel::physical}) {
+        const Scene scene = boxes_scene(model);
+        const int width = 96, height = 54;
+        const gl::RenderOptions options{.width = width, .height = height};
+        const gl::shared::FrameUniforms uniforms = gl::make_frame_uniforms(scene, options);
+        const gl::Buffer ubo = gl::create_buffer(&uniforms, sizeof(uniforms));
+        gl::GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, ubo.id());
+        const gl::Texture sun_table = methods::create_sun_table();
+        const gl::Texture target = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
+        const gl::Framebuffer framebuffer = gl::create_framebuffer();
+        gl::GL.NamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
+        const gl::Program program =
+            gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                {GL_FRAGMENT_SHADER, "gl/shaders/test_in_scattering.frag"}});
+        gl::GL.BindTextureUnit(methods::kSunTableUnit, sun_table.id());
+        gl::GL.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+        gl::GL.Viewport(0, 0, width, height);
+        gl::GL.UseProgram(program.id());
+        const gl::VertexArray empty = gl::create_vertex_array();
+        gl::GL.BindVertexArray(empty.id());
+        gl::GL.DrawArrays(GL_TRIANGLES, 0, 3);
+        std::vector<float> rgba(size_t(width) * height * 4);
+        gl::GL.GetTextureImage(target.id(), 0, GL_RGBA, GL_FLOAT,
+                               GLsizei(rgba.size() * sizeof(float)), rgba.data());
+        gl::check_errors("test pattern");
+
+        const glm::dmat4 inverse(uniforms.inverse_view_projection);
+        double peak = 0.0;
+        for (size_t i = 0; i < rgba.size(); i += 4)
+            peak = std::max(peak, double(rgba[i]));
+        ASSERT_GT(peak, 0.0);
+        int compared = 0;
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                const glm::dvec2 ndc(2.0 * (x + 0.5) / width - 1.0, 2.0 * (y + 0.5) / height - 1.0);
+                const glm::dvec4 far = inverse * glm::dvec4(ndc, 1.0, 1.0);
+                const glm::dvec3 origin(scene.camera.position);
+                const analytic::EyeRay ray{origin,
+                                           glm::normalize(glm::dvec3(far) / far.w - origin)};
+                const double t = 1.0 + 24.0 * (x + 0.5) / width;
+                const glm::dvec3 cpu =
+                    analytic::in_scattering(ray, 0.0, t, scene.light, scene.medium);
+                for (int c = 0; c < 3; ++c) {
+                    const double gpu = rgba[(size_t(y) * width + x) * 4 + size_t(c)];
+                    // Relative where the value matters; float32 and the table's bilinear
+                    // interpolation set the floor at 1e-4 of the image's peak.
+                    EXPECT_NEAR(gpu, cpu[c], 1e-4 * std::max(std::abs(cpu[c]), peak))
+                        << to_string(model) << " pixel " << x << ", " << y;
+                }
+                compared += cpu.x > 1e-3 * peak;
+            }
+        }
+        EXPECT_GT(compared, width * height / 10) << to_string(model);
+    }
+}
+
+// Where the objects are their own bounding volumes, the GPU beamtree method equals the
+// reference: relative RMSE <= 1% at 256², for both models.
+TEST_F(GpuMethod, BeamtreeMatchesTheReferenceOnBoxes) {
+    for (const MediumModel model : {MediumModel::simplified, MediumModel::physical}) {
+        const Scene scene = boxes_scene(model);
+        const gl::Frame frame = render(scene, "beamtree", 256, 256);
+        const reference::ReferenceRenderer reference(scene);
+        const Image exact = reference.render(256, 256, {});
+        const ErrorMetrics error = compare_images(frame.in_scattering, exact);
+        EXPECT_LE(error.rel_rmse, 0.01) << to_string(model) << ": max_abs " << error.max_abs;
+    }
+}
+
+// A camera inside the lit volume looking at the light: I_s is finite and non-negative.
+TEST_F(GpuMethod, CameraInsideTheBeamLookingAtTheLightIsFinite) {
+    Scene scene = boxes_scene(MediumModel::physical);
+    scene.camera.position = glm::vec3(0.6f, 3.5f, -0.3f);
+    scene.camera.target = scene.light.position;
+    scene.camera.up = glm::vec3(0.0f, 0.0f, 1.0f);
+    const gl::Frame frame = render(scene, "beamtree", 64, 64);
+    double sum = 0.0;
+    for (const float v : frame.in_scattering.rgb) {
+        ASSERT_TRUE(std::isfinite(v));
+        ASSERT_GE(v, -1e-4f);
+        sum += v;
+    }
+    EXPECT_GT(sum, 0.0);
+}
+
+}  // namespace
+}  // namespace sl::test
