@@ -19,7 +19,7 @@ namespace sl::gl {
     X(PFNGLDISABLEPROC, Disable)                                         \
     X(PFNGLVIEWPORTPROC, Viewport)                                       \
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                                     \
-    X(PFNGLDEPTHMASKPROC, DepthMask)                                                     \
+    X(PFNGLDEPTHMASKPROC, DepthMask)                                     \
     X(PFNGLBLENDFUNCPROC, BlendFunc)                                     \
     X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                             \
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                                 \

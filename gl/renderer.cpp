@@ -51,7 +51,8 @@ shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOption
     u.medium_sigma_s = glm::vec4(medium.sigma_s, 0.0f);
     u.medium_sigma_t =
         glm::vec4(medium.sigma_t(), medium.model == MediumModel::physical ? 1.0f : 0.0f);
-    u.medium_attenuation = glm::vec4(medium.a0, medium.a1, 0.0f, 0.0f);
+    u.medium_attenuation = glm::vec4(medium.a0, medium.a1,
+                                     medium.phase == PhaseFunction::isotropic ? 0.0f : 1.0f, 0.0f);
     u.ambient = glm::vec4(scene.ambient, 0.0f);
     const int radius = options.shadow_filter == ShadowFilter::pcf ? options.pcf_radius : 0;
     u.shadow = glm::vec4(1.0f / float(options.shadow_map_size), float(radius),

@@ -72,5 +72,9 @@ std::unique_ptr<gl::VolumeMethod> create_volume_method(const std::string& name);
 // gl/shaders/in_scattering.glsl's `sun_table` at texture unit kSunTableUnit.
 constexpr GLuint kSunTableUnit = 7;
 gl::Texture create_sun_table();
+// P(θ) = ∫_{-π/2}^θ p(-sin t) dt for the medium's phase function, 1024 samples over
+// θ in [-π/2, π/2], for in_scattering.glsl's `phase_table` at texture unit kPhaseTableUnit.
+constexpr GLuint kPhaseTableUnit = 6;
+gl::Texture create_phase_table(const Medium& medium);
 
 }  // namespace sl::methods

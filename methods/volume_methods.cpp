@@ -18,6 +18,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "analytic/phase_functions.h"
 #include "analytic/quadrature.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
@@ -56,6 +57,24 @@ gl::Texture create_sun_table() {
     gl::Texture texture = gl::create_texture_2d(GL_R32F, kSize, kSize, GL_LINEAR);
     GL.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
     GL.TextureSubImage2D(texture.id(), 0, 0, 0, kSize, kSize, GL_RED, GL_FLOAT, table.data());
+    return texture;
+}
+
+gl::Texture create_phase_table(const Medium& medium) {
+    constexpr int kSize = 1024;  // PHASE_TABLE_SIZE in in_scattering.glsl
+    std::vector<float> table(kSize);
+    double sum = 0.0, previous = -0.5 * std::numbers::pi;
+    for (int i = 0; i < kSize; ++i) {
+        const double theta = std::numbers::pi * (double(i) / (kSize - 1) - 0.5);
+        sum += analytic::integrate(
+            [&](double t) { return analytic::phase(medium.phase, medium.g, -std::sin(t)); },
+            previous, theta);
+        previous = theta;
+        table[size_t(i)] = float(sum);
+    }
+    gl::Texture texture = gl::create_texture_2d(GL_R32F, kSize, 1, GL_LINEAR);
+    GL.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    GL.TextureSubImage2D(texture.id(), 0, 0, 0, kSize, 1, GL_RED, GL_FLOAT, table.data());
     return texture;
 }
 
@@ -220,6 +239,7 @@ public:
         GL.UseProgram(program_.id());
         GL.BindTextureUnit(0, inputs.surface_depth);
         GL.BindTextureUnit(kSunTableUnit, sun_table_.id());
+        GL.BindTextureUnit(kPhaseTableUnit, phase_table_.id());
         GL.Enable(GL_BLEND);
         GL.BlendFunc(GL_ONE, GL_ONE);  // signed sums in the float target
         GL.Enable(GL_DEPTH_CLAMP);     // faces in front of the near plane still count
@@ -234,6 +254,7 @@ private:
     gl::VertexArray vertex_array_;
     gl::Program program_;
     gl::Texture sun_table_;
+    gl::Texture phase_table_;
     GLsizei index_count_ = 0;
 };
 

@@ -66,14 +66,23 @@ gl::Frame render(const Scene& scene, const std::string& method_name, int width, 
 // closed forms (analytic/in_scattering.cpp) on every pixel's ray, to 1e-4 relative, for both
 // models; the physical one goes through the Sun et al. F(u, v) table.
 TEST_F(GpuMethod, GlslAntiderivativeMatchesCpp) {
-    for (const MediumModel model : {MediumModel::simplified, MediumModel::physical}) {
-        const Scene scene = boxes_scene(model);
+    for (const int variant : {0, 1, 2}) {
+        // Simplified isotropic, physical isotropic, and simplified (a0 = 0) Henyey-Greenstein.
+        const MediumModel model = variant == 1 ? MediumModel::physical : MediumModel::simplified;
+        Scene scene = boxes_scene(model);
+        if (variant == 2) {
+            scene.medium.phase = PhaseFunction::henyey_greenstein;
+            scene.medium.g = 0.6f;
+            scene.medium.a0 = 0.0f;
+        }
         const int width = 96, height = 54;
         const gl::RenderOptions options{.width = width, .height = height};
         const gl::shared::FrameUniforms uniforms = gl::make_frame_uniforms(scene, options);
         const gl::Buffer ubo = gl::create_buffer(&uniforms, sizeof(uniforms));
         gl::GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, ubo.id());
         const gl::Texture sun_table = methods::create_sun_table();
+        const gl::Texture phase_table = methods::create_phase_table(scene.medium);
+        gl::GL.BindTextureUnit(methods::kPhaseTableUnit, phase_table.id());
         const gl::Texture target = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
         const gl::Framebuffer framebuffer = gl::create_framebuffer();
         gl::GL.NamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);

@@ -29,7 +29,8 @@ SL_UNIFORM_BLOCK(FrameUniforms, SL_FRAME_UNIFORMS_BINDING) {
     vec4 light_cone;             // x = cone half-angle (rad), y = falloff width (rad, 0 = hard)
     vec4 medium_sigma_s;         // rgb
     vec4 medium_sigma_t;         // rgb; w = model (0 simplified, 1 physical)
-    vec4 medium_attenuation;     // x = a0, y = a1 (simplified model, Nilsson eq. 2.13)
+    vec4 medium_attenuation;     // x = a0, y = a1 (simplified model, Nilsson eq. 2.13);
+                                 // z = 1 for an anisotropic phase function
     vec4 ambient;                // rgb incident radiance from every direction
     vec4 shadow;                 // x = 1 / map size, y = PCF radius in texels (0 = hard),
                                  // z = normal offset in texels

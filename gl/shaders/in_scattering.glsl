@@ -4,9 +4,13 @@
 //   simplified, isotropic: Nilsson eq. 2.17
 //   physical, isotropic:   Sun et al. 2005, A0 F(A1, ξ) with F(u, v) = ∫_0^v exp(-u tan ζ) dζ
 //                          tabulated in `sun_table` (u in [0, SUN_TABLE_U_MAX], v in [0, π/2])
+//   simplified, a0 = 0, anisotropic: σs I / (a1 h) P(θ), P(θ) = ∫_{-π/2}^θ p(-sin t) dt
+//                          tabulated per scene in `phase_table` (θ in [-π/2, π/2])
 const float SUN_TABLE_U_MAX = 32.0;
 const float SUN_TABLE_SIZE = 1024.0;  // samples at u, v = i / (SIZE - 1) of the range, on texel centres
 layout(binding = 7) uniform sampler2D sun_table;
+const float PHASE_TABLE_SIZE = 1024.0;
+layout(binding = 6) uniform sampler2D phase_table;  // 1 row
 
 // The ray's interval inside the light's exact cone and its near/far range (as light_interval).
 vec2 light_interval(vec3 origin, vec3 direction, float t_max) {
@@ -58,6 +62,13 @@ vec3 in_scattering_antiderivative(vec3 origin, vec3 direction, vec2 span, float 
     float z_s = dot(delta, direction);
     float h = length(delta - z_s * direction);
     vec3 sigma_s = frame.medium_sigma_s.rgb, intensity = frame.light_intensity.rgb;
+    if (frame.medium_sigma_t.w < 0.5 && frame.medium_attenuation.z > 0.5) {
+        // dz / r² = dθ / h and cos α = -sin θ: the phase function's integral over θ, tabulated.
+        float theta = atan((z - z_s) / max(h, 1e-6));
+        float at = clamp(theta / PI + 0.5, 0.0, 1.0);
+        float p = texture(phase_table, vec2((at * (PHASE_TABLE_SIZE - 1.0) + 0.5) / PHASE_TABLE_SIZE, 0.5)).r;
+        return sigma_s * intensity / (frame.medium_attenuation.y * max(h, 1e-6)) * p;
+    }
     if (frame.medium_sigma_t.w < 0.5) {
         // Nilsson eq. 2.17 (as an antiderivative).
         float a0 = frame.medium_attenuation.x, a1 = frame.medium_attenuation.y;
