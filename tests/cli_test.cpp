@@ -167,7 +167,8 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
                "[[objects]]\nshape = \"mesh\"\nfile = \"bad-mesh.off\"\n");
     const std::string dir = scenes.path().string();
     const std::pair<std::string, std::string> cases[] = {
-        {"--scene toplight --method magic", "unknown method 'magic' (known: none, beamtree, reference)"},
+        {"--scene toplight --method magic",
+         "unknown method 'magic' (known: none, beamtree, reference)"},
         {"--scene toplight --size=-64x36", "--size '-64x36'"},
         {"--scene toplight --size 0x36", "width and height must be in 1..16384"},
         {"--scene toplight --size 64", "expected WIDTHxHEIGHT"},
