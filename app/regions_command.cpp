@@ -68,8 +68,7 @@ std::vector<dvec3> read_points(const std::string& path) {
 // unlit black, over the rendered scene.
 std::vector<unsigned char> draw_regions(const Scene& scene, const bt::BeamTree& tree,
                                         const gl::Frame& frame, int width, int height) {
-    const gl::RenderOptions options{.width = width, .height = height};
-    const glm::dmat4 inverse(gl::make_frame_uniforms(scene, options).inverse_view_projection);
+    const PixelUnprojector pixels(scene.camera, width, height);
     const std::vector<bt::Plane>& influence = tree.influence_planes();
     const double far = double(scene.light.far);
     constexpr int kSamples = 128;
@@ -77,11 +76,9 @@ std::vector<unsigned char> draw_regions(const Scene& scene, const bt::BeamTree& 
     std::vector<unsigned char> image = frame.display_srgb8;
     tbb::parallel_for(0, height, [&](int y) {
         for (int x = 0; x < width; ++x) {
-            const glm::dvec2 ndc(2.0 * (x + 0.5) / width - 1.0, 1.0 - 2.0 * (y + 0.5) / height);
             const double depth = 2.0 * double(frame.depth[size_t(y) * width + x]) - 1.0;
-            const glm::dvec4 a = inverse * glm::dvec4(ndc, -1.0, 1.0);
-            const glm::dvec4 b = inverse * glm::dvec4(ndc, std::min(depth, 1.0), 1.0);
-            const dvec3 origin = dvec3(a) / a.w, end = dvec3(b) / b.w;
+            const dvec3 origin = pixels.point(x, y, -1.0);
+            const dvec3 end = pixels.point(x, y, std::min(depth, 1.0));
             // Clip the segment to the influence pyramid.
             double t0 = 0.0, t1 = 1.0;
             for (const bt::Plane& plane : influence) {

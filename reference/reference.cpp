@@ -134,19 +134,15 @@ dvec3 ReferenceRenderer::in_scattering(const analytic::EyeRay& ray, double t_max
 
 Image ReferenceRenderer::render(int width, int height, const ReferenceOptions& options,
                                 const std::function<void(double)>& progress) const {
-    const Camera& camera = scene_.camera;
-    const glm::dmat4 inverse = glm::inverse(
-        glm::dmat4(camera.projection(float(width) / float(height))) * glm::dmat4(camera.view()));
+    const dvec3 eye(scene_.camera.position);
+    const PixelUnprojector pixels(scene_.camera, width, height);
     Image image(width, height);
     std::atomic<int> rows_done = 0;
     tbb::parallel_for(0, height, [&](int y) {
         for (int x = 0; x < width; ++x) {
-            const glm::dvec2 ndc(2.0 * (x + 0.5) / width - 1.0, 1.0 - 2.0 * (y + 0.5) / height);
-            const glm::dvec4 far = inverse * glm::dvec4(ndc, 1.0, 1.0);
-            const dvec3 b = dvec3(far) / far.w;
-            const analytic::EyeRay ray{dvec3(camera.position),
-                                       glm::normalize(b - dvec3(camera.position))};
-            const double t_max = first_hit(ray, glm::length(b - dvec3(camera.position)));
+            const dvec3 far = pixels.point(x, y, 1.0);
+            const analytic::EyeRay ray{eye, glm::normalize(far - eye)};
+            const double t_max = first_hit(ray, glm::length(far - eye));
             image.set(x, y, glm::vec3(in_scattering(ray, t_max, options)));
         }
         const int done = ++rows_done;

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
 namespace sl {
@@ -15,6 +16,18 @@ glm::mat4 Camera::view() const {
 
 glm::mat4 Camera::projection(float aspect) const {
     return glm::perspective(glm::radians(fov_y_degrees), aspect, near, far);
+}
+
+PixelUnprojector::PixelUnprojector(const Camera& camera, int width, int height)
+    : inverse_(glm::inverse(glm::dmat4(camera.projection(float(width) / float(height))) *
+                            glm::dmat4(camera.view()))),
+      width_(width),
+      height_(height) {}
+
+glm::dvec3 PixelUnprojector::point(int x, int y, double ndc_z) const {
+    const glm::dvec4 p = inverse_ * glm::dvec4(2.0 * (x + 0.5) / width_ - 1.0,
+                                               1.0 - 2.0 * (y + 0.5) / height_, ndc_z, 1.0);
+    return glm::dvec3(p) / p.w;
 }
 
 glm::vec3 SpotLight::direction() const {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/ext/matrix_double4x4.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
@@ -47,6 +48,21 @@ struct Camera {
 
     glm::mat4 view() const;
     glm::mat4 projection(float aspect) const;
+};
+
+// Pixel centres of a width x height image (row 0 at the top) mapped back through the camera, in
+// double precision: the one place CPU code makes eye rays the way the GPU rasterises them.
+class PixelUnprojector {
+public:
+    PixelUnprojector(const Camera& camera, int width, int height);
+    // The world point under the centre of pixel (x, y) at normalised device depth ndc_z
+    // (-1: the near plane, 1: the far plane).
+    glm::dvec3 point(int x, int y, double ndc_z) const;
+
+private:
+    glm::dmat4 inverse_;
+    int width_;
+    int height_;
 };
 
 struct SpotLight {

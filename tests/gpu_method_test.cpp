@@ -101,6 +101,8 @@ TEST_F(GpuMethod, GlslAntiderivativeMatchesCpp) {
                                GLsizei(rgba.size() * sizeof(float)), rgba.data());
         gl::check_errors("test pattern");
 
+        // The very matrix the shader reads (float), not PixelUnprojector's double inverse: the
+        // comparison must be on identical rays, or pixels at the cone's edge differ.
         const glm::dmat4 inverse(uniforms.inverse_view_projection);
         double peak = 0.0;
         for (size_t i = 0; i < rgba.size(); i += 4)

@@ -44,15 +44,12 @@ TEST(Reference, MatchesBruteForceIntegralOfVisibleScattering) {
     const reference::ReferenceRenderer renderer(scene);
     const Camera& camera = scene.camera;
     const int width = 48, height = 27;
-    const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.projection(float(width) / height)) *
-                                            glm::dmat4(camera.view()));
+    const PixelUnprojector pixels(camera, width, height);
     int compared = 0;
     for (int y = 1; y < height; y += 3) {
         for (int x = 1; x < width; x += 3) {
-            const glm::dvec2 ndc(2.0 * (x + 0.5) / width - 1.0, 1.0 - 2.0 * (y + 0.5) / height);
-            const glm::dvec4 far = inverse * glm::dvec4(ndc, 1.0, 1.0);
             const dvec3 origin(camera.position);
-            const analytic::EyeRay ray{origin, glm::normalize(dvec3(far) / far.w - origin)};
+            const analytic::EyeRay ray{origin, glm::normalize(pixels.point(x, y, 1.0) - origin)};
             const double t_max = renderer.first_hit(ray, 40.0);
             const dvec3 exact = renderer.in_scattering(ray, t_max, {});
             // Over the ray's part inside the cone and range (light_interval has its own

@@ -72,7 +72,7 @@ struct FloorCheck {
 FloorCheck check_floor(const Scene& scene, const gl::RenderOptions& options, int step, float edge) {
     const gl::Frame frame = render(scene, options);
     const CpuRayCaster caster(scene);
-    const glm::mat4 inverse = gl::make_frame_uniforms(scene, options).inverse_view_projection;
+    const PixelUnprojector pixels(scene.camera, options.width, options.height);
     const Object& floor = scene.objects.front();
     EXPECT_EQ(floor.name, "floor");
     const glm::vec3 albedo = scene.materials[size_t(floor.material)].albedo;
@@ -83,12 +83,8 @@ FloorCheck check_floor(const Scene& scene, const gl::RenderOptions& options, int
     FloorCheck check;
     for (int y = step / 2; y < options.height; y += step) {
         for (int x = step / 2; x < options.width; x += step) {
-            const glm::vec2 ndc(2.0f * (float(x) + 0.5f) / float(options.width) - 1.0f,
-                                1.0f - 2.0f * (float(y) + 0.5f) / float(options.height));
-            const glm::vec4 near = inverse * glm::vec4(ndc, -1.0f, 1.0f);
-            const glm::vec4 far = inverse * glm::vec4(ndc, 1.0f, 1.0f);
-            const glm::vec3 o = glm::vec3(near) / near.w;
-            const glm::vec3 d = glm::vec3(far) / far.w - o;
+            const glm::vec3 o(pixels.point(x, y, -1.0));
+            const glm::vec3 d = glm::vec3(pixels.point(x, y, 1.0)) - o;
             if (d.y >= 0.0f) {
                 continue;
             }
