@@ -72,22 +72,21 @@ int run_render(const RenderArguments& args) {
     start = Clock::now();
     method->prepare(scene);
     const double prepare_ms = ms_since(start);
-    // Warm-up frames first: they absorb shader compilation and first-use costs (and llvmpipe's
-    // first GL_TIME_ELAPSED query, which reports time since boot). Timings are medians over the
-    // measured frames; the images come from the last one.
+    // Warm-up frames first: they absorb shader compilation and first-use costs. Timings are
+    // medians over the measured frames, which read nothing back; the images are the last one's.
     for (int i = 0; i < args.warmup; ++i) {
-        renderer.render(*method);
+        renderer.draw(*method);
     }
-    gl::Frame frame;
     std::vector<double> cpu_ms, gpu_ms[4];
     for (int i = 0; i < args.frames; ++i) {
-        frame = renderer.render(*method);
-        cpu_ms.push_back(frame.cpu_ms);
-        gpu_ms[0].push_back(frame.gpu.shadow_ms);
-        gpu_ms[1].push_back(frame.gpu.surface_ms);
-        gpu_ms[2].push_back(frame.gpu.volume_ms);
-        gpu_ms[3].push_back(frame.gpu.composite_ms);
+        const gl::FrameTimings timings = renderer.draw(*method);
+        cpu_ms.push_back(timings.cpu_ms);
+        gpu_ms[0].push_back(timings.gpu.shadow_ms);
+        gpu_ms[1].push_back(timings.gpu.surface_ms);
+        gpu_ms[2].push_back(timings.gpu.volume_ms);
+        gpu_ms[3].push_back(timings.gpu.composite_ms);
     }
+    gl::Frame frame = renderer.read_back();
     frame.cpu_ms = median(cpu_ms);
     frame.gpu = {median(gpu_ms[0]), median(gpu_ms[1]), median(gpu_ms[2]), median(gpu_ms[3])};
 

@@ -204,7 +204,7 @@ void SceneRenderer::draw_objects(bool with_normals) {
     }
 }
 
-Frame SceneRenderer::render(VolumeMethod& method) {
+FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     const auto start = std::chrono::steady_clock::now();
     const int w = options_.width, h = options_.height;
     GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, uniform_buffer_.id());
@@ -262,14 +262,23 @@ Frame SceneRenderer::render(VolumeMethod& method) {
     }
     GL.DepthMask(GL_TRUE);
 
-    Frame frame;
-    double* pass_ms[] = {&frame.gpu.shadow_ms, &frame.gpu.surface_ms, &frame.gpu.volume_ms,
-                         &frame.gpu.composite_ms};
-    for (int i = 0; i < 4; ++i) {
+    FrameTimings timings;
+    double* pass_ms[] = {&timings.gpu.shadow_ms, &timings.gpu.surface_ms, &timings.gpu.volume_ms,
+                         &timings.gpu.composite_ms};
+    for (int i = 0; i < 4; ++i) {  // waits for the frame to finish
         GLuint64 ns = 0;
         GL.GetQueryObjectui64v(timers_[i].id(), GL_QUERY_RESULT, &ns);
         *pass_ms[i] = double(ns) * 1e-6;
     }
+    check_errors(("rendering with method " + method.name()).c_str());
+    timings.cpu_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return timings;
+}
+
+Frame SceneRenderer::read_back() const {
+    const int w = options_.width, h = options_.height;
+    Frame frame;
     frame.radiance = read_rgb(hdr_.id());
     frame.in_scattering = read_rgb(in_scattering_.id());
     frame.surface = read_rgb(surface_color_.id());
@@ -291,9 +300,15 @@ Frame SceneRenderer::render(VolumeMethod& method) {
     for (int y = 0; y < h; ++y) {
         std::copy_n(&depth[size_t(h - 1 - y) * w], w, &frame.depth[size_t(y) * w]);
     }
-    check_errors(("rendering with method " + method.name()).c_str());
-    frame.cpu_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    check_errors("reading the frame back");
+    return frame;
+}
+
+Frame SceneRenderer::render(VolumeMethod& method) {
+    const FrameTimings timings = draw(method);
+    Frame frame = read_back();
+    frame.gpu = timings.gpu;
+    frame.cpu_ms = timings.cpu_ms;
     return frame;
 }
 

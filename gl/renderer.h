@@ -35,6 +35,11 @@ struct PassTimings {
     double total_ms() const { return shadow_ms + surface_ms + volume_ms + composite_ms; }
 };
 
+struct FrameTimings {
+    PassTimings gpu;
+    double cpu_ms = 0;  // wall time of draw(): submitting the passes and waiting for them
+};
+
 struct Frame {
     Image radiance;                      // I_eye, linear (before tone mapping)
     Image in_scattering;                 // I_s alone, linear
@@ -42,7 +47,7 @@ struct Frame {
     std::vector<uint8_t> display_srgb8;  // the GPU tone map, RGB rows top to bottom
     std::vector<float> depth;            // window-space depth in [0, 1], rows top to bottom
     PassTimings gpu;
-    double cpu_ms = 0;  // wall time of render() including read-back
+    double cpu_ms = 0;  // wall time of the drawing (read-back excluded)
 };
 
 class SceneRenderer {
@@ -50,7 +55,12 @@ public:
     // Uploads the scene's meshes and allocates the targets; needs a current GL 4.5 context.
     SceneRenderer(const Scene& scene, const RenderOptions& options);
 
-    // Renders one frame with `method` and reads every buffer back.
+    // Draws one frame with `method`, waits for it, and returns its timings: what a measured
+    // frame costs, with nothing read back.
+    FrameTimings draw(VolumeMethod& method);
+    // Every buffer of the last frame drawn, read back (timings left empty).
+    Frame read_back() const;
+    // draw() then read_back().
     Frame render(VolumeMethod& method);
 
     const RenderOptions& options() const { return options_; }
