@@ -34,10 +34,6 @@ Closest closest_approach(const EyeRay& ray, const dvec3& light) {
     return {z_s, glm::length(off)};
 }
 
-double channel(const dvec3& v, int c) {
-    return v[c];
-}
-
 }  // namespace
 
 dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light,
@@ -149,8 +145,8 @@ dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& li
     const bool grazing = closest.h <= 1e-7 * std::max(distance, 1.0);
     dvec3 result(0.0);
     for (int c = 0; c < 3; ++c) {
-        const double sigma_s = channel(dvec3(medium.sigma_s), c);
-        const double intensity = channel(dvec3(light.intensity), c);
+        const double sigma_s = medium.sigma_s[c];
+        const double intensity = light.intensity[c];
         if (sigma_s == 0.0 || intensity == 0.0) {
             continue;
         }
@@ -168,7 +164,7 @@ dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& li
             continue;
         }
         if (hard_edge && !grazing && medium.model == MediumModel::physical && isotropic) {
-            const double sigma_t = channel(dvec3(medium.sigma_t()), c);
+            const double sigma_t = medium.sigma_t()[c];
             if (sigma_t > 0.0) {
                 // Sun et al. 2005: G(x) = A0 F(A1, ξ(x)), F(u, v) = ∫_0^v exp(-u tan ζ) dζ,
                 // Tsv = σt d, A0 = σs σt I e^(-Tsv cos γ) / (2π Tsv sin γ), A1 = Tsv sin γ,
@@ -199,8 +195,7 @@ dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& li
         }
         // No closed form: adaptive quadrature of e(z) itself.
         result[c] = integrate(
-            [&](double z) { return channel(scattering_density(ray, z, light, medium), c); }, z0, z1,
-            1e-12);
+            [&](double z) { return scattering_density(ray, z, light, medium)[c]; }, z0, z1, 1e-12);
     }
     return result;
 }
