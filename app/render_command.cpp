@@ -43,11 +43,16 @@ double median(std::vector<double> values) {
 int run_render(const RenderArguments& args) {
     gl::RenderOptions options;
     parse_size(args.size, options.width, options.height);
-    options.shadow_filter = args.shadow == "hard" ? gl::ShadowFilter::hard : gl::ShadowFilter::pcf;
-    options.pcf_radius = args.pcf_radius;
-    options.shadow_map_size = args.shadow_map_size;
+    options.shadow = {.filter = gl::parse_shadow_filter(args.shadow),
+                      .map_size = args.shadow_map_size,
+                      .radius = args.pcf_radius};
     // Fail on an unknown method before any expensive work.
     std::unique_ptr<gl::VolumeMethod> method = methods::create_volume_method(args.method);
+    // The run's shadow options are the defaults of a method's own `shadow` parameters.
+    if (method->has_parameter("shadow")) {
+        method->set("shadow", args.shadow);
+        method->set("shadow_size", std::to_string(args.shadow_map_size));
+    }
     for (const std::string& setting : args.settings) {
         const size_t equals = setting.find('=');
         if (equals == std::string::npos || equals == 0) {
@@ -77,7 +82,19 @@ int run_render(const RenderArguments& args) {
     for (int i = 0; i < args.warmup; ++i) {
         renderer.draw(*method);
     }
-    std::vector<double> cpu_ms, gpu_ms[4];
+    std::vector<double> cpu_ms, gpu_ms[4], total_ms;
+    std::vector<std::pair<std::string, std::vector<double>>> section_ms;
+    std::vector<std::pair<std::string, std::vector<double>>> statistics;
+    auto collect = [](auto& series, const auto& values) {
+        for (const auto& [name, value] : values) {
+            auto same = std::find_if(series.begin(), series.end(),
+                                     [&](const auto& s) { return s.first == name; });
+            if (same == series.end())
+                series.emplace_back(name, std::vector<double>{value});
+            else
+                same->second.push_back(value);
+        }
+    };
     for (int i = 0; i < args.frames; ++i) {
         const gl::FrameTimings timings = renderer.draw(*method);
         cpu_ms.push_back(timings.cpu_ms);
@@ -85,10 +102,18 @@ int run_render(const RenderArguments& args) {
         gpu_ms[1].push_back(timings.gpu.surface_ms);
         gpu_ms[2].push_back(timings.gpu.volume_ms);
         gpu_ms[3].push_back(timings.gpu.composite_ms);
+        total_ms.push_back(timings.gpu.total_ms());
+        collect(section_ms, timings.gpu.volume_sections);
+        collect(statistics, method->statistics());
     }
     gl::Frame frame = renderer.read_back();
     frame.cpu_ms = median(cpu_ms);
-    frame.gpu = {median(gpu_ms[0]), median(gpu_ms[1]), median(gpu_ms[2]), median(gpu_ms[3])};
+    frame.gpu = {median(gpu_ms[0]), median(gpu_ms[1]), median(gpu_ms[2]), median(gpu_ms[3]), {}};
+    for (const auto& [name, values] : section_ms) {
+        frame.gpu.volume_sections.emplace_back(name, median(values));
+    }
+    const double frame_gpu_ms = median(total_ms);
+    const gl::ShadowSettings shadow = renderer.shadow();
 
     // Error against the reference on the I_s buffer, rendered by the same renderer (and cached).
     std::optional<ErrorMetrics> error;
@@ -106,15 +131,17 @@ int run_render(const RenderArguments& args) {
          [&] {
              nlohmann::ordered_json parameters = nlohmann::ordered_json::object();
              for (const gl::Parameter& p : method->parameters())
-                 parameters[p.name] = p.value;
+                 parameters[p.name] = p.type == gl::Parameter::Type::choice
+                                          ? nlohmann::ordered_json(p.text())
+                                          : nlohmann::ordered_json(p.value);
              return parameters;
          }()},
         {"width", options.width},
         {"height", options.height},
         {"shadow",
-         {{"filter", args.shadow},
-          {"pcf_radius", options.pcf_radius},
-          {"map_size", options.shadow_map_size}}},
+         {{"filter", gl::to_string(shadow.filter)},
+          {"radius", shadow.radius},
+          {"map_size", shadow.map_size}}},
         {"protocol",
          {{"warmup_frames", args.warmup},
           {"measured_frames", args.frames},
@@ -134,7 +161,22 @@ int run_render(const RenderArguments& args) {
             {"surface", frame.gpu.surface_ms},
             {"volume", frame.gpu.volume_ms},
             {"composite", frame.gpu.composite_ms},
-            {"total", frame.gpu.total_ms()}}}}},
+            {"total", frame_gpu_ms},
+            {"volume_sections",
+             [&] {
+                 nlohmann::ordered_json sections = nlohmann::ordered_json::object();
+                 for (const auto& [name, ms] : frame.gpu.volume_sections)
+                     sections[name] = ms;
+                 return sections;
+             }()}}}}},
+        {"method_statistics",
+         [&] {
+             // Medians over the measured frames.
+             nlohmann::ordered_json values = nlohmann::ordered_json::object();
+             for (const auto& [name, series] : statistics)
+                 values[name] = median(series);
+             return values;
+         }()},
         {"files", {stem + ".png", stem + ".exr", stem + ".inscatter.exr", stem + ".json"}},
     };
 
@@ -158,8 +200,8 @@ int run_render(const RenderArguments& args) {
     outputs.commit();
     fmt::print(
         "{}: {}x{} {} in {:.1f} ms GPU ({:.1f} ms CPU) -> {}/{}.{{png,exr,inscatter.exr,json}}\n",
-        scene.name, options.width, options.height, method->name(), frame.gpu.total_ms(),
-        frame.cpu_ms, args.out, stem);
+        scene.name, options.width, options.height, method->name(), frame_gpu_ms, frame.cpu_ms,
+        args.out, stem);
     if (error) {
         fmt::print("  against {}: rel_rmse {:.3g}, max_abs {:.3g}, psnr {:.1f} dB\n", args.compare,
                    error->rel_rmse, error->max_abs, error->psnr);
@@ -194,9 +236,9 @@ Command add_render_command(CLI::App& app) {
     command->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
     command->add_option("--out", args->out, "Output directory")->capture_default_str();
     command->add_option("--shadow", args->shadow, "Shadow map filter")
-        ->check(CLI::IsMember({"hard", "pcf"}))
+        ->check(CLI::IsMember({"hard", "pcf", "vsm"}))
         ->capture_default_str();
-    command->add_option("--pcf-radius", args->pcf_radius, "PCF kernel radius r: (2r+1)^2 taps")
+    command->add_option("--pcf-radius", args->pcf_radius, "PCF taps or VSM blur radius r: (2r+1)^2")
         ->check(CLI::Range(0, 8))
         ->capture_default_str();
     command->add_option("--shadow-map-size", args->shadow_map_size, "Shadow map resolution")

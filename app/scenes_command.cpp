@@ -52,6 +52,12 @@ Command add_methods_command(CLI::App& app) {
             const auto method = methods::create_volume_method(name);
             fmt::print("{}\n", name);
             for (const gl::Parameter& p : method->parameters()) {
+                if (p.type == gl::Parameter::Type::choice) {
+                    fmt::print("  {:<22} {:<8} default {:<8} one of {}  {}\n", p.name, "choice",
+                               p.choices[size_t(p.default_value)], fmt::join(p.choices, "|"),
+                               p.description);
+                    continue;
+                }
                 fmt::print("  {:<22} {:<8} default {:<8} range [{}, {}]  {}\n", p.name,
                            p.type == gl::Parameter::Type::integer ? "integer" : "real",
                            p.default_value, p.min, p.max, p.description);

@@ -73,6 +73,9 @@ namespace sl::gl {
     X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                               \
     X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                     \
     X(PFNGLUSEPROGRAMPROC, UseProgram)                                   \
+    X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                       \
+    X(PFNGLPROGRAMUNIFORM2IPROC, ProgramUniform2i)                       \
+    X(PFNGLPROGRAMUNIFORM1FPROC, ProgramUniform1f)                       \
     X(PFNGLPROGRAMUNIFORM3FVPROC, ProgramUniform3fv)                     \
     X(PFNGLPROGRAMUNIFORMMATRIX4FVPROC, ProgramUniformMatrix4fv)         \
     X(PFNGLGETUNIFORMBLOCKINDEXPROC, GetUniformBlockIndex)               \

@@ -54,12 +54,60 @@ shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOption
     u.medium_attenuation = glm::vec4(medium.a0, medium.a1,
                                      medium.phase == PhaseFunction::isotropic ? 0.0f : 1.0f, 0.0f);
     u.ambient = glm::vec4(scene.ambient, 0.0f);
-    const int radius = options.shadow_filter == ShadowFilter::pcf ? options.pcf_radius : 0;
-    u.shadow = glm::vec4(1.0f / float(options.shadow_map_size), float(radius),
-                         kShadowNormalOffsetTexels, 0.0f);
+    u.shadow = shadow_uniform(options.shadow);
     u.display = glm::vec4(scene.camera.exposure, float(options.width), float(options.height), 0.0f);
     return u;
 }
+
+glm::vec4 shadow_uniform(const ShadowSettings& settings) {
+    const int radius = settings.filter == ShadowFilter::pcf ? settings.radius : 0;
+    return glm::vec4(1.0f / float(settings.map_size), float(radius), kShadowNormalOffsetTexels,
+                     settings.filter == ShadowFilter::vsm ? 1.0f : 0.0f);
+}
+
+// The volume pass's sections, one GL_TIME_ELAPSED query each (queries are reused across frames).
+class SceneRenderer::Timeline final : public PassTimeline {
+public:
+    void begin(const std::string& first) {
+        used_ = 0;
+        names_.clear();
+        section(first.c_str());
+    }
+    void section(const char* name) override {
+        end();
+        if (used_ == queries_.size())
+            queries_.push_back(create_query(GL_TIME_ELAPSED));
+        names_.emplace_back(name);
+        GL.BeginQuery(GL_TIME_ELAPSED, queries_[used_++].id());
+        open_ = true;
+    }
+    void end() {
+        if (open_)
+            GL.EndQuery(GL_TIME_ELAPSED);
+        open_ = false;
+    }
+    // Waits for the results; sections of the same name are summed.
+    std::vector<std::pair<std::string, double>> results() const {
+        std::vector<std::pair<std::string, double>> sections;
+        for (size_t i = 0; i < used_; ++i) {
+            GLuint64 ns = 0;
+            GL.GetQueryObjectui64v(queries_[i].id(), GL_QUERY_RESULT, &ns);
+            auto same = std::find_if(sections.begin(), sections.end(),
+                                     [&](const auto& s) { return s.first == names_[i]; });
+            if (same == sections.end())
+                sections.emplace_back(names_[i], double(ns) * 1e-6);
+            else
+                same->second += double(ns) * 1e-6;
+        }
+        return sections;
+    }
+
+private:
+    std::vector<Query> queries_;
+    std::vector<std::string> names_;
+    size_t used_ = 0;
+    bool open_ = false;
+};
 
 // Times one pass with a GL_TIME_ELAPSED query; the result is read after the frame.
 class SceneRenderer::PassTimer {
@@ -82,11 +130,11 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
         options.height > 16384) {
         fail("render size {}x{} must be in 1..16384", options.width, options.height);
     }
-    if (options.shadow_map_size < 16 || options.shadow_map_size > 16384) {
-        fail("shadow map size {} must be in 16..16384", options.shadow_map_size);
+    if (options.shadow.map_size < 16 || options.shadow.map_size > 16384) {
+        fail("shadow map size {} must be in 16..16384", options.shadow.map_size);
     }
-    if (options.pcf_radius < 0 || options.pcf_radius > 8) {
-        fail("PCF radius {} must be in 0..8", options.pcf_radius);
+    if (options.shadow.radius < 0 || options.shadow.radius > 8) {
+        fail("shadow filter radius {} must be in 0..8", options.shadow.radius);
     }
     uniforms_ = make_frame_uniforms(scene, options);
     uniform_buffer_ = create_buffer(&uniforms_, sizeof(uniforms_), GL_DYNAMIC_STORAGE_BIT);
@@ -124,25 +172,18 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
 
     shadow_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/shadow.vert"},
                                       {GL_FRAGMENT_SHADER, "gl/shaders/shadow.frag"}});
+    shadow_moments_program_ =
+        create_program({{GL_VERTEX_SHADER, "gl/shaders/shadow.vert"},
+                        {GL_FRAGMENT_SHADER, "gl/shaders/shadow_moments.frag"}});
+    shadow_blur_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                           {GL_FRAGMENT_SHADER, "gl/shaders/shadow_blur.frag"}});
     surface_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/surface.vert"},
                                        {GL_FRAGMENT_SHADER, "gl/shaders/surface.frag"}});
     composite_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                          {GL_FRAGMENT_SHADER, "gl/shaders/composite.frag"}});
     empty_vertex_array_ = create_vertex_array();
 
-    // Shadow map: depth compared in the sampler; linear filtering adds 2x2 PCF per tap, nearest
-    // keeps the hard variant hard.
-    const GLenum shadow_filter =
-        options.shadow_filter == ShadowFilter::pcf ? GL_LINEAR : GL_NEAREST;
-    shadow_map_ = create_texture_2d(GL_DEPTH_COMPONENT32F, options.shadow_map_size,
-                                    options.shadow_map_size, shadow_filter);
-    GL.TextureParameteri(shadow_map_.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    GL.TextureParameteri(shadow_map_.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    shadow_map_.label("shadow map");
-    shadow_framebuffer_ = create_framebuffer();
-    GL.NamedFramebufferTexture(shadow_framebuffer_.id(), GL_DEPTH_ATTACHMENT, shadow_map_.id(), 0);
-    GL.NamedFramebufferDrawBuffer(shadow_framebuffer_.id(), GL_NONE);
-    require_complete(shadow_framebuffer_.id(), "shadow");
+    allocate_shadow(options.shadow);
 
     const int w = options.width, h = options.height;
     surface_color_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
@@ -172,6 +213,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     for (Query& timer : timers_) {
         timer = create_query(GL_TIME_ELAPSED);
     }
+    timeline_ = std::make_unique<Timeline>();
     // llvmpipe reports its first GL_TIME_ELAPSED query of a context from time zero (since boot):
     // spend that first query here, on a clear, so that every frame's timings are real.
     {
@@ -186,9 +228,48 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     check_errors("creating the scene renderer");
 }
 
-void SceneRenderer::draw_objects(bool with_normals) {
+SceneRenderer::~SceneRenderer() = default;
+
+void SceneRenderer::allocate_shadow(const ShadowSettings& settings) {
+    if (settings.map_size < 16 || settings.map_size > 16384) {
+        fail("shadow map size {} must be in 16..16384", settings.map_size);
+    }
+    shadow_ = settings;
+    const int size = settings.map_size;
+    // Depth compared in the sampler; linear filtering adds 2x2 PCF per tap, nearest keeps the
+    // hard variant hard.
+    shadow_map_ = create_texture_2d(GL_DEPTH_COMPONENT32F, size, size,
+                                    settings.filter == ShadowFilter::pcf ? GL_LINEAR : GL_NEAREST);
+    GL.TextureParameteri(shadow_map_.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    GL.TextureParameteri(shadow_map_.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    shadow_map_.label("shadow map");
+    const bool vsm = settings.filter == ShadowFilter::vsm;
+    shadow_moments_ = create_texture_2d(GL_RG32F, vsm ? size : 1, vsm ? size : 1, GL_LINEAR);
+    shadow_moments_.label("shadow moments");
+    shadow_framebuffer_ = create_framebuffer();
+    GL.NamedFramebufferTexture(shadow_framebuffer_.id(), GL_DEPTH_ATTACHMENT, shadow_map_.id(), 0);
+    if (vsm) {
+        GL.NamedFramebufferTexture(shadow_framebuffer_.id(), GL_COLOR_ATTACHMENT0,
+                                   shadow_moments_.id(), 0);
+        GL.NamedFramebufferDrawBuffer(shadow_framebuffer_.id(), GL_COLOR_ATTACHMENT0);
+        shadow_scratch_ = create_texture_2d(GL_RG32F, size, size, GL_NEAREST);
+        const GLuint targets[2] = {shadow_scratch_.id(), shadow_moments_.id()};
+        for (int i = 0; i < 2; ++i) {
+            shadow_blur_framebuffer_[i] = create_framebuffer();
+            GL.NamedFramebufferTexture(shadow_blur_framebuffer_[i].id(), GL_COLOR_ATTACHMENT0,
+                                       targets[i], 0);
+            require_complete(shadow_blur_framebuffer_[i].id(), "shadow blur");
+        }
+    } else {
+        GL.NamedFramebufferDrawBuffer(shadow_framebuffer_.id(), GL_NONE);
+        shadow_scratch_ = Texture();
+    }
+    require_complete(shadow_framebuffer_.id(), "shadow");
+    uniforms_.shadow = shadow_uniform(settings);
+}
+
+void SceneRenderer::draw_objects(GLuint program, bool with_normals) {
     for (const Object& object : scene_.objects) {
-        const GLuint program = with_normals ? surface_program_.id() : shadow_program_.id();
         GL.ProgramUniformMatrix4fv(program, kModelLocation, 1, GL_FALSE,
                                    glm::value_ptr(object.transform));
         if (with_normals) {
@@ -207,6 +288,9 @@ void SceneRenderer::draw_objects(bool with_normals) {
 FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     const auto start = std::chrono::steady_clock::now();
     const int w = options_.width, h = options_.height;
+    if (const ShadowSettings wanted = method.shadow_settings(options_.shadow); wanted != shadow_) {
+        allocate_shadow(wanted);
+    }
     GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, uniform_buffer_.id());
     GL.NamedBufferSubData(uniform_buffer_.id(), 0, sizeof(uniforms_), &uniforms_);
     GL.Disable(GL_BLEND);
@@ -214,18 +298,40 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
 
     {
         PassTimer timer(timers_[0], "shadow map");
+        const int size = shadow_.map_size;
         GL.BindFramebuffer(GL_FRAMEBUFFER, shadow_framebuffer_.id());
-        GL.Viewport(0, 0, options_.shadow_map_size, options_.shadow_map_size);
+        GL.Viewport(0, 0, size, size);
         const float one = 1.0f;
         GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_DEPTH, 0, &one);
+        const bool vsm = shadow_.filter == ShadowFilter::vsm;
+        if (vsm) {
+            const float far_moments[4] = {1.0f, 1.0f, 0.0f, 0.0f};
+            GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_COLOR, 0, far_moments);
+        }
         GL.Enable(GL_DEPTH_TEST);
         GL.DepthFunc(GL_LESS);
         GL.DepthMask(GL_TRUE);
         GL.Enable(GL_POLYGON_OFFSET_FILL);
         GL.PolygonOffset(2.0f, 4.0f);  // slope-scaled bias against shadow acne
-        GL.UseProgram(shadow_program_.id());
-        draw_objects(false);
+        const GLuint program = vsm ? shadow_moments_program_.id() : shadow_program_.id();
+        GL.UseProgram(program);
+        draw_objects(program, false);
         GL.Disable(GL_POLYGON_OFFSET_FILL);
+        if (vsm && shadow_.radius > 0) {
+            // Separable Gaussian: moments -> scratch (x), scratch -> moments (y).
+            GL.Disable(GL_DEPTH_TEST);
+            GL.UseProgram(shadow_blur_program_.id());
+            GL.ProgramUniform1i(shadow_blur_program_.id(), 1, shadow_.radius);
+            GL.BindVertexArray(empty_vertex_array_.id());
+            const GLuint sources[2] = {shadow_moments_.id(), shadow_scratch_.id()};
+            for (int i = 0; i < 2; ++i) {
+                GL.BindFramebuffer(GL_FRAMEBUFFER, shadow_blur_framebuffer_[i].id());
+                GL.ProgramUniform2i(shadow_blur_program_.id(), 0, i == 0, i == 1);
+                GL.BindTextureUnit(0, sources[i]);
+                GL.DrawArrays(GL_TRIANGLES, 0, 3);
+            }
+            GL.Enable(GL_DEPTH_TEST);
+        }
     }
     {
         PassTimer timer(timers_[1], "surfaces");
@@ -236,17 +342,23 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_COLOR, 0, black);
         GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_DEPTH, 0, &far_depth);
         GL.UseProgram(surface_program_.id());
-        GL.BindTextureUnit(0, shadow_map_.id());
-        draw_objects(true);
+        GL.BindTextureUnit(SL_SHADOW_MAP_UNIT, shadow_map_.id());
+        GL.BindTextureUnit(SL_SHADOW_MOMENTS_UNIT, shadow_moments_.id());
+        draw_objects(surface_program_.id(), true);
     }
     {
-        PassTimer timer(timers_[2], "volume");
+        // Timed by the method's timeline sections (queries of one target cannot nest).
+        GL.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "volume");
+        timeline_->begin(method.name());
         GL.BindFramebuffer(GL_FRAMEBUFFER, volume_framebuffer_.id());
         const float zero[4] = {0, 0, 0, 0};
         GL.ClearNamedFramebufferfv(volume_framebuffer_.id(), GL_COLOR, 0, zero);
         GL.Disable(GL_DEPTH_TEST);
         GL.DepthMask(GL_FALSE);
-        method.render(VolumeInputs{scene_, uniforms_, surface_depth_.id(), shadow_map_.id(), w, h});
+        method.render(VolumeInputs{scene_, uniforms_, surface_depth_.id(), shadow_map_.id(), w, h,
+                                   *timeline_});
+        timeline_->end();
+        GL.PopDebugGroup();
     }
     {
         PassTimer timer(timers_[3], "composite");
@@ -263,12 +375,16 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     GL.DepthMask(GL_TRUE);
 
     FrameTimings timings;
-    double* pass_ms[] = {&timings.gpu.shadow_ms, &timings.gpu.surface_ms, &timings.gpu.volume_ms,
+    double* pass_ms[] = {&timings.gpu.shadow_ms, &timings.gpu.surface_ms, nullptr,
                          &timings.gpu.composite_ms};
-    for (int i = 0; i < 4; ++i) {  // waits for the frame to finish
+    for (int i : {0, 1, 3}) {  // waits for the frame to finish
         GLuint64 ns = 0;
         GL.GetQueryObjectui64v(timers_[i].id(), GL_QUERY_RESULT, &ns);
         *pass_ms[i] = double(ns) * 1e-6;
+    }
+    timings.gpu.volume_sections = timeline_->results();
+    for (const auto& [name, ms] : timings.gpu.volume_sections) {
+        timings.gpu.volume_ms += ms;
     }
     check_errors(("rendering with method " + method.name()).c_str());
     timings.cpu_ms =

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,14 +17,10 @@
 
 namespace sl::gl {
 
-enum class ShadowFilter { hard, pcf };
-
 struct RenderOptions {
     int width = 640;
     int height = 360;
-    int shadow_map_size = 2048;
-    ShadowFilter shadow_filter = ShadowFilter::pcf;
-    int pcf_radius = 1;  // (2r+1)² taps
+    ShadowSettings shadow{};  // methods that declare `shadow` parameters choose their own
 };
 
 // GPU time per pass (GL_TIME_ELAPSED), milliseconds.
@@ -32,6 +29,8 @@ struct PassTimings {
     double surface_ms = 0;
     double volume_ms = 0;
     double composite_ms = 0;
+    // The volume pass split by the method's timeline sections (they sum to volume_ms).
+    std::vector<std::pair<std::string, double>> volume_sections;
     double total_ms() const { return shadow_ms + surface_ms + volume_ms + composite_ms; }
 };
 
@@ -54,6 +53,7 @@ class SceneRenderer {
 public:
     // Uploads the scene's meshes and allocates the targets; needs a current GL 4.5 context.
     SceneRenderer(const Scene& scene, const RenderOptions& options);
+    ~SceneRenderer();
 
     // Draws one frame with `method`, waits for it, and returns its timings: what a measured
     // frame costs, with nothing read back.
@@ -64,6 +64,8 @@ public:
     Frame render(VolumeMethod& method);
 
     const RenderOptions& options() const { return options_; }
+    // The shadow map settings of the last frame drawn (the method's, or the options').
+    const ShadowSettings& shadow() const { return shadow_; }
     const shared::FrameUniforms& uniforms() const { return uniforms_; }
 
 private:
@@ -74,8 +76,10 @@ private:
         GLsizei index_count = 0;
     };
     class PassTimer;
+    class Timeline;
 
-    void draw_objects(bool with_normals);
+    void draw_objects(GLuint program, bool with_normals);
+    void allocate_shadow(const ShadowSettings& settings);
     Image read_rgb(GLuint texture) const;
 
     const Scene& scene_;
@@ -85,12 +89,18 @@ private:
     std::map<const Mesh*, GpuMesh> meshes_;
 
     Program shadow_program_;
+    Program shadow_moments_program_;
+    Program shadow_blur_program_;
     Program surface_program_;
     Program composite_program_;
     VertexArray empty_vertex_array_;
 
+    ShadowSettings shadow_;
     Texture shadow_map_;
+    Texture shadow_moments_;  // VSM: RG32F; a 1x1 placeholder otherwise
+    Texture shadow_scratch_;  // VSM blur
     Framebuffer shadow_framebuffer_;
+    Framebuffer shadow_blur_framebuffer_[2];
     Texture surface_color_;
     Texture surface_depth_;
     Framebuffer surface_framebuffer_;
@@ -100,9 +110,12 @@ private:
     Texture display_;
     Framebuffer composite_framebuffer_;
     Query timers_[4];
+    std::unique_ptr<Timeline> timeline_;
 };
 
 // The uniform block for `scene` seen at the given size (exposed for tests and CPU oracles).
 shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOptions& options);
+// Its `shadow` member for the given shadow map.
+glm::vec4 shadow_uniform(const ShadowSettings& settings);
 
 }  // namespace sl::gl

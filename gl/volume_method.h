@@ -5,7 +5,9 @@
 // are created by name from the registry in methods/.
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gl/functions.h"
@@ -15,26 +17,61 @@
 
 namespace sl::gl {
 
+// How the frame's shadow map is made and filtered (surfaces and mid-air lookups alike):
+//   hard  one depth comparison per lookup;
+//   pcf   (2r+1)² bilinear depth comparisons (Reeves et al. 1987);
+//   vsm   variance shadow map (Donnelly & Lauritzen 2006, Nilsson's choice): the first two moments
+//         of the light's linear depth, blurred (2r+1)² and bounded by Chebyshev's inequality.
+enum class ShadowFilter { hard, pcf, vsm };
+const char* to_string(ShadowFilter filter);
+ShadowFilter parse_shadow_filter(const std::string& text);  // throws sl::Error naming the choices
+
+struct ShadowSettings {
+    ShadowFilter filter = ShadowFilter::pcf;
+    int map_size = 2048;
+    int radius = 1;  // PCF taps or VSM blur: (2r+1)²
+    bool operator==(const ShadowSettings&) const = default;
+};
+
+// The volume pass's GPU time split into named sections (GL_TIME_ELAPSED queries may not nest):
+// starting a section ends the previous one. Time before the first section is the method's
+// "setup"; the renderer sums the sections into the volume pass.
+class PassTimeline {
+public:
+    virtual ~PassTimeline() = default;
+    virtual void section(const char* name) = 0;
+};
+
 struct VolumeInputs {
     const Scene& scene;
     const shared::FrameUniforms& uniforms;  // also bound as the uniform block at its binding
     GLuint surface_depth;                   // camera depth buffer (depth texture)
-    GLuint shadow_map;                      // light depth buffer (depth texture, compare mode)
+    GLuint shadow_map;  // light depth buffer (depth texture, compare mode), also bound at
+                        // SL_SHADOW_MAP_UNIT with the VSM moments at SL_SHADOW_MOMENTS_UNIT
     int width;
     int height;
+    PassTimeline& timeline;
 };
+
+// A named per-frame counter a method reports (slices, pieces, fragments, CPU time of a stage).
+using MethodStatistics = std::vector<std::pair<std::string, double>>;
 
 // A parameter a method declares (Mitsuba style: documented where it is read), settable from the
 // command line (`--set name=value`), configs and the viewer.
+// A `choice` holds the index of one of `choices` and is set by name.
 struct Parameter {
-    enum class Type { integer, real };
+    enum class Type { integer, real, choice };
     std::string name;
     Type type = Type::real;
     double value = 0.0;
     double default_value = 0.0;
     double min = 0.0;
     double max = 0.0;
-    std::string description;
+    std::string description{};
+    std::vector<std::string> choices{};
+
+    // The value as text: a number, or the chosen name.
+    std::string text() const;
 };
 
 class VolumeMethod {
@@ -51,9 +88,17 @@ public:
     // Adds I_s (linear RGB, alpha ignored) into the bound framebuffer, which is cleared to zero
     // and has no depth attachment; the viewport covers it.
     virtual void render(const VolumeInputs& inputs) = 0;
+    // Counters of the last frame rendered (empty by default); may wait for the GPU.
+    virtual MethodStatistics statistics() const { return {}; }
+    // The shadow map the method asks for: `frame` with the filter and size replaced when the
+    // method declared the `shadow` parameters.
+    ShadowSettings shadow_settings(ShadowSettings frame) const;
+    bool has_parameter(const std::string& name) const;
 
 protected:
     void declare(Parameter parameter);
+    // Declares `shadow` (hard, pcf, vsm) and `shadow_size`, read by shadow_settings().
+    void declare_shadow_parameters();
 
 private:
     std::vector<Parameter> parameters_;

@@ -170,7 +170,7 @@ TEST_F(Render, ParallelFloorMatchesCpuWithHardShadowsAndPhysicalMedium) {
     scene.medium.model = MediumModel::physical;
     scene.medium.sigma_a = glm::vec3(0.02f, 0.03f, 0.05f);
     gl::RenderOptions options{.width = 160, .height = 90};
-    options.shadow_filter = gl::ShadowFilter::hard;
+    options.shadow.filter = gl::ShadowFilter::hard;
     const FloorCheck check = check_floor(scene, options, 1, 0.08f);
     EXPECT_GE(check.lit.size(), 100u);
     EXPECT_GE(check.shadowed.size(), 20u);

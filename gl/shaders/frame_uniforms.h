@@ -17,6 +17,10 @@ using vec4 = glm::vec4;
 #endif
 
 #define SL_FRAME_UNIFORMS_BINDING 0
+// Texture units the renderer keeps bound through the surface and volume passes (methods use
+// others): the depth-compare shadow map and the VSM moments.
+#define SL_SHADOW_MAP_UNIT 4
+#define SL_SHADOW_MOMENTS_UNIT 5
 
 SL_UNIFORM_BLOCK(FrameUniforms, SL_FRAME_UNIFORMS_BINDING) {
     mat4 view_projection;  // camera: world -> clip
@@ -33,7 +37,7 @@ SL_UNIFORM_BLOCK(FrameUniforms, SL_FRAME_UNIFORMS_BINDING) {
                                  // z = 1 for an anisotropic phase function
     vec4 ambient;                // rgb incident radiance from every direction
     vec4 shadow;                 // x = 1 / map size, y = PCF radius in texels (0 = hard),
-                                 // z = normal offset in texels
+                                 // z = normal offset in texels, w = 1 for VSM
     vec4 display;                // x = exposure; yz = viewport size in pixels
 }
 SL_UNIFORM_BLOCK_END(frame)

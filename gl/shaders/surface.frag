@@ -3,32 +3,13 @@
 // (cone eq. 2.9, falloff eq. 2.8/2.13, shadow-map visibility) plus a constant ambient term.
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
+#include "gl/shaders/shadow.glsl"
 
-layout(binding = 0) uniform sampler2DShadow shadow_map;
 layout(location = 2) uniform vec3 albedo;
 
 in vec3 world_position;
 in vec3 world_normal;
 layout(location = 0) out vec4 surface_radiance;
-
-// Fraction of the (2r+1)² shadow-map taps around p that see the light (r = 0: one hard tap).
-float visibility(vec3 p) {
-    vec4 clip = frame.light_view_projection * vec4(p, 1.0);
-    vec3 ndc = clip.xyz / clip.w;
-    vec3 coord = 0.5 * ndc + 0.5;
-    if (clip.w <= 0.0 || any(lessThan(coord, vec3(0.0))) || any(greaterThan(coord, vec3(1.0)))) {
-        return 0.0;  // outside the influence pyramid
-    }
-    int radius = int(frame.shadow.y);
-    float texel = frame.shadow.x;
-    float lit = 0.0;
-    for (int y = -radius; y <= radius; ++y) {
-        for (int x = -radius; x <= radius; ++x) {
-            lit += texture(shadow_map, vec3(coord.xy + vec2(x, y) * texel, coord.z));
-        }
-    }
-    return lit / float((2 * radius + 1) * (2 * radius + 1));
-}
 
 void main() {
     vec3 n = normalize(world_normal);
@@ -48,7 +29,7 @@ void main() {
         float texel_world = 2.0 * r * tan(frame.light_cone.x) * frame.shadow.x;
         vec3 lookup = world_position + n * frame.shadow.z * texel_world;
         irradiance = frame.light_intensity.rgb * cone_factor(-to_light) * light_falloff(r) *
-                     cos_theta * visibility(lookup);
+                     cos_theta * light_visibility(lookup);
     }
     vec3 radiance = albedo / PI * irradiance + albedo * frame.ambient.rgb;
     surface_radiance = vec4(radiance * transmittance(length(to_eye)), 1.0);
