@@ -113,13 +113,4 @@ std::vector<std::string> volume_method_names();
 // Throws sl::Error naming the known methods when `name` is not one of them.
 std::unique_ptr<gl::VolumeMethod> create_volume_method(const std::string& name);
 
-// Sun et al. 2005's F(u, v) = ∫_0^v exp(-u tan ζ) dζ on u in [0, 32], v in [0, π/2], 1024², for
-// gl/shaders/in_scattering.glsl's `sun_table` at texture unit kSunTableUnit.
-constexpr GLuint kSunTableUnit = 7;
-gl::Texture create_sun_table();
-// P(θ) = ∫_{-π/2}^θ p(-sin t) dt for the medium's phase function, 1024 samples over
-// θ in [-π/2, π/2], for in_scattering.glsl's `phase_table` at texture unit kPhaseTableUnit.
-constexpr GLuint kPhaseTableUnit = 6;
-gl::Texture create_phase_table(const Medium& medium);
-
 }  // namespace sl::methods

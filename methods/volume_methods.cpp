@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <chrono>
 #include <functional>
 #include <map>
 
@@ -23,6 +24,7 @@
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
+#include "gl/analytic_pass.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
 #include "reference/reference.h"
@@ -33,50 +35,6 @@ using gl::GL;
 using gl::Parameter;
 using gl::VolumeInputs;
 using gl::VolumeMethod;
-
-gl::Texture create_sun_table() {
-    // 1024² keeps bilinear interpolation within 1e-4 of the closed form (tested); the data is
-    // computed once per process.
-    constexpr int kSize = 1024;
-    constexpr double kUMax = 32.0;  // SUN_TABLE_U_MAX in in_scattering.glsl
-    static const std::vector<float> table = [] {
-        std::vector<float> values(size_t(kSize) * kSize);
-        for (int iu = 0; iu < kSize; ++iu) {
-            const double u = kUMax * iu / (kSize - 1);
-            double previous_v = 0.0, sum = 0.0;
-            for (int iv = 0; iv < kSize; ++iv) {
-                const double v = 0.5 * std::numbers::pi * iv / (kSize - 1);
-                sum += analytic::integrate([&](double z) { return std::exp(-u * std::tan(z)); },
-                                           previous_v, std::min(v, 0.5 * std::numbers::pi - 1e-12));
-                previous_v = v;
-                values[size_t(iv) * kSize + iu] = float(sum);
-            }
-        }
-        return values;
-    }();
-    gl::Texture texture = gl::create_texture_2d(GL_R32F, kSize, kSize, GL_LINEAR);
-    GL.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    GL.TextureSubImage2D(texture.id(), 0, 0, 0, kSize, kSize, GL_RED, GL_FLOAT, table.data());
-    return texture;
-}
-
-gl::Texture create_phase_table(const Medium& medium) {
-    constexpr int kSize = 1024;  // PHASE_TABLE_SIZE in in_scattering.glsl
-    std::vector<float> table(kSize);
-    double sum = 0.0, previous = -0.5 * std::numbers::pi;
-    for (int i = 0; i < kSize; ++i) {
-        const double theta = std::numbers::pi * (double(i) / (kSize - 1) - 0.5);
-        sum += analytic::integrate(
-            [&](double t) { return analytic::phase(medium.phase, medium.g, -std::sin(t)); },
-            previous, theta);
-        previous = theta;
-        table[size_t(i)] = float(sum);
-    }
-    gl::Texture texture = gl::create_texture_2d(GL_R32F, kSize, 1, GL_LINEAR);
-    GL.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    GL.TextureSubImage2D(texture.id(), 0, 0, 0, kSize, 1, GL_RED, GL_FLOAT, table.data());
-    return texture;
-}
 
 namespace {
 
@@ -208,54 +166,25 @@ class BeamTreeMethod final : public VolumeMethod {
 public:
     std::string name() const override { return "beamtree"; }
     void prepare(const Scene& scene) override {
-        if (scene.medium.phase != PhaseFunction::isotropic || scene.light.falloff_degrees > 0.0f) {
-            fail(
-                "method 'beamtree' needs the isotropic phase function and a hard cone edge (its "
-                "closed forms); the scene has phase '{}' and falloff {}",
-                to_string(scene.medium.phase), scene.light.falloff_degrees);
-        }
+        gl::AnalyticRegionPass::require_closed_form(scene, name());
+        const auto start = std::chrono::steady_clock::now();
         bt::VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
                                    .automatic_inner = scene.bounds.automatic_inner});
         const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
         const bt::RegionMesh lit = bt::extract_regions(tree).mesh(bt::Region::lit);
-        index_count_ = GLsizei(lit.triangles.size() * 3);
-        vertices_ =
-            gl::create_buffer(lit.positions.data(), lit.positions.size() * sizeof(glm::vec3));
-        indices_ =
-            gl::create_buffer(lit.triangles.data(), lit.triangles.size() * sizeof(glm::uvec3));
-        vertex_array_ = gl::create_vertex_array();
-        GL.VertexArrayVertexBuffer(vertex_array_.id(), 0, vertices_.id(), 0, sizeof(glm::vec3));
-        GL.VertexArrayElementBuffer(vertex_array_.id(), indices_.id());
-        GL.EnableVertexArrayAttrib(vertex_array_.id(), 0);
-        GL.VertexArrayAttribFormat(vertex_array_.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
-        GL.VertexArrayAttribBinding(vertex_array_.id(), 0, 0);
-        if (!program_) {
-            program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/beamtree.vert"},
-                                           {GL_FRAGMENT_SHADER, "gl/shaders/beamtree.frag"}});
-            sun_table_ = methods::create_sun_table();
-        }
+        build_ms_ =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        pass_.upload(scene, lit.positions, lit.triangles);
     }
-    void render(const VolumeInputs& inputs) override {
-        GL.UseProgram(program_.id());
-        GL.BindTextureUnit(0, inputs.surface_depth);
-        GL.BindTextureUnit(kSunTableUnit, sun_table_.id());
-        GL.BindTextureUnit(kPhaseTableUnit, phase_table_.id());
-        GL.Enable(GL_BLEND);
-        GL.BlendFunc(GL_ONE, GL_ONE);  // signed sums in the float target
-        GL.Enable(GL_DEPTH_CLAMP);     // faces in front of the near plane still count
-        GL.BindVertexArray(vertex_array_.id());
-        GL.DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-        GL.Disable(GL_DEPTH_CLAMP);
-        GL.Disable(GL_BLEND);
+    void render(const VolumeInputs& inputs) override { pass_.draw(inputs); }
+    gl::MethodStatistics statistics() const override {
+        return {{"cpu_ms_beamtree", build_ms_}, {"region_faces", double(pass_.triangle_count())}};
     }
 
 private:
-    gl::Buffer vertices_, indices_;
-    gl::VertexArray vertex_array_;
-    gl::Program program_;
-    gl::Texture sun_table_;
-    gl::Texture phase_table_;
-    GLsizei index_count_ = 0;
+    gl::AnalyticRegionPass pass_;
+    double build_ms_ = 0.0;
 };
 
 using Factory = std::function<std::unique_ptr<VolumeMethod>()>;

@@ -9,6 +9,7 @@
 
 #include "analytic/in_scattering.h"
 #include "core/metrics.h"
+#include "gl/analytic_pass.h"
 #include "gl/debug.h"
 #include "gl/renderer.h"
 #include "gl/shaders.h"
@@ -80,16 +81,16 @@ TEST_F(GpuMethod, GlslAntiderivativeMatchesCpp) {
         const gl::shared::FrameUniforms uniforms = gl::make_frame_uniforms(scene, options);
         const gl::Buffer ubo = gl::create_buffer(&uniforms, sizeof(uniforms));
         gl::GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, ubo.id());
-        const gl::Texture sun_table = methods::create_sun_table();
-        const gl::Texture phase_table = methods::create_phase_table(scene.medium);
-        gl::GL.BindTextureUnit(methods::kPhaseTableUnit, phase_table.id());
+        const gl::Texture sun_table = gl::create_sun_table();
+        const gl::Texture phase_table = gl::create_phase_table(scene.medium);
+        gl::GL.BindTextureUnit(gl::kPhaseTableUnit, phase_table.id());
         const gl::Texture target = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
         const gl::Framebuffer framebuffer = gl::create_framebuffer();
         gl::GL.NamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
         const gl::Program program =
             gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                 {GL_FRAGMENT_SHADER, "gl/shaders/test_in_scattering.frag"}});
-        gl::GL.BindTextureUnit(methods::kSunTableUnit, sun_table.id());
+        gl::GL.BindTextureUnit(gl::kSunTableUnit, sun_table.id());
         gl::GL.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
         gl::GL.Viewport(0, 0, width, height);
         gl::GL.UseProgram(program.id());

@@ -1,0 +1,48 @@
+#pragma once
+// Volume-based integration over closed region meshes (Nilsson §3.2.2): every face of the lit
+// regions drawn once, back faces adding G(z) and front faces subtracting it, with signed
+// additive blending into the float target. Used by `beamtree`, `hybrid2` and `hybrid3`; the
+// lookup tables of gl/shaders/in_scattering.glsl come from here too.
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "gl/objects.h"
+#include "gl/volume_method.h"
+#include "scenes/scene.h"
+
+namespace sl::gl {
+
+// Sun et al. 2005's F(u, v) = ∫_0^v exp(-u tan ζ) dζ on u in [0, 32], v in [0, π/2], 1024², for
+// gl/shaders/in_scattering.glsl's `sun_table` at texture unit kSunTableUnit.
+constexpr GLuint kSunTableUnit = 7;
+Texture create_sun_table();
+// P(θ) = ∫_{-π/2}^θ p(-sin t) dt for the medium's phase function, 1024 samples over
+// θ in [-π/2, π/2], for in_scattering.glsl's `phase_table` at texture unit kPhaseTableUnit.
+constexpr GLuint kPhaseTableUnit = 6;
+Texture create_phase_table(const Medium& medium);
+
+class AnalyticRegionPass {
+public:
+    // Throws sl::Error when the closed forms do not cover the scene's light model (an
+    // anisotropic phase function in the physical model, or a smooth cone edge).
+    static void require_closed_form(const Scene& scene, const std::string& method);
+
+    // Uploads the region faces (closed, outward-wound) and the scene's tables.
+    void upload(const Scene& scene, const std::vector<glm::vec3>& positions,
+                const std::vector<glm::uvec3>& triangles);
+    // Adds ∫ e over the regions' part of every eye ray, up to the first surface.
+    void draw(const VolumeInputs& inputs) const;
+    size_t triangle_count() const { return size_t(index_count_) / 3; }
+
+private:
+    Buffer vertices_, indices_;
+    VertexArray vertex_array_;
+    Program program_;
+    Texture sun_table_;
+    Texture phase_table_;
+    GLsizei index_count_ = 0;
+};
+
+}  // namespace sl::gl
