@@ -16,6 +16,7 @@ Command add_scenes_command(CLI::App& app);
 Command add_gl_info_command(CLI::App& app);
 Command add_regions_command(CLI::App& app);
 Command add_methods_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
 
 using Clock = std::chrono::steady_clock;
 

@@ -38,20 +38,25 @@ double distance_to_box(const dvec3& p, const ConvexVolume& volume) {
 
 }  // namespace
 
-BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& volumes)
-    : apex_(light.position), epsilon_(kRelativeEpsilon * double(light.far)) {
-    // The influence pyramid circumscribing the cone (outward planes; the same square frustum as
-    // the shadow map's projection).
+std::vector<Plane> influence_planes(const SpotLight& light) {
+    const dvec3 apex(light.position);
     const dvec3 d = glm::normalize(dvec3(light.direction()));
     const dvec3 u = glm::normalize(dvec3(light.up()) - glm::dot(dvec3(light.up()), d) * d);
     const dvec3 r = glm::cross(d, u);
     const double t = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
+    std::vector<Plane> planes;
     for (const dvec3& side : {r, -r, u, -u}) {
         const dvec3 n = glm::normalize(side - t * d);
-        influence_.push_back({n, -glm::dot(n, apex_)});
+        planes.push_back({n, -glm::dot(n, apex)});
     }
-    influence_.push_back({-d, glm::dot(d, apex_) + double(light.near)});
-    influence_.push_back({d, -glm::dot(d, apex_) - double(light.far)});
+    planes.push_back({-d, glm::dot(d, apex) + double(light.near)});
+    planes.push_back({d, -glm::dot(d, apex) - double(light.far)});
+    return planes;
+}
+
+BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& volumes)
+    : apex_(light.position), epsilon_(kRelativeEpsilon * double(light.far)) {
+    influence_ = bt::influence_planes(light);
 
     // Root: a chain through the four side planes, the inside an open leaf.
     for (int i = 0; i < 4; ++i) {

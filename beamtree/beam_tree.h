@@ -28,6 +28,10 @@
 namespace sl::bt {
 
 enum class Region : uint8_t { lit = 0, uncertain = 1, unlit = 2 };
+
+// The influence pyramid circumscribing the light's cone (the shadow map's square frustum) as
+// outward planes: four sides (right, left, up, down), the near range, the far range.
+std::vector<Plane> influence_planes(const SpotLight& light);
 const char* to_string(Region region);
 
 struct BeamTreeStats {

@@ -35,6 +35,7 @@ namespace sl::gl {
     X(PFNGLISBUFFERPROC, IsBuffer)                                       \
     X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                   \
     X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                   \
+    X(PFNGLNAMEDBUFFERDATAPROC, NamedBufferData)                         \
     X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                           \
     X(PFNGLCREATETEXTURESPROC, CreateTextures)                           \
     X(PFNGLDELETETEXTURESPROC, DeleteTextures)                           \
@@ -83,6 +84,7 @@ namespace sl::gl {
     X(PFNGLGETUNIFORMINDICESPROC, GetUniformIndices)                     \
     X(PFNGLGETACTIVEUNIFORMSIVPROC, GetActiveUniformsiv)                 \
     X(PFNGLCREATEQUERIESPROC, CreateQueries)                             \
+    X(PFNGLGENQUERIESPROC, GenQueries)                                   \
     X(PFNGLDELETEQUERIESPROC, DeleteQueries)                             \
     X(PFNGLBEGINQUERYPROC, BeginQuery)                                   \
     X(PFNGLENDQUERYPROC, EndQuery)                                       \

@@ -9,6 +9,12 @@ Buffer create_buffer(const void* data, size_t bytes, GLbitfield flags) {
     return Buffer(id);
 }
 
+Buffer create_mutable_buffer() {
+    GLuint id = 0;
+    GL.CreateBuffers(1, &id);
+    return Buffer(id);
+}
+
 Texture create_texture_2d(GLenum internal_format, int width, int height, GLenum filter) {
     GLuint id = 0;
     GL.CreateTextures(GL_TEXTURE_2D, 1, &id);
@@ -34,7 +40,13 @@ VertexArray create_vertex_array() {
 
 Query create_query(GLenum target) {
     GLuint id = 0;
-    GL.CreateQueries(target, 1, &id);
+    if (target == GL_FRAGMENT_SHADER_INVOCATIONS) {
+        // Mesa's glCreateQueries rejects the pipeline-statistics targets its glBeginQuery
+        // accepts (ARB_pipeline_statistics_query): name it now, create it at the first begin.
+        GL.GenQueries(1, &id);
+    } else {
+        GL.CreateQueries(target, 1, &id);
+    }
     return Query(id);
 }
 

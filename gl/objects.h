@@ -83,6 +83,8 @@ using Query = GlObject<QueryKind>;
 
 // An immutable-storage buffer holding `bytes` (flags: e.g. GL_DYNAMIC_STORAGE_BIT for updates).
 Buffer create_buffer(const void* data, size_t bytes, GLbitfield flags = 0);
+// A buffer with no storage yet, for data re-specified with NamedBufferData (streamed per frame).
+Buffer create_mutable_buffer();
 // An immutable 2D texture of one level, clamped, filtered with `filter`.
 Texture create_texture_2d(GLenum internal_format, int width, int height, GLenum filter);
 Framebuffer create_framebuffer();

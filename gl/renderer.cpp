@@ -43,16 +43,17 @@ shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOption
     u.inverse_view_projection = glm::inverse(view_projection);
     u.light_view_projection = light.projection() * light.view();
     u.camera_position = glm::vec4(scene.camera.position, 1.0f);
+    u.camera_forward = glm::vec4(glm::normalize(scene.camera.target - scene.camera.position), 0.0f);
     u.light_position = glm::vec4(light.position, light.near);
     u.light_direction = glm::vec4(light.direction(), light.far);
     u.light_intensity = glm::vec4(light.intensity, 0.0f);
     u.light_cone = glm::vec4(glm::radians(light.cone_half_angle_degrees),
                              glm::radians(light.falloff_degrees), 0.0f, 0.0f);
-    u.medium_sigma_s = glm::vec4(medium.sigma_s, 0.0f);
+    u.medium_sigma_s = glm::vec4(medium.sigma_s, float(int(medium.phase)));
     u.medium_sigma_t =
         glm::vec4(medium.sigma_t(), medium.model == MediumModel::physical ? 1.0f : 0.0f);
-    u.medium_attenuation = glm::vec4(medium.a0, medium.a1,
-                                     medium.phase == PhaseFunction::isotropic ? 0.0f : 1.0f, 0.0f);
+    u.medium_attenuation = glm::vec4(
+        medium.a0, medium.a1, medium.phase == PhaseFunction::isotropic ? 0.0f : 1.0f, medium.g);
     u.ambient = glm::vec4(scene.ambient, 0.0f);
     u.shadow = shadow_uniform(options.shadow);
     u.display = glm::vec4(scene.camera.exposure, float(options.width), float(options.height), 0.0f);

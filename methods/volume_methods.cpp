@@ -28,6 +28,7 @@
 #include "gl/objects.h"
 #include "gl/shaders.h"
 #include "reference/reference.h"
+#include "sampling/planes.h"
 
 namespace sl::methods {
 
@@ -193,6 +194,11 @@ const std::vector<std::pair<std::string, Factory>>& registry() {
     static const std::vector<std::pair<std::string, Factory>> methods = {
         {"none", [] { return std::make_unique<NoVolume>(); }},
         {"beamtree", [] { return std::make_unique<BeamTreeMethod>(); }},
+        {"planes", [] { return sampling::create_planes_method(sampling::PlanesVariant::planes); }},
+        {"hybrid1",
+         [] { return sampling::create_planes_method(sampling::PlanesVariant::hybrid1); }},
+        {"hybrid2",
+         [] { return sampling::create_planes_method(sampling::PlanesVariant::hybrid2); }},
         {"reference", [] { return std::make_unique<ReferenceMethod>(); }},
     };
     return methods;

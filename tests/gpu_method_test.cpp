@@ -22,40 +22,6 @@ namespace {
 
 using GpuMethod = GlTest;
 
-// Floor and rotated boxes under a spot light: every object is its own outer volume.
-Scene boxes_scene(MediumModel model) {
-    Scene scene;
-    scene.name = "boxes";
-    scene.camera.position = glm::vec3(0.5f, 3.0f, 9.0f);
-    scene.camera.target = glm::vec3(0.0f, 1.0f, 0.0f);
-    scene.light.position = glm::vec3(0.8f, 6.0f, -0.5f);
-    scene.light.target = glm::vec3(0.0f);
-    scene.light.cone_half_angle_degrees = 32.0f;
-    scene.light.near = 0.3f;
-    scene.light.far = 8.0f;
-    scene.light.intensity = glm::vec3(60.0f, 50.0f, 40.0f);
-    scene.medium.sigma_s = glm::vec3(0.08f, 0.1f, 0.12f);
-    scene.medium.sigma_a = glm::vec3(0.02f);
-    scene.medium.model = model;
-    scene.materials.push_back(Material{.name = "default"});
-    auto add = [&](std::shared_ptr<const Mesh> mesh, glm::mat4 transform) {
-        Object object;
-        object.name = "object" + std::to_string(scene.objects.size());
-        object.mesh = std::move(mesh);
-        object.transform = transform;
-        scene.objects.push_back(std::move(object));
-    };
-    add(std::make_shared<const Mesh>(make_plane({16.0f, 16.0f})), glm::mat4(1.0f));
-    const auto box = std::make_shared<const Mesh>(make_box(glm::vec3(1.0f)));
-    add(box, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-1.2f, 0.6f, 0.4f)), 0.5f,
-                         glm::vec3(0, 1, 0)));
-    add(box, glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 1.5f, -0.8f)),
-                        glm::vec3(0.6f, 3.0f, 0.6f)));
-    add(box, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 2.5f, 1.2f)), 0.8f,
-                         glm::vec3(1, 0, 1)));
-    return scene;
-}
-
 gl::Frame render(const Scene& scene, const std::string& method_name, int width, int height) {
     gl::SceneRenderer renderer(scene, {.width = width, .height = height});
     const auto method = methods::create_volume_method(method_name);
@@ -79,28 +45,12 @@ TEST_F(GpuMethod, GlslAntiderivativeMatchesCpp) {
         const int width = 96, height = 54;
         const gl::RenderOptions options{.width = width, .height = height};
         const gl::shared::FrameUniforms uniforms = gl::make_frame_uniforms(scene, options);
-        const gl::Buffer ubo = gl::create_buffer(&uniforms, sizeof(uniforms));
-        gl::GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, ubo.id());
         const gl::Texture sun_table = gl::create_sun_table();
         const gl::Texture phase_table = gl::create_phase_table(scene.medium);
         gl::GL.BindTextureUnit(gl::kPhaseTableUnit, phase_table.id());
-        const gl::Texture target = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
-        const gl::Framebuffer framebuffer = gl::create_framebuffer();
-        gl::GL.NamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
-        const gl::Program program =
-            gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                                {GL_FRAGMENT_SHADER, "gl/shaders/test_in_scattering.frag"}});
         gl::GL.BindTextureUnit(gl::kSunTableUnit, sun_table.id());
-        gl::GL.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
-        gl::GL.Viewport(0, 0, width, height);
-        gl::GL.UseProgram(program.id());
-        const gl::VertexArray empty = gl::create_vertex_array();
-        gl::GL.BindVertexArray(empty.id());
-        gl::GL.DrawArrays(GL_TRIANGLES, 0, 3);
-        std::vector<float> rgba(size_t(width) * height * 4);
-        gl::GL.GetTextureImage(target.id(), 0, GL_RGBA, GL_FLOAT,
-                               GLsizei(rgba.size() * sizeof(float)), rgba.data());
-        gl::check_errors("test pattern");
+        const std::vector<float> rgba =
+            render_test_pattern(uniforms, "gl/shaders/test_in_scattering.frag", width, height);
 
         // The very matrix the shader reads (float), not PixelUnprojector's double inverse: the
         // comparison must be on identical rays, or pixels at the cone's edge differ.

@@ -4,8 +4,13 @@
 #include <random>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "gl/debug.h"
+#include "gl/functions.h"
+#include "gl/objects.h"
+#include "gl/shaders.h"
+#include "scenes/mesh.h"
 #include "scenes/scene_file.h"
 
 namespace sl::test {
@@ -132,6 +137,62 @@ bool CpuRayCaster::blocked(glm::vec3 from, glm::vec3 to) const {
 
 Scene load_canonical(const std::string& name) {
     return load_scene(name, SceneSearchPaths::defaults());
+}
+
+// Floor and rotated boxes under a spot light: every object is its own outer volume.
+Scene boxes_scene(MediumModel model) {
+    Scene scene;
+    scene.name = "boxes";
+    scene.camera.position = glm::vec3(0.5f, 3.0f, 9.0f);
+    scene.camera.target = glm::vec3(0.0f, 1.0f, 0.0f);
+    scene.light.position = glm::vec3(0.8f, 6.0f, -0.5f);
+    scene.light.target = glm::vec3(0.0f);
+    scene.light.cone_half_angle_degrees = 32.0f;
+    scene.light.near = 0.3f;
+    scene.light.far = 8.0f;
+    scene.light.intensity = glm::vec3(60.0f, 50.0f, 40.0f);
+    scene.medium.sigma_s = glm::vec3(0.08f, 0.1f, 0.12f);
+    scene.medium.sigma_a = glm::vec3(0.02f);
+    scene.medium.model = model;
+    scene.materials.push_back(Material{.name = "default"});
+    auto add = [&](std::shared_ptr<const Mesh> mesh, glm::mat4 transform) {
+        Object object;
+        object.name = "object" + std::to_string(scene.objects.size());
+        object.mesh = std::move(mesh);
+        object.transform = transform;
+        scene.objects.push_back(std::move(object));
+    };
+    add(std::make_shared<const Mesh>(make_plane({16.0f, 16.0f})), glm::mat4(1.0f));
+    const auto box = std::make_shared<const Mesh>(make_box(glm::vec3(1.0f)));
+    add(box, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-1.2f, 0.6f, 0.4f)), 0.5f,
+                         glm::vec3(0, 1, 0)));
+    add(box, glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 1.5f, -0.8f)),
+                        glm::vec3(0.6f, 3.0f, 0.6f)));
+    add(box, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 2.5f, 1.2f)), 0.8f,
+                         glm::vec3(1, 0, 1)));
+    return scene;
+}
+
+std::vector<float> render_test_pattern(const gl::shared::FrameUniforms& uniforms,
+                                       const char* fragment_shader, int width, int height) {
+    const gl::Buffer ubo = gl::create_buffer(&uniforms, sizeof(uniforms));
+    gl::GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, ubo.id());
+    const gl::Texture target = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
+    const gl::Framebuffer framebuffer = gl::create_framebuffer();
+    gl::GL.NamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
+    const gl::Program program = gl::create_program(
+        {{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment_shader}});
+    gl::GL.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+    gl::GL.Viewport(0, 0, width, height);
+    gl::GL.UseProgram(program.id());
+    const gl::VertexArray empty = gl::create_vertex_array();
+    gl::GL.BindVertexArray(empty.id());
+    gl::GL.DrawArrays(GL_TRIANGLES, 0, 3);
+    std::vector<float> rgba(size_t(width) * height * 4);
+    gl::GL.GetTextureImage(target.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)),
+                           rgba.data());
+    gl::check_errors(fragment_shader);
+    return rgba;
 }
 
 }  // namespace sl::test

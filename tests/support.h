@@ -7,10 +7,12 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "gl/platform.h"
+#include "gl/shaders/frame_uniforms.h"
 #include "scenes/scene.h"
 
 namespace sl::test {
@@ -58,6 +60,15 @@ private:
     };
     std::vector<WorldObject> objects_;
 };
+
+// Draws a full-screen test pattern with `fragment_shader` (an embedded path) and the given frame
+// uniforms into an RGBA32F target; returns its pixels, rows bottom to top. Textures the shader
+// reads are the caller's to bind.
+std::vector<float> render_test_pattern(const gl::shared::FrameUniforms& uniforms,
+                                       const char* fragment_shader, int width, int height);
+
+// Floor and rotated boxes under a spot light: every object is its own outer volume.
+Scene boxes_scene(MediumModel model);
 
 // The canonical scenes from the source tree.
 Scene load_canonical(const std::string& name);

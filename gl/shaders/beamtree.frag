@@ -5,6 +5,7 @@
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/in_scattering.glsl"
+#include "gl/shaders/view.glsl"
 
 layout(binding = 0) uniform sampler2D surface_depth;
 in vec3 world_position;
@@ -17,11 +18,8 @@ void main() {
     vec3 direction = to_face / z;
     // Faces behind the first surface do not count. Lit regions end exactly on surfaces, so
     // compare distances along the ray with a relative tolerance rather than depths.
-    float depth = texelFetch(surface_depth, ivec2(gl_FragCoord.xy), 0).r;
-    vec2 ndc = 2.0 * gl_FragCoord.xy / frame.display.yz - 1.0;
-    vec4 surface = frame.inverse_view_projection * vec4(ndc, 2.0 * depth - 1.0, 1.0);
-    float surface_distance = length(surface.xyz / surface.w - origin);
-    if (depth < 1.0 && z > surface_distance * (1.0 + 1e-4) + 1e-4) discard;
+    float surface = surface_distance(surface_depth, gl_FragCoord.xy);
+    if (z > surface * (1.0 + 1e-4) + 1e-4) discard;
     // The ray's cone interval, up to the surface it hits (any z beyond it is clamped anyway).
     vec2 span = light_interval(origin, direction, 1e30);
     vec3 g = in_scattering_antiderivative(origin, direction, span, z);

@@ -27,14 +27,15 @@ SL_UNIFORM_BLOCK(FrameUniforms, SL_FRAME_UNIFORMS_BINDING) {
     mat4 inverse_view_projection;
     mat4 light_view_projection;  // shadow map: world -> light clip
     vec4 camera_position;        // xyz
+    vec4 camera_forward;         // xyz unit viewing axis: eye depth = dot(p - camera, forward)
     vec4 light_position;         // xyz; w = near range
     vec4 light_direction;        // xyz unit axis; w = far range (the backplate)
     vec4 light_intensity;        // rgb
     vec4 light_cone;             // x = cone half-angle (rad), y = falloff width (rad, 0 = hard)
-    vec4 medium_sigma_s;         // rgb
+    vec4 medium_sigma_s;         // rgb; w = phase function (PhaseFunction's order)
     vec4 medium_sigma_t;         // rgb; w = model (0 simplified, 1 physical)
     vec4 medium_attenuation;     // x = a0, y = a1 (simplified model, Nilsson eq. 2.13);
-                                 // z = 1 for an anisotropic phase function
+                                 // z = 1 for an anisotropic phase function, w = g
     vec4 ambient;                // rgb incident radiance from every direction
     vec4 shadow;                 // x = 1 / map size, y = PCF radius in texels (0 = hard),
                                  // z = normal offset in texels, w = 1 for VSM

@@ -1,0 +1,223 @@
+#include "sampling/planes.h"
+
+#include <array>
+#include <chrono>
+#include <cstddef>
+
+#include <glm/vec3.hpp>
+
+#include "beamtree/beam_tree.h"
+#include "beamtree/regions.h"
+#include "core/error.h"
+#include "gl/analytic_pass.h"
+#include "gl/functions.h"
+#include "gl/objects.h"
+#include "gl/shaders.h"
+#include "sampling/slices.h"
+
+namespace sl::sampling {
+
+namespace {
+
+using gl::GL;
+using gl::Parameter;
+
+// Uniform locations of sampling/shaders/planes.frag.
+constexpr GLint kDzLocation = 0;
+constexpr GLint kKnownLitLocation = 1;
+constexpr GLint kJitterLocation = 2;
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+struct PlaneVertex {
+    glm::vec3 position;
+    float depth;
+};
+
+// Appends a convex polygon as a triangle fan.
+void append_fan(const bt::Polygon& polygon, double depth, std::vector<PlaneVertex>& out) {
+    for (size_t i = 1; i + 1 < polygon.size(); ++i) {
+        for (size_t j : {size_t(0), i, i + 1}) {
+            out.push_back({glm::vec3(polygon.vertices[j]), float(depth)});
+        }
+    }
+}
+
+class PlanesMethod final : public gl::VolumeMethod {
+public:
+    explicit PlanesMethod(PlanesVariant variant) : variant_(variant) {
+        declare({.name = "dz",
+                 .default_value = 0.1,
+                 .min = 1e-3,
+                 .max = 100.0,
+                 .description = "metres of eye depth between sampling planes"});
+        declare({.name = "jitter",
+                 .type = Parameter::Type::integer,
+                 .default_value = 0,
+                 .min = 0,
+                 .max = 1,
+                 .description = "1: offset each pixel's sample within its slab (noise for bands)"});
+        declare_shadow_parameters();
+    }
+
+    std::string name() const override {
+        switch (variant_) {
+            case PlanesVariant::planes:
+                return "planes";
+            case PlanesVariant::hybrid1:
+                return "hybrid1";
+            case PlanesVariant::hybrid2:
+                return "hybrid2";
+        }
+        return "?";
+    }
+
+    void prepare(const Scene& scene) override {
+        if (variant_ == PlanesVariant::hybrid2) {
+            gl::AnalyticRegionPass::require_closed_form(scene, name());
+        }
+        tree_.reset();
+        if (variant_ != PlanesVariant::planes) {
+            const auto start = std::chrono::steady_clock::now();
+            bt::VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
+                                       .automatic_inner = scene.bounds.automatic_inner});
+            tree_ = std::make_unique<bt::BeamTree>(scene.light, library.build(scene, nullptr));
+            if (variant_ == PlanesVariant::hybrid2) {
+                const bt::RegionMesh lit = bt::extract_regions(*tree_).mesh(bt::Region::lit);
+                analytic_.upload(scene, lit.positions, lit.triangles);
+            }
+            beamtree_ms_ = ms_since(start);
+        }
+        if (!program_) {
+            program_ = gl::create_program({{GL_VERTEX_SHADER, "sampling/shaders/planes.vert"},
+                                           {GL_FRAGMENT_SHADER, "sampling/shaders/planes.frag"}});
+            vertex_buffer_ = gl::create_mutable_buffer();
+            vertex_array_ = gl::create_vertex_array();
+            const GLuint vao = vertex_array_.id();
+            GL.VertexArrayVertexBuffer(vao, 0, vertex_buffer_.id(), 0, sizeof(PlaneVertex));
+            GL.EnableVertexArrayAttrib(vao, 0);
+            GL.VertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+            GL.VertexArrayAttribBinding(vao, 0, 0);
+            GL.EnableVertexArrayAttrib(vao, 1);
+            GL.VertexArrayAttribFormat(vao, 1, 1, GL_FLOAT, GL_FALSE, offsetof(PlaneVertex, depth));
+            GL.VertexArrayAttribBinding(vao, 1, 0);
+            vertex_array_.label("sampling planes");
+            fragments_ = gl::create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
+        }
+    }
+
+    void render(const gl::VolumeInputs& inputs) override {
+        const double dz = parameter("dz");
+        // CPU: the planes clipped to the influence pyramid, then (hybrids) partitioned by the
+        // beam tree (Nilsson appendix B `partition`, §5.2.1).
+        auto start = std::chrono::steady_clock::now();
+        const std::vector<Slice> slices =
+            influence_slices(inputs.scene.camera, inputs.scene.light, dz);
+        slicing_ms_ = ms_since(start);
+        start = std::chrono::steady_clock::now();
+        std::vector<PlaneVertex> vertices;
+        pieces_ = {};
+        if (!tree_) {
+            for (const Slice& slice : slices)
+                append_fan(slice.polygon, slice.depth, vertices);
+            pieces_[size_t(bt::Region::uncertain)] = slices.size();
+        } else {
+            std::vector<PlaneVertex> lit;
+            const double tolerance = 1e-7 * double(inputs.scene.light.far);
+            for (const Slice& slice : slices) {
+                bt::BeamTree::Partition parts = tree_->partition(slice.polygon);
+                std::vector<bt::Polygon*> drawn;
+                for (auto* kind : {&parts.lit, &parts.uncertain, &parts.unlit})
+                    for (bt::Polygon& piece : *kind)
+                        drawn.push_back(&piece);
+                remove_t_junctions(drawn, tolerance);
+                for (const bt::Polygon& piece : parts.uncertain)
+                    append_fan(piece, slice.depth, vertices);
+                if (variant_ == PlanesVariant::hybrid1) {
+                    for (const bt::Polygon& piece : parts.lit)
+                        append_fan(piece, slice.depth, lit);
+                }
+                pieces_[size_t(bt::Region::lit)] += parts.lit.size();
+                pieces_[size_t(bt::Region::uncertain)] += parts.uncertain.size();
+                pieces_[size_t(bt::Region::unlit)] += parts.unlit.size();
+            }
+            shadowed_count_ = GLsizei(vertices.size());
+            vertices.insert(vertices.end(), lit.begin(), lit.end());
+        }
+        if (!tree_)
+            shadowed_count_ = GLsizei(vertices.size());
+        partition_ms_ = tree_ ? ms_since(start) : 0.0;
+        slice_count_ = slices.size();
+        GL.NamedBufferData(vertex_buffer_.id(), GLsizeiptr(vertices.size() * sizeof(PlaneVertex)),
+                           vertices.data(), GL_STREAM_DRAW);
+
+        if (variant_ == PlanesVariant::hybrid2) {
+            inputs.timeline.section("analytic");
+            analytic_.draw(inputs);
+        }
+        inputs.timeline.section("planes");
+        GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
+        GL.UseProgram(program_.id());
+        GL.ProgramUniform1f(program_.id(), kDzLocation, float(dz));
+        GL.ProgramUniform1i(program_.id(), kJitterLocation, int(parameter("jitter")));
+        GL.BindTextureUnit(0, inputs.surface_depth);
+        GL.Enable(GL_BLEND);
+        GL.BlendFunc(GL_ONE, GL_ONE);
+        GL.Enable(GL_DEPTH_CLAMP);  // planes beyond the camera's far plane still count
+        GL.BindVertexArray(vertex_array_.id());
+        GL.ProgramUniform1i(program_.id(), kKnownLitLocation, 0);
+        GL.DrawArrays(GL_TRIANGLES, 0, shadowed_count_);
+        const GLsizei lit_count = GLsizei(vertices.size()) - shadowed_count_;
+        if (lit_count > 0) {
+            GL.ProgramUniform1i(program_.id(), kKnownLitLocation, 1);
+            GL.DrawArrays(GL_TRIANGLES, shadowed_count_, lit_count);
+        }
+        GL.Disable(GL_DEPTH_CLAMP);
+        GL.Disable(GL_BLEND);
+        GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
+    }
+
+    gl::MethodStatistics statistics() const override {
+        GLuint64 fragments = 0;
+        GL.GetQueryObjectui64v(fragments_.id(), GL_QUERY_RESULT, &fragments);
+        gl::MethodStatistics stats = {{"cpu_ms_slicing", slicing_ms_},
+                                      {"slices", double(slice_count_)},
+                                      {"fragments", double(fragments)}};
+        if (tree_) {
+            stats.insert(stats.end(),
+                         {{"cpu_ms_beamtree", beamtree_ms_},
+                          {"cpu_ms_partition", partition_ms_},
+                          {"pieces_lit", double(pieces_[size_t(bt::Region::lit)])},
+                          {"pieces_uncertain", double(pieces_[size_t(bt::Region::uncertain)])},
+                          {"pieces_unlit", double(pieces_[size_t(bt::Region::unlit)])}});
+        }
+        if (variant_ == PlanesVariant::hybrid2) {
+            stats.emplace_back("region_faces", double(analytic_.triangle_count()));
+        }
+        return stats;
+    }
+
+private:
+    PlanesVariant variant_;
+    std::unique_ptr<bt::BeamTree> tree_;
+    gl::AnalyticRegionPass analytic_;
+    gl::Program program_;
+    gl::Buffer vertex_buffer_;
+    gl::VertexArray vertex_array_;
+    gl::Query fragments_;
+    GLsizei shadowed_count_ = 0;
+    size_t slice_count_ = 0;
+    std::array<size_t, 3> pieces_{};
+    double beamtree_ms_ = 0.0, slicing_ms_ = 0.0, partition_ms_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<gl::VolumeMethod> create_planes_method(PlanesVariant variant) {
+    return std::make_unique<PlanesMethod>(variant);
+}
+
+}  // namespace sl::sampling

@@ -1,0 +1,22 @@
+#pragma once
+// The sampling-plane methods (DESIGN.md §3):
+//   planes   Dobashi et al. 2000's view-aligned planes every dz of eye depth, clipped to the
+//            influence pyramid (Mitchell 2004), shadow-map visibility per sample (Nilsson §3.1);
+//   hybrid1  Nilsson's Method 1 (§5.3): every plane partitioned by the beam tree; lit pieces
+//            drawn without the shadow lookup, uncertain pieces with it, unlit pieces dropped;
+//   hybrid2  Nilsson's Method 2 (§5.4): the lit regions integrated in closed form
+//            (gl/analytic_pass.h) plus the planes' uncertain pieces only.
+// Parameters: dz, jitter, shadow, shadow_size. Statistics per frame: CPU time of slicing and
+// partitioning, slices, pieces of each kind, fragment-shader invocations of the planes.
+
+#include <memory>
+
+#include "gl/volume_method.h"
+
+namespace sl::sampling {
+
+enum class PlanesVariant { planes, hybrid1, hybrid2 };
+
+std::unique_ptr<gl::VolumeMethod> create_planes_method(PlanesVariant variant);
+
+}  // namespace sl::sampling

@@ -1,0 +1,39 @@
+#version 450 core
+// One sample of I_s per sampling plane and pixel (Dobashi et al. 2000, Nilsson §3.1): the
+// integrand e of eq. 2.7 at the plane, times the shadow map's visibility H, times the ray length
+// the plane stands for, dz / (V·forward) (Nilsson's footnote: planes dz apart in eye depth are
+// further apart along oblique rays). Additive blending into the float target sums the planes.
+#include "gl/shaders/frame_uniforms.h"
+#include "gl/shaders/lighting.glsl"
+#include "gl/shaders/scattering.glsl"
+#include "gl/shaders/shadow.glsl"
+#include "gl/shaders/view.glsl"
+
+layout(binding = 0) uniform sampler2D surface_depth;
+layout(location = 0) uniform float dz;
+layout(location = 1) uniform int known_lit;  // 1: the beam tree says lit, skip the lookup
+layout(location = 2) uniform int jitter;      // 1: per-pixel offset of the sample in its slab
+
+flat in float slice_depth;
+layout(location = 0) out vec4 in_scattered;
+
+// Interleaved gradient noise (Jimenez 2014): a per-pixel offset in [0, 1).
+float interleaved_gradient_noise(vec2 pixel) {
+    return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+}
+
+void main() {
+    vec3 origin = frame.camera_position.xyz;
+    vec3 direction = eye_ray_direction(gl_FragCoord.xy);
+    float cos_forward = dot(direction, frame.camera_forward.xyz);
+    float depth = slice_depth;
+    if (jitter != 0) {
+        depth += (interleaved_gradient_noise(floor(gl_FragCoord.xy)) - 0.5) * dz;
+    }
+    float t = depth / cos_forward;
+    if (t >= surface_distance(surface_depth, gl_FragCoord.xy)) discard;  // behind the surface
+    vec3 e = scattering_density(origin, direction, t);
+    if (all(equal(e, vec3(0.0)))) discard;
+    float visibility = known_lit != 0 ? 1.0 : light_visibility(origin + t * direction);
+    in_scattered = vec4(e * visibility * (dz / cos_forward), 0.0);
+}
