@@ -168,7 +168,10 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
     const std::string dir = scenes.path().string();
     const std::pair<std::string, std::string> cases[] = {
         {"--scene toplight --method magic",
-         "unknown method 'magic' (known: none, beamtree, reference)"},
+         "unknown method 'magic' (known: none, beamtree, planes, hybrid1, hybrid2, reference)"},
+        {"--scene toplight --method planes --set dz=0", "parameter 'dz': 0 is out of range"},
+        {"--scene toplight --method hybrid1 --set shadow=soft",
+         "parameter 'shadow': 'soft' is not one of hard, pcf, vsm"},
         {"--scene toplight --size=-64x36", "--size '-64x36'"},
         {"--scene toplight --size 0x36", "width and height must be in 1..16384"},
         {"--scene toplight --size 64", "expected WIDTHxHEIGHT"},
