@@ -129,10 +129,14 @@ public:
             const double tolerance = 1e-7 * double(inputs.scene.light.far);
             for (const Slice& slice : slices) {
                 bt::BeamTree::Partition parts = tree_->partition(slice.polygon);
+                // Only pieces that are drawn can crack against each other.
                 std::vector<bt::Polygon*> drawn;
-                for (auto* kind : {&parts.lit, &parts.uncertain, &parts.unlit})
-                    for (bt::Polygon& piece : *kind)
+                for (bt::Polygon& piece : parts.uncertain)
+                    drawn.push_back(&piece);
+                if (variant_ == PlanesVariant::hybrid1) {
+                    for (bt::Polygon& piece : parts.lit)
                         drawn.push_back(&piece);
+                }
                 remove_t_junctions(drawn, tolerance);
                 for (const bt::Polygon& piece : parts.uncertain)
                     append_fan(piece, slice.depth, vertices);
