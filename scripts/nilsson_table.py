@@ -93,6 +93,36 @@ def main():
                      f"{fragments} |")
     lines += [
         "",
+        "## Where the time goes",
+        "",
+        "Per frame, milliseconds: the volume pass's drawing (GL_TIME_ELAPSED; for hybrid2 split "
+        "into its analytic and planes sections) and the CPU's slicing plus partitioning (with the "
+        "T-junction fix), which the GPU waits for. llvmpipe rasterizes when it flushes, so on it "
+        "the split between consecutive sections is approximate; their sum is not.",
+        "",
+        "| dz | scene | size | beamtree GPU | planes GPU | hybrid1 GPU | hybrid1 CPU | "
+        "hybrid2 analytic | hybrid2 planes | hybrid2 CPU |",
+        "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for row in rows:
+        m = row["methods"]
+
+        def volume(method):
+            # The section named after the method is its CPU set-up inside the volume pass.
+            return sum(v for k, v in m[method]["volume_sections"].items() if k != method)
+
+        def cpu(method):
+            stats = m[method]["stats"]
+            return stats.get("cpu_ms_slicing", 0) + stats.get("cpu_ms_partition", 0)
+
+        sections = m["hybrid2"]["volume_sections"]
+        lines.append(
+            f"| {row['dz']} | {row['scene']} | {row['size']} | {volume('beamtree'):.1f} | "
+            f"{volume('planes'):.1f} | {volume('hybrid1'):.1f} | {cpu('hybrid1'):.1f} | "
+            f"{sections.get('analytic', 0):.1f} | {sections.get('planes', 0):.1f} | "
+            f"{cpu('hybrid2'):.1f} |")
+    lines += [
+        "",
         "Fragments: fragment-shader invocations of the sampling planes per frame "
         "(`GL_FRAGMENT_SHADER_INVOCATIONS`); hybrid2's analytic pass is not counted there.",
         "",
