@@ -84,6 +84,7 @@ void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>
         program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/beamtree.vert"},
                                    {GL_FRAGMENT_SHADER, "gl/shaders/beamtree.frag"}});
         sun_table_ = create_sun_table();
+        fragments_ = create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
     }
     phase_table_ = create_phase_table(scene.medium);
 }
@@ -99,9 +100,19 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     GL.BlendFunc(GL_ONE, GL_ONE);  // signed sums in the float target
     GL.Enable(GL_DEPTH_CLAMP);     // faces in front of the near plane still count
     GL.BindVertexArray(vertex_array_.id());
+    GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
     GL.DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+    GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
     GL.Disable(GL_DEPTH_CLAMP);
     GL.Disable(GL_BLEND);
+}
+
+double AnalyticRegionPass::fragments() const {
+    if (index_count_ == 0)
+        return 0.0;
+    GLuint64 count = 0;
+    GL.GetQueryObjectui64v(fragments_.id(), GL_QUERY_RESULT, &count);
+    return double(count);
 }
 
 }  // namespace sl::gl

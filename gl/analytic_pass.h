@@ -35,6 +35,8 @@ public:
     // Adds ∫ e over the regions' part of every eye ray, up to the first surface.
     void draw(const VolumeInputs& inputs) const;
     size_t triangle_count() const { return size_t(index_count_) / 3; }
+    // Fragment-shader invocations of the last draw (waits for it).
+    double fragments() const;
 
 private:
     Buffer vertices_, indices_;
@@ -42,6 +44,7 @@ private:
     Program program_;
     Texture sun_table_;
     Texture phase_table_;
+    Query fragments_;
     GLsizei index_count_ = 0;
 };
 

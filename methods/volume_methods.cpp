@@ -5,22 +5,15 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <chrono>
-#include <functional>
-#include <map>
-
 #include <unistd.h>
+
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <optional>
+#include <functional>
 
-#include <cmath>
-#include <numbers>
-
-#include "analytic/phase_functions.h"
-#include "analytic/quadrature.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
 #include "core/error.h"

@@ -200,6 +200,7 @@ public:
         }
         if (variant_ == PlanesVariant::hybrid2) {
             stats.emplace_back("region_faces", double(analytic_.triangle_count()));
+            stats.emplace_back("fragments_analytic", analytic_.fragments());
         }
         return stats;
     }

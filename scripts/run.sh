@@ -1,16 +1,23 @@
 #!/usr/bin/env bash
 # Main job: set up, build, then render every canonical scene into results/scenes/ (PNG, EXR,
-# JSON) with `none` and with `beamtree` scored against the reference (rel_rmse, max_abs, psnr in
-# the JSON), and write its beam-tree regions into results/regions/<scene>/ (PLY, JSON, PNG).
+# JSON) with `none` and with every volumetric method scored against the reference (rel_rmse,
+# max_abs, psnr in the JSON), write a summary table results/scenes/summary.md (FPS and error per
+# scene and method), and write each scene's beam-tree regions into results/regions/<scene>/.
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 source "$repo/scripts/setup.sh"
 out=${1:-$repo/results/scenes}
 regions=${2:-$repo/results/regions}
+methods="beamtree planes hybrid1 hybrid2"
 for scene in $("$build_dir/shaftlab" scenes --names); do
     "$build_dir/shaftlab" render --scene "$scene" --method none --size 960x540 --out "$out"
-    "$build_dir/shaftlab" render --scene "$scene" --method beamtree --compare reference \
-        --size 960x540 --out "$out"
+    for method in $methods; do
+        settings=()
+        [[ $method == beamtree ]] || settings=(--set dz=0.1 --set shadow=vsm)
+        "$build_dir/shaftlab" render --scene "$scene" --method "$method" --compare reference \
+            --size 960x540 "${settings[@]}" --out "$out"
+    done
     "$build_dir/shaftlab" regions --scene "$scene" --size 960x540 --out "$regions/$scene"
 done
-echo "run: images and timings in $out, beam-tree regions in $regions"
+python3 "$repo/scripts/summary.py" "$out" $methods
+echo "run: images, timings and summary.md in $out, beam-tree regions in $regions"
