@@ -52,21 +52,13 @@ TEST_F(GpuMethod, GlslAntiderivativeMatchesCpp) {
         const std::vector<float> rgba =
             render_test_pattern(uniforms, "gl/shaders/test_in_scattering.frag", width, height);
 
-        // The very matrix the shader reads (float), not PixelUnprojector's double inverse: the
-        // comparison must be on identical rays, or pixels at the cone's edge differ.
-        const glm::dmat4 inverse(uniforms.inverse_view_projection);
-        double peak = 0.0;
-        for (size_t i = 0; i < rgba.size(); i += 4)
-            peak = std::max(peak, double(rgba[i]));
+        const double peak = red_peak(rgba);
         ASSERT_GT(peak, 0.0);
         int compared = 0;
         for (int y = 0; y < height; ++y) {
             for (int x = 0; x < width; ++x) {
-                const glm::dvec2 ndc(2.0 * (x + 0.5) / width - 1.0, 2.0 * (y + 0.5) / height - 1.0);
-                const glm::dvec4 far = inverse * glm::dvec4(ndc, 1.0, 1.0);
-                const glm::dvec3 origin(scene.camera.position);
-                const analytic::EyeRay ray{origin,
-                                           glm::normalize(glm::dvec3(far) / far.w - origin)};
+                const TestRay r = test_pattern_ray(uniforms, x, y, width, height);
+                const analytic::EyeRay ray{r.origin, r.direction};
                 const double t = 1.0 + 24.0 * (x + 0.5) / width;
                 const glm::dvec3 cpu =
                     analytic::in_scattering(ray, 0.0, t, scene.light, scene.medium);

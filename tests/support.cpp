@@ -195,4 +195,20 @@ std::vector<float> render_test_pattern(const gl::shared::FrameUniforms& uniforms
     return rgba;
 }
 
+TestRay test_pattern_ray(const gl::shared::FrameUniforms& uniforms, int x, int y, int width,
+                         int height) {
+    const glm::dmat4 inverse(uniforms.inverse_view_projection);
+    const glm::dvec2 ndc(2.0 * (x + 0.5) / width - 1.0, 2.0 * (y + 0.5) / height - 1.0);
+    const glm::dvec4 far = inverse * glm::dvec4(ndc, 1.0, 1.0);
+    const glm::dvec3 origin(uniforms.camera_position);
+    return {origin, glm::normalize(glm::dvec3(far) / far.w - origin)};
+}
+
+double red_peak(const std::vector<float>& rgba) {
+    double peak = 0.0;
+    for (size_t i = 0; i < rgba.size(); i += 4)
+        peak = std::max(peak, double(rgba[i]));
+    return peak;
+}
+
 }  // namespace sl::test

@@ -67,6 +67,18 @@ private:
 std::vector<float> render_test_pattern(const gl::shared::FrameUniforms& uniforms,
                                        const char* fragment_shader, int width, int height);
 
+// The eye ray of test-pattern pixel (x, y) (GL rows, bottom to top) made from the very float
+// matrix the shader reads, not PixelUnprojector's double inverse: comparisons must be on identical
+// rays, or pixels at the cone's edge differ.
+struct TestRay {
+    glm::dvec3 origin;
+    glm::dvec3 direction;
+};
+TestRay test_pattern_ray(const gl::shared::FrameUniforms& uniforms, int x, int y, int width,
+                         int height);
+// The largest red value of an RGBA image.
+double red_peak(const std::vector<float>& rgba);
+
 // Floor and rotated boxes under a spot light: every object is its own outer volume.
 Scene boxes_scene(MediumModel model);
 
