@@ -21,6 +21,8 @@ namespace sl::gl {
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                                     \
     X(PFNGLDEPTHMASKPROC, DepthMask)                                     \
     X(PFNGLBLENDFUNCPROC, BlendFunc)                                     \
+    X(PFNGLBLENDEQUATIONPROC, BlendEquation)                             \
+    X(PFNGLBLENDEQUATIONIPROC, BlendEquationi)                           \
     X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                             \
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                                 \
     X(PFNGLDRAWARRAYSPROC, DrawArrays)                                   \
@@ -78,6 +80,7 @@ namespace sl::gl {
     X(PFNGLPROGRAMUNIFORM2IPROC, ProgramUniform2i)                       \
     X(PFNGLPROGRAMUNIFORM1FPROC, ProgramUniform1f)                       \
     X(PFNGLPROGRAMUNIFORM3FVPROC, ProgramUniform3fv)                     \
+    X(PFNGLPROGRAMUNIFORM4FVPROC, ProgramUniform4fv)                     \
     X(PFNGLPROGRAMUNIFORMMATRIX4FVPROC, ProgramUniformMatrix4fv)         \
     X(PFNGLGETUNIFORMBLOCKINDEXPROC, GetUniformBlockIndex)               \
     X(PFNGLGETACTIVEUNIFORMBLOCKIVPROC, GetActiveUniformBlockiv)         \

@@ -21,6 +21,7 @@
 #include "gl/objects.h"
 #include "gl/shaders.h"
 #include "reference/reference.h"
+#include "sampling/march.h"
 #include "sampling/planes.h"
 
 namespace sl::methods {
@@ -192,6 +193,8 @@ const std::vector<std::pair<std::string, Factory>>& registry() {
          [] { return sampling::create_planes_method(sampling::PlanesVariant::hybrid1); }},
         {"hybrid2",
          [] { return sampling::create_planes_method(sampling::PlanesVariant::hybrid2); }},
+        {"march", [] { return sampling::create_march_method(sampling::MarchVariant::march); }},
+        {"hybrid3", [] { return sampling::create_march_method(sampling::MarchVariant::hybrid3); }},
         {"reference", [] { return std::make_unique<ReferenceMethod>(); }},
     };
     return methods;

@@ -168,7 +168,12 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
     const std::string dir = scenes.path().string();
     const std::pair<std::string, std::string> cases[] = {
         {"--scene toplight --method magic",
-         "unknown method 'magic' (known: none, beamtree, planes, hybrid1, hybrid2, reference)"},
+         "unknown method 'magic' (known: none, beamtree, planes, hybrid1, hybrid2, march, hybrid3, "
+         "reference)"},
+        {"--scene toplight --method march --set resolution_scale=0.3",
+         "parameter 'resolution_scale': '0.3' is not one of 1, 0.5, 0.25"},
+        {"--scene toplight --method march --set samples=0",
+         "parameter 'samples': 0 is out of range"},
         {"--scene toplight --method planes --set dz=0", "parameter 'dz': 0 is out of range"},
         {"--scene toplight --method hybrid1 --set shadow=soft",
          "parameter 'shadow': 'soft' is not one of hard, pcf, vsm"},

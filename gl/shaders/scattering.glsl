@@ -2,10 +2,11 @@
 // and analytic::phase (tested against them): what the sampling methods evaluate per sample.
 // Needs frame_uniforms.h and lighting.glsl.
 
-// p(cos α), normalised over the sphere; the ids follow scenes/scene.h's PhaseFunction.
-float phase_function(float cos_alpha) {
+// p(cos α) with asymmetry g, normalised over the sphere; the ids follow scenes/scene.h's
+// PhaseFunction.
+float phase_function_g(float cos_alpha, float g) {
     int id = int(frame.medium_sigma_s.w + 0.5);
-    float g = frame.medium_attenuation.w, c = cos_alpha;
+    float c = cos_alpha;
     const float INV_4PI = 0.25 / PI;
     if (id == 1) {  // Henyey-Greenstein, Moschos eq. 2.2
         return INV_4PI * (1.0 - g * g) / pow(1.0 + g * g - 2.0 * g * c, 1.5);
@@ -22,20 +23,28 @@ float phase_function(float cos_alpha) {
     return INV_4PI;                                                            // isotropic
 }
 
+float phase_function(float cos_alpha) {
+    return phase_function_g(cos_alpha, frame.medium_attenuation.w);
+}
+
 // e(t) per channel at distance t along the ray (origin, direction), visibility excluded: the
 // cone factor (eq. 2.9 or the smooth edge), the near/far range, and either model:
 //   simplified  σs p I(Ω) / (a1 r² + a0)              Nilsson eq. 2.12-2.15
 //   physical    T(t) σs p I(Ω) T(r) / r²              Nilsson eq. 2.6-2.8
-vec3 scattering_density(vec3 origin, vec3 direction, float t) {
+vec3 scattering_density_g(vec3 origin, vec3 direction, float t, float g) {
     vec3 from_light = origin + t * direction - frame.light_position.xyz;
     float r = length(from_light);
     if (!(r > 0.0) || !in_light_range(from_light)) return vec3(0.0);
     float cone = cone_factor(from_light);
     if (cone == 0.0) return vec3(0.0);
-    float p = phase_function(-dot(from_light / r, direction));
+    float p = phase_function_g(-dot(from_light / r, direction), g);
     vec3 source = frame.medium_sigma_s.rgb * p * frame.light_intensity.rgb * cone;
     if (frame.medium_sigma_t.w < 0.5) {
         return source / (frame.medium_attenuation.y * r * r + frame.medium_attenuation.x);
     }
     return exp(-frame.medium_sigma_t.rgb * (t + r)) * source / (r * r);
+}
+
+vec3 scattering_density(vec3 origin, vec3 direction, float t) {
+    return scattering_density_g(origin, direction, t, frame.medium_attenuation.w);
 }

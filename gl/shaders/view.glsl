@@ -16,3 +16,10 @@ float surface_distance(sampler2D depth_buffer, vec2 fragment) {
     vec4 surface = frame.inverse_view_projection * vec4(ndc, 2.0 * depth - 1.0, 1.0);
     return length(surface.xyz / surface.w - frame.camera_position.xyz);
 }
+
+// Distance from the camera to the far plane along the eye ray through `fragment`.
+float far_plane_distance(vec2 fragment) {
+    vec2 ndc = 2.0 * fragment / frame.display.yz - 1.0;
+    vec4 far_point = frame.inverse_view_projection * vec4(ndc, 1.0, 1.0);
+    return length(far_point.xyz / far_point.w - frame.camera_position.xyz);
+}

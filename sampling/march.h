@@ -1,0 +1,27 @@
+#pragma once
+// The ray-marching methods (DESIGN.md §3):
+//   march    Moschos' screen-space ray marcher (§3.2, algorithms 1-5): per pixel of a full, ½ or
+//            ¼ resolution buffer, N samples along the eye ray clipped to the light (algorithm 4 on
+//            the pyramid, or the exact cone), shadow-map visibility with dark-sample skipping,
+//            jitter, the shared model or Moschos' eq. 3.1, phase animation; then depth-aware
+//            upsampling, optionally through the 5x5 Gaussian of algorithm 3 or its depth-aware
+//            variant.
+//   hybrid3  the lit regions in closed form plus the marcher spending all N samples on each
+//            pixel's uncertain interval (nearest entry to farthest exit of the uncertain
+//            regions); the lit parts inside that interval are left out of the closed form, so
+//            nothing is counted twice.
+// Parameters: samples, resolution_scale, blur, shadow, shadow_size, jitter, clip (march),
+// attenuation, optical_thickness, animate_phase (march). Statistics: samples evaluated (after
+// dark-sample skipping), buffer size, and for hybrid3 the beam tree's time and region faces.
+
+#include <memory>
+
+#include "gl/volume_method.h"
+
+namespace sl::sampling {
+
+enum class MarchVariant { march, hybrid3 };
+
+std::unique_ptr<gl::VolumeMethod> create_march_method(MarchVariant variant);
+
+}  // namespace sl::sampling

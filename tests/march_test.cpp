@@ -1,0 +1,239 @@
+// Ray marching (sampling/march.cpp): Moschos' clipping cases on the CPU, convergence to the
+// closed form, depth-aware blur and upsampling at a depth edge, and hybrid3 against march and the
+// reference.
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "analytic/in_scattering.h"
+#include "beamtree/beam_tree.h"
+#include "core/metrics.h"
+#include "gl/renderer.h"
+#include "gl/volume_method.h"
+#include "reference/reference.h"
+#include "sampling/ray_clip.h"
+#include "scenes/mesh.h"
+#include "tests/support.h"
+
+namespace sl::test {
+namespace {
+
+using March = GlTest;
+using glm::dvec3;
+using sampling::ClipCase;
+
+gl::Frame render(const Scene& scene, const std::string& method_name, int width, int height,
+                 const std::vector<std::pair<std::string, std::string>>& settings = {}) {
+    gl::SceneRenderer renderer(scene, {.width = width, .height = height});
+    const auto method = methods::create_volume_method(method_name);
+    for (const auto& [name, value] : settings)
+        method->set(name, value);
+    method->prepare(scene);
+    return renderer.render(*method);
+}
+
+// A light at the origin pointing down -z, 30° cone, range [1, 10]: its influence pyramid.
+std::vector<bt::Plane> test_pyramid() {
+    SpotLight light;
+    light.position = glm::vec3(0.0f);
+    light.target = glm::vec3(0.0f, 0.0f, -1.0f);
+    light.cone_half_angle_degrees = 30.0f;
+    light.near = 1.0f;
+    light.far = 10.0f;
+    return bt::influence_planes(light);
+}
+
+struct ClipCaseTest {
+    ClipCase expected;
+    dvec3 origin, direction;
+    double trace_end;
+    double start, end;  // expected when it samples
+};
+
+// Moschos figure 3.18, one ray per case, against a pyramid whose faces are easy to intersect:
+// rays along -z through the axis enter at z = -1 (near range) and leave at z = -10 (backplate).
+TEST(RayClip, EveryCaseOfAlgorithm4) {
+    const std::vector<bt::Plane> pyramid = test_pyramid();
+    const dvec3 down(0, 0, -1);
+    const ClipCaseTest cases[] = {
+        {ClipCase::A, {20, 0, 0}, down, 100.0, 0, 0},      // beside the pyramid: misses it
+        {ClipCase::B, {0, 0, -5}, down, 100.0, 0.0, 5.0},  // inside, leaves before the end
+        {ClipCase::C, {0, 0, -5}, down, 2.0, 0.0, 2.0},    // inside, still inside at the end
+        {ClipCase::D, {0, 0, 1}, down, 100.0, 2.0, 11.0},  // enters and leaves before the end
+        {ClipCase::E, {0, 0, 1}, down, 6.0, 2.0, 6.0},     // enters, the surface is inside
+        {ClipCase::F, {0, 0, 1}, down, 1.5, 0, 0},         // the surface is before the entry
+    };
+    for (const ClipCaseTest& c : cases) {
+        const sampling::ClippedTrace clipped =
+            sampling::clip_trace(c.origin, c.direction, c.trace_end, pyramid);
+        EXPECT_EQ(clipped.clip_case, c.expected) << "expected case " << to_string(c.expected)
+                                                 << ", got " << to_string(clipped.clip_case);
+        EXPECT_EQ(clipped.sample(), c.expected != ClipCase::A && c.expected != ClipCase::F);
+        if (clipped.sample()) {
+            EXPECT_NEAR(clipped.start, c.start, 1e-9) << to_string(c.expected);
+            EXPECT_NEAR(clipped.end, c.end, 1e-9) << to_string(c.expected);
+        }
+    }
+}
+
+// A ray that starts inside the cone and leaves it sideways: the exact cone interval starts at 0
+// and ends where the angle to the axis reaches the half-angle; the pyramid (which circumscribes
+// the cone) lets it go further.
+TEST(RayClip, RayStartingInsideTheConeEndsOnItsSurface) {
+    SpotLight light;
+    light.position = glm::vec3(0.0f);
+    light.target = glm::vec3(0.0f, 0.0f, -1.0f);
+    light.cone_half_angle_degrees = 30.0f;
+    light.near = 1.0f;
+    light.far = 10.0f;
+    const analytic::EyeRay ray{{0.0, 0.0, -5.0}, glm::normalize(dvec3(1.0, 0.3, 0.0))};
+    const analytic::Interval cone = analytic::light_interval(ray, light, 100.0);
+    EXPECT_DOUBLE_EQ(cone.begin, 0.0);
+    const dvec3 exit = ray.origin + cone.end * ray.direction;
+    const double angle = std::acos(glm::dot(glm::normalize(exit), dvec3(0, 0, -1)));
+    EXPECT_NEAR(glm::degrees(angle), 30.0, 1e-9);
+    const sampling::ClippedTrace pyramid =
+        sampling::clip_trace(ray.origin, ray.direction, 100.0, bt::influence_planes(light));
+    EXPECT_EQ(pyramid.clip_case, ClipCase::B);
+    EXPECT_GT(pyramid.end, cone.end);
+}
+
+// With no occluders, `march` (exact cone clipping, samples at the middle of their steps)
+// converges to the closed-form integral as N grows, its relative RMSE shrinking at least like
+// 1/N: the least-squares slope of log error over log N is <= -1.
+TEST_F(March, ConvergesAtLeastLikeOneOverNWithoutOccluders) {
+    Scene scene = boxes_scene(MediumModel::physical);
+    scene.objects.clear();
+    const int size = 64;
+    const PixelUnprojector unproject(scene.camera, size, size);
+    Image exact(size, size);
+    const glm::dvec3 origin(scene.camera.position);
+    for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+            const analytic::EyeRay ray{origin, glm::normalize(unproject.point(x, y, 1.0) - origin)};
+            exact.set(
+                x, y,
+                glm::vec3(analytic::in_scattering(ray, 0.0, 1e30, scene.light, scene.medium)));
+        }
+    }
+    std::vector<double> log_n, log_error;
+    for (const int n : {2, 4, 8, 16}) {
+        const gl::Frame frame =
+            render(scene, "march", size, size, {{"samples", std::to_string(n)}});
+        log_n.push_back(std::log(double(n)));
+        log_error.push_back(std::log(compare_images(frame.in_scattering, exact).rel_rmse));
+    }
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (size_t i = 0; i < 4; ++i) {
+        sx += log_n[i];
+        sy += log_error[i];
+        sxx += log_n[i] * log_n[i];
+        sxy += log_n[i] * log_error[i];
+    }
+    const double slope = (4.0 * sxy - sx * sy) / (4.0 * sxx - sx * sx);
+    EXPECT_LE(slope, -1.0) << "errors " << std::exp(log_error[0]) << " ... "
+                           << std::exp(log_error[3]);
+}
+
+// A wall in front of a shaft: the shaft is behind the wall, so the wall's pixels carry no I_s.
+// Depth-aware upsampling and the depth-aware blur keep them dark at every buffer size; the
+// depth-blind Gaussian of Moschos' algorithm 3 bleeds the shaft onto the wall's top rows (which
+// shows the check can fail).
+TEST_F(March, DepthAwareFilteringDoesNotBleedAcrossADepthEdge) {
+    Scene scene;
+    scene.name = "wall";
+    scene.camera.position = glm::vec3(0.0f, 1.0f, 8.0f);
+    scene.camera.target = glm::vec3(0.0f, 1.0f, 0.0f);
+    scene.light.position = glm::vec3(0.0f, 6.0f, -3.0f);
+    scene.light.target = glm::vec3(0.0f, 0.0f, -3.0f);
+    scene.light.cone_half_angle_degrees = 25.0f;
+    scene.light.near = 0.2f;
+    scene.light.far = 8.0f;
+    scene.light.intensity = glm::vec3(80.0f);
+    scene.medium.sigma_s = glm::vec3(0.1f);
+    scene.medium.sigma_a = glm::vec3(0.0f);
+    scene.materials.push_back(Material{.name = "default"});
+    Object wall;
+    wall.name = "wall";
+    wall.mesh = std::make_shared<const Mesh>(make_box(glm::vec3(8.0f, 2.0f, 0.2f)));
+    wall.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 2.0f));  // y in [-1, 1]
+    scene.objects.push_back(std::move(wall));
+
+    const int width = 96, height = 64;
+    const gl::Frame sharp = render(scene, "march", width, height, {{"samples", "64"}});
+    double peak = 0.0;
+    for (const float v : sharp.in_scattering.rgb)
+        peak = std::max(peak, double(v));
+    ASSERT_GT(peak, 0.0);
+    // The wall's pixels: nearer than 6.5 m (the shaft is at 11 m).
+    std::vector<size_t> wall_pixels;
+    for (size_t i = 0; i < sharp.depth.size(); ++i) {
+        if (sharp.depth[i] < 1.0f && sharp.in_scattering.rgb[i * 3] <= 1e-6 * peak) {
+            const int x = int(i % width), y = int(i / width);
+            const PixelUnprojector unproject(scene.camera, width, height);
+            const double distance = glm::length(unproject.point(x, y, 2.0 * sharp.depth[i] - 1.0) -
+                                                glm::dvec3(scene.camera.position));
+            if (distance < 6.5)
+                wall_pixels.push_back(i);
+        }
+    }
+    ASSERT_GT(wall_pixels.size(), size_t(width * 4));
+    auto wall_peak = [&](const gl::Frame& frame) {
+        double largest = 0.0;
+        for (const size_t i : wall_pixels)
+            largest = std::max(largest, double(frame.in_scattering.rgb[i * 3]));
+        return largest / peak;
+    };
+    for (const char* scale : {"1", "0.5", "0.25"}) {
+        for (const char* blur : {"none", "depth_aware"}) {
+            const gl::Frame frame = render(
+                scene, "march", width, height,
+                {{"samples", "64"}, {"resolution_scale", scale}, {"blur", blur}, {"jitter", "1"}});
+            EXPECT_LT(wall_peak(frame), 1e-3) << "scale " << scale << ", blur " << blur;
+        }
+    }
+    const gl::Frame bleeding =
+        render(scene, "march", width, height, {{"samples", "64"}, {"blur", "gauss5"}});
+    EXPECT_GT(wall_peak(bleeding), 1e-2);
+}
+
+// On toplight at 256², hybrid3 beats march at the same N (16 and 64): its samples go to the
+// uncertain intervals only and the lit rest is exact. It counts nothing twice: with many
+// samples it matches the reference to 0.1% (the lit parts inside the marched intervals counted
+// twice would add percents), and on boxes (their own outer volumes) to 0.2%.
+TEST_F(March, Hybrid3BeatsMarchAndCountsNothingTwice) {
+    const Scene scene = load_canonical("toplight");
+    const int size = 256;
+    const reference::ReferenceRenderer reference(scene);
+    const Image exact = reference.render(size, size, {});
+    for (const char* n : {"16", "64"}) {
+        const double march_error =
+            compare_images(render(scene, "march", size, size, {{"samples", n}}).in_scattering,
+                           exact)
+                .rel_rmse;
+        const double hybrid3_error =
+            compare_images(render(scene, "hybrid3", size, size, {{"samples", n}}).in_scattering,
+                           exact)
+                .rel_rmse;
+        EXPECT_LT(hybrid3_error, march_error) << "N = " << n;
+    }
+    const double converged =
+        compare_images(render(scene, "hybrid3", size, size, {{"samples", "256"}}).in_scattering,
+                       exact)
+            .rel_rmse;
+    EXPECT_LT(converged, 1e-3);
+
+    // Boxes are their own outer volumes: the uncertain regions are thin shells inside them.
+    const Scene boxes = boxes_scene(MediumModel::simplified);
+    const Image boxes_exact = reference::ReferenceRenderer(boxes).render(128, 128, {});
+    const double hybrid3_error =
+        compare_images(render(boxes, "hybrid3", 128, 128, {{"samples", "64"}}).in_scattering,
+                       boxes_exact)
+            .rel_rmse;
+    EXPECT_LT(hybrid3_error, 2e-3);
+}
+
+}  // namespace
+}  // namespace sl::test
