@@ -8,12 +8,15 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 source "$repo/scripts/setup.sh"
 out=${1:-$repo/results/scenes}
 regions=${2:-$repo/results/regions}
-methods="beamtree planes hybrid1 hybrid2"
+methods="beamtree planes hybrid1 hybrid2 march hybrid3"
 for scene in $("$build_dir/shaftlab" scenes --names); do
     "$build_dir/shaftlab" render --scene "$scene" --method none --size 960x540 --out "$out"
     for method in $methods; do
-        settings=()
-        [[ $method == beamtree ]] || settings=(--set dz=0.1 --set shadow=vsm)
+        case $method in
+            planes | hybrid1 | hybrid2) settings=(--set dz=0.1 --set shadow=vsm) ;;
+            march | hybrid3) settings=(--set samples=64) ;;
+            *) settings=() ;;
+        esac
         "$build_dir/shaftlab" render --scene "$scene" --method "$method" --compare reference \
             --size 960x540 "${settings[@]}" --out "$out"
     done
