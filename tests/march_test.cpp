@@ -24,25 +24,20 @@ using March = GlTest;
 using glm::dvec3;
 using sampling::ClipCase;
 
-gl::Frame render(const Scene& scene, const std::string& method_name, int width, int height,
+gl::Frame render(const Scene& scene, const std::string& method, int width, int height,
                  const std::vector<std::pair<std::string, std::string>>& settings = {}) {
-    gl::SceneRenderer renderer(scene, {.width = width, .height = height});
-    const auto method = methods::create_volume_method(method_name);
-    for (const auto& [name, value] : settings)
-        method->set(name, value);
-    method->prepare(scene);
-    return renderer.render(*method);
+    return render_method(scene, method, width, height, settings);
 }
 
-// A light at the origin pointing down -z, 30° cone, range [1, 10]: its influence pyramid.
-std::vector<bt::Plane> test_pyramid() {
+// A light at the origin pointing down -z, 30° cone, range [1, 10].
+SpotLight test_light() {
     SpotLight light;
     light.position = glm::vec3(0.0f);
     light.target = glm::vec3(0.0f, 0.0f, -1.0f);
     light.cone_half_angle_degrees = 30.0f;
     light.near = 1.0f;
     light.far = 10.0f;
-    return bt::influence_planes(light);
+    return light;
 }
 
 struct ClipCaseTest {
@@ -55,7 +50,7 @@ struct ClipCaseTest {
 // Moschos figure 3.18, one ray per case, against a pyramid whose faces are easy to intersect:
 // rays along -z through the axis enter at z = -1 (near range) and leave at z = -10 (backplate).
 TEST(RayClip, EveryCaseOfAlgorithm4) {
-    const std::vector<bt::Plane> pyramid = test_pyramid();
+    const std::vector<bt::Plane> pyramid = bt::influence_planes(test_light());
     const dvec3 down(0, 0, -1);
     const ClipCaseTest cases[] = {
         {ClipCase::A, {20, 0, 0}, down, 100.0, 0, 0},      // beside the pyramid: misses it
@@ -82,12 +77,7 @@ TEST(RayClip, EveryCaseOfAlgorithm4) {
 // and ends where the angle to the axis reaches the half-angle; the pyramid (which circumscribes
 // the cone) lets it go further.
 TEST(RayClip, RayStartingInsideTheConeEndsOnItsSurface) {
-    SpotLight light;
-    light.position = glm::vec3(0.0f);
-    light.target = glm::vec3(0.0f, 0.0f, -1.0f);
-    light.cone_half_angle_degrees = 30.0f;
-    light.near = 1.0f;
-    light.far = 10.0f;
+    const SpotLight light = test_light();
     const analytic::EyeRay ray{{0.0, 0.0, -5.0}, glm::normalize(dvec3(1.0, 0.3, 0.0))};
     const analytic::Interval cone = analytic::light_interval(ray, light, 100.0);
     EXPECT_DOUBLE_EQ(cone.begin, 0.0);
@@ -107,34 +97,16 @@ TEST_F(March, ConvergesAtLeastLikeOneOverNWithoutOccluders) {
     Scene scene = boxes_scene(MediumModel::physical);
     scene.objects.clear();
     const int size = 64;
-    const PixelUnprojector unproject(scene.camera, size, size);
-    Image exact(size, size);
-    const glm::dvec3 origin(scene.camera.position);
-    for (int y = 0; y < size; ++y) {
-        for (int x = 0; x < size; ++x) {
-            const analytic::EyeRay ray{origin, glm::normalize(unproject.point(x, y, 1.0) - origin)};
-            exact.set(
-                x, y,
-                glm::vec3(analytic::in_scattering(ray, 0.0, 1e30, scene.light, scene.medium)));
-        }
-    }
-    std::vector<double> log_n, log_error;
+    const Image exact = unoccluded_in_scattering(scene, size, size);
+    std::vector<double> ns, errors;
     for (const int n : {2, 4, 8, 16}) {
         const gl::Frame frame =
             render(scene, "march", size, size, {{"samples", std::to_string(n)}});
-        log_n.push_back(std::log(double(n)));
-        log_error.push_back(std::log(compare_images(frame.in_scattering, exact).rel_rmse));
+        ns.push_back(double(n));
+        errors.push_back(compare_images(frame.in_scattering, exact).rel_rmse);
     }
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (size_t i = 0; i < 4; ++i) {
-        sx += log_n[i];
-        sy += log_error[i];
-        sxx += log_n[i] * log_n[i];
-        sxy += log_n[i] * log_error[i];
-    }
-    const double slope = (4.0 * sxy - sx * sy) / (4.0 * sxx - sx * sx);
-    EXPECT_LE(slope, -1.0) << "errors " << std::exp(log_error[0]) << " ... "
-                           << std::exp(log_error[3]);
+    const double slope = log_log_slope(ns, errors);
+    EXPECT_LE(slope, -1.0) << "errors " << errors.front() << " ... " << errors.back();
 }
 
 // A wall in front of a shaft: the shaft is behind the wall, so the wall's pixels carry no I_s.

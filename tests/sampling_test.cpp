@@ -22,14 +22,9 @@ namespace {
 
 using Sampling = GlTest;
 
-gl::Frame render(const Scene& scene, const std::string& method_name, int size,
+gl::Frame render(const Scene& scene, const std::string& method, int size,
                  const std::vector<std::pair<std::string, std::string>>& settings = {}) {
-    gl::SceneRenderer renderer(scene, {.width = size, .height = size});
-    const auto method = methods::create_volume_method(method_name);
-    for (const auto& [name, value] : settings)
-        method->set(name, value);
-    method->prepare(scene);
-    return renderer.render(*method);
+    return render_method(scene, method, size, size, settings);
 }
 
 // The eye ray through pixel (x, y) (row 0 at the top), as the GPU makes it.
@@ -139,34 +134,16 @@ TEST_F(Sampling, PlanesConvergeAtLeastLinearlyWithoutOccluders) {
     Scene scene = boxes_scene(MediumModel::physical);
     scene.objects.clear();
     const int size = 64;
-    const PixelUnprojector unproject(scene.camera, size, size);
-    Image exact(size, size);
-    for (int y = 0; y < size; ++y) {
-        for (int x = 0; x < size; ++x) {
-            const glm::dvec3 e = analytic::in_scattering(eye_ray(scene, unproject, x, y), 0.0, 1e30,
-                                                         scene.light, scene.medium);
-            exact.set(x, y, glm::vec3(e));
-        }
-    }
-    std::vector<double> log_dz, log_error;
+    const Image exact = unoccluded_in_scattering(scene, size, size);
+    std::vector<double> dzs, errors;
     for (const double dz : {0.4, 0.2, 0.1, 0.05}) {
         const gl::Frame frame = render(scene, "planes", size, {{"dz", std::to_string(dz)}});
-        const double error = compare_images(frame.in_scattering, exact).rel_rmse;
-        log_dz.push_back(std::log(dz));
-        log_error.push_back(std::log(error));
+        dzs.push_back(dz);
+        errors.push_back(compare_images(frame.in_scattering, exact).rel_rmse);
     }
-    const double n = 4.0;
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (size_t i = 0; i < 4; ++i) {
-        sx += log_dz[i];
-        sy += log_error[i];
-        sxx += log_dz[i] * log_dz[i];
-        sxy += log_dz[i] * log_error[i];
-    }
-    const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-    EXPECT_GE(slope, 1.0) << "errors " << std::exp(log_error[0]) << " ... "
-                          << std::exp(log_error[3]);
-    EXPECT_LT(std::exp(log_error[3]), 0.02);
+    const double slope = log_log_slope(dzs, errors);
+    EXPECT_GE(slope, 1.0) << "errors " << errors.front() << " ... " << errors.back();
+    EXPECT_LT(errors.back(), 0.02);
 }
 
 // `hybrid1` changes nothing but visibility: against a CPU sum over the very same samples (slices

@@ -1,15 +1,18 @@
 #include "tests/support.h"
 
+#include <cmath>
 #include <fstream>
 #include <random>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "analytic/in_scattering.h"
 #include "gl/debug.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
+#include "gl/volume_method.h"
 #include "scenes/mesh.h"
 #include "scenes/scene_file.h"
 
@@ -209,6 +212,44 @@ double red_peak(const std::vector<float>& rgba) {
     for (size_t i = 0; i < rgba.size(); i += 4)
         peak = std::max(peak, double(rgba[i]));
     return peak;
+}
+
+gl::Frame render_method(const Scene& scene, const std::string& method, int width, int height,
+                        const std::vector<std::pair<std::string, std::string>>& settings) {
+    gl::SceneRenderer renderer(scene, {.width = width, .height = height});
+    const auto volume_method = methods::create_volume_method(method);
+    for (const auto& [name, value] : settings)
+        volume_method->set(name, value);
+    volume_method->prepare(scene);
+    return renderer.render(*volume_method);
+}
+
+double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
+    const double n = double(x.size());
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (size_t i = 0; i < x.size(); ++i) {
+        const double lx = std::log(x[i]), ly = std::log(y[i]);
+        sx += lx;
+        sy += ly;
+        sxx += lx * lx;
+        sxy += lx * ly;
+    }
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+Image unoccluded_in_scattering(const Scene& scene, int width, int height) {
+    const PixelUnprojector unproject(scene.camera, width, height);
+    const glm::dvec3 origin(scene.camera.position);
+    Image image(width, height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const analytic::EyeRay ray{origin, glm::normalize(unproject.point(x, y, 1.0) - origin)};
+            image.set(
+                x, y,
+                glm::vec3(analytic::in_scattering(ray, 0.0, 1e30, scene.light, scene.medium)));
+        }
+    }
+    return image;
 }
 
 }  // namespace sl::test

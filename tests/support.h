@@ -7,11 +7,14 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "core/image.h"
 #include "gl/platform.h"
+#include "gl/renderer.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "scenes/scene.h"
 
@@ -78,6 +81,17 @@ TestRay test_pattern_ray(const gl::shared::FrameUniforms& uniforms, int x, int y
                          int height);
 // The largest red value of an RGBA image.
 double red_peak(const std::vector<float>& rgba);
+
+// One frame of `scene` with the named method and its parameter settings (NAME, VALUE).
+gl::Frame render_method(const Scene& scene, const std::string& method, int width, int height,
+                        const std::vector<std::pair<std::string, std::string>>& settings = {});
+
+// I_s of every pixel's eye ray with nothing in the way, in closed form (analytic/): the oracle
+// of the convergence tests.
+Image unoccluded_in_scattering(const Scene& scene, int width, int height);
+
+// Least-squares slope of log(y) over log(x): the order of convergence of an error.
+double log_log_slope(const std::vector<double>& x, const std::vector<double>& y);
 
 // Floor and rotated boxes under a spot light: every object is its own outer volume.
 Scene boxes_scene(MediumModel model);
