@@ -2,6 +2,7 @@
 // closed form, depth-aware blur and upsampling at a depth edge, and hybrid3 against march and the
 // reference.
 
+#include <array>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -88,6 +89,43 @@ TEST(RayClip, RayStartingInsideTheConeEndsOnItsSurface) {
         sampling::clip_trace(ray.origin, ray.direction, 100.0, bt::influence_planes(light));
     EXPECT_EQ(pyramid.clip_case, ClipCase::B);
     EXPECT_GT(pyramid.end, cone.end);
+}
+
+// ray_clip.glsl clips like ray_clip.cpp: on every pixel's ray of a scene whose camera sees the
+// light's pyramid from outside, the GPU picks the same case (but for rays within float round-off
+// of a case boundary) and the same interval to 1e-4 relative.
+TEST_F(March, GlslClipMatchesCpp) {
+    const Scene scene = load_canonical("parallel");
+    const int width = 96, height = 54;
+    const gl::shared::FrameUniforms uniforms =
+        gl::make_frame_uniforms(scene, {.width = width, .height = height});
+    const std::vector<float> rgba =
+        render_test_pattern(uniforms, "gl/shaders/test_ray_clip.frag", width, height);
+    const std::vector<bt::Plane> pyramid = bt::influence_planes(scene.light);
+    int same = 0, sampled = 0;
+    std::array<int, 6> seen{};
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const TestRay ray = test_pattern_ray(uniforms, x, y, width, height);
+            const double trace_end = 1.0 + 24.0 * (x + 0.5) / width;
+            const sampling::ClippedTrace cpu =
+                sampling::clip_trace(ray.origin, ray.direction, trace_end, pyramid);
+            const float* gpu = &rgba[(size_t(y) * width + x) * 4];
+            ++seen[size_t(cpu.clip_case)];
+            if (int(gpu[2]) != int(cpu.clip_case))
+                continue;
+            ++same;
+            if (cpu.sample()) {
+                ++sampled;
+                EXPECT_NEAR(gpu[0], cpu.start, 1e-4 * (1.0 + cpu.start)) << x << ", " << y;
+                EXPECT_NEAR(gpu[1], cpu.end, 1e-4 * (1.0 + cpu.end)) << x << ", " << y;
+            }
+        }
+    }
+    EXPECT_GE(same, width * height * 99 / 100);
+    EXPECT_GT(sampled, width * height / 10);
+    EXPECT_GT(seen[size_t(ClipCase::A)] + seen[size_t(ClipCase::F)], 0);
+    EXPECT_GT(seen[size_t(ClipCase::D)] + seen[size_t(ClipCase::E)], 0);
 }
 
 // With no occluders, `march` (exact cone clipping, samples at the middle of their steps)
