@@ -97,7 +97,7 @@ private:
 
     ShadowSettings shadow_;
     Texture shadow_map_;
-    Texture shadow_moments_;  // VSM: RG32F; a 1x1 placeholder otherwise
+    Texture shadow_moments_;  // VSM: RG32F; 1x1 when unused (its sampler still needs one)
     Texture shadow_scratch_;  // VSM blur
     Framebuffer shadow_framebuffer_;
     Framebuffer shadow_blur_framebuffer_[2];

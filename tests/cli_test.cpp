@@ -206,6 +206,33 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
 }
 
 // An output directory that cannot be created is an error, not a crash.
+// `compare` prints the metrics and writes the difference picture; images of different sizes are
+// one clear error and no picture.
+TEST(Cli, CompareScoresAndRejectsMismatchedSizes) {
+    TempDir dir;
+    Image a(8, 4), b(8, 4), small(4, 4);
+    for (int x = 0; x < 8; ++x) {
+        a.set(x, 1, {1.0f, 1.0f, 1.0f});
+        b.set(x, 1, {1.0f, 1.0f, x == 3 ? 0.5f : 1.0f});
+    }
+    write_exr(a, dir / "a.exr");
+    write_exr(b, dir / "b.exr");
+    write_exr(small, dir / "small.exr");
+    const std::string d = dir.path().string();
+    const CommandResult ok =
+        run_shaftlab("compare " + d + "/a.exr " + d + "/b.exr --difference " + d + "/diff.png");
+    EXPECT_EQ(ok.exit_code, 0) << ok.output;
+    // sqrt(0.5² / (23 + 0.5²)): one channel of one pixel off by a half.
+    EXPECT_NE(ok.output.find("rel_rmse 0.103695"), std::string::npos) << ok.output;
+    EXPECT_TRUE(std::filesystem::exists(dir / "diff.png"));
+    const CommandResult bad =
+        run_shaftlab("compare " + d + "/a.exr " + d + "/small.exr --difference " + d + "/bad.png");
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_TRUE(bad.output.starts_with("shaftlab: error: ")) << bad.output;
+    EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.png"));
+}
+
 TEST(Cli, UnwritableOutputIsAnError) {
     TempDir dir;
     write_text(dir / "file", "x");
