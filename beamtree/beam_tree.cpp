@@ -447,4 +447,10 @@ BeamTreeStats BeamTree::stats() const {
     return stats;
 }
 
+BeamTree build_scene_beam_tree(const Scene& scene) {
+    VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
+                           .automatic_inner = scene.bounds.automatic_inner});
+    return BeamTree(scene.light, library.build(scene, nullptr));
+}
+
 }  // namespace sl::bt

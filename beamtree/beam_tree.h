@@ -112,4 +112,8 @@ private:
     size_t stopper_polygons_ = 0;
 };
 
+// The beam tree of a scene's light over its objects' bounding volumes, built with the scene's
+// own [beamtree] settings (what every method that uses regions builds in prepare()).
+BeamTree build_scene_beam_tree(const Scene& scene);
+
 }  // namespace sl::bt

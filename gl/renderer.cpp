@@ -31,6 +31,16 @@ void require_complete(GLuint framebuffer, const char* what) {
     }
 }
 
+// The frame's options, or a method's own `shadow` parameters.
+void require_valid(const ShadowSettings& settings) {
+    if (settings.map_size < 16 || settings.map_size > 16384) {
+        fail("shadow map size {} must be in 16..16384", settings.map_size);
+    }
+    if (settings.radius < 0 || settings.radius > 8) {
+        fail("shadow filter radius {} must be in 0..8", settings.radius);
+    }
+}
+
 }  // namespace
 
 shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOptions& options) {
@@ -131,12 +141,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
         options.height > 16384) {
         fail("render size {}x{} must be in 1..16384", options.width, options.height);
     }
-    if (options.shadow.map_size < 16 || options.shadow.map_size > 16384) {
-        fail("shadow map size {} must be in 16..16384", options.shadow.map_size);
-    }
-    if (options.shadow.radius < 0 || options.shadow.radius > 8) {
-        fail("shadow filter radius {} must be in 0..8", options.shadow.radius);
-    }
+    require_valid(options.shadow);  // before any GL work
     uniforms_ = make_frame_uniforms(scene, options);
     uniform_buffer_ = create_buffer(&uniforms_, sizeof(uniforms_), GL_DYNAMIC_STORAGE_BIT);
     uniform_buffer_.label("frame uniforms");
@@ -232,9 +237,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
 SceneRenderer::~SceneRenderer() = default;
 
 void SceneRenderer::allocate_shadow(const ShadowSettings& settings) {
-    if (settings.map_size < 16 || settings.map_size > 16384) {
-        fail("shadow map size {} must be in 16..16384", settings.map_size);
-    }
+    require_valid(settings);
     shadow_ = settings;
     const int size = settings.map_size;
     // Depth compared in the sampler; linear filtering adds 2x2 PCF per tap, nearest keeps the

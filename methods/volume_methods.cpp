@@ -163,9 +163,7 @@ public:
     void prepare(const Scene& scene) override {
         gl::AnalyticRegionPass::require_closed_form(scene, name());
         const auto start = std::chrono::steady_clock::now();
-        bt::VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
-                                   .automatic_inner = scene.bounds.automatic_inner});
-        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
         const bt::RegionMesh lit = bt::extract_regions(tree).mesh(bt::Region::lit);
         build_ms_ =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)

@@ -92,9 +92,7 @@ public:
         if (variant_ == MarchVariant::hybrid3) {
             gl::AnalyticRegionPass::require_closed_form(scene, name());
             const auto start = std::chrono::steady_clock::now();
-            bt::VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
-                                       .automatic_inner = scene.bounds.automatic_inner});
-            const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+            const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
             const bt::Regions regions = bt::extract_regions(tree);
             const bt::RegionMesh lit = regions.mesh(bt::Region::lit);
             const bt::RegionMesh uncertain = regions.mesh(bt::Region::uncertain);
@@ -117,9 +115,7 @@ public:
                 gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                     {GL_FRAGMENT_SHADER, "sampling/shaders/march_resolve.frag"}});
             empty_vertex_array_ = gl::create_vertex_array();
-            sun_table_ = gl::create_sun_table();
         }
-        phase_table_ = gl::create_phase_table(scene.medium);
         frame_index_ = 0;
     }
 
@@ -128,8 +124,6 @@ public:
         GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
         const double scale = kScales[int(parameter("resolution_scale"))];
         allocate(inputs.width, inputs.height, scale);
-        GL.BindTextureUnit(gl::kSunTableUnit, sun_table_.id());
-        GL.BindTextureUnit(gl::kPhaseTableUnit, phase_table_.id());
         const bool hybrid = variant_ == MarchVariant::hybrid3;
         if (hybrid) {
             inputs.timeline.section("intervals");
@@ -139,9 +133,7 @@ public:
             GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
             GL.Viewport(0, 0, inputs.width, inputs.height);
             inputs.timeline.section("analytic");
-            analytic_.draw(inputs, true);
-            for (GLuint unit = 1; unit <= 3; ++unit)
-                GL.BindTextureUnit(unit, interval_textures_[unit - 1].id());
+            analytic_.draw(inputs, true);  // leaves units 1-3 (the intervals) bound
         }
 
         inputs.timeline.section("march");
@@ -281,7 +273,6 @@ private:
     gl::AnalyticRegionPass analytic_;
     gl::Program march_program_, resolve_program_, interval_program_;
     gl::VertexArray empty_vertex_array_;
-    gl::Texture sun_table_, phase_table_;
     gl::Texture march_target_;
     gl::Framebuffer march_framebuffer_;
     gl::Texture interval_textures_[3];

@@ -82,9 +82,7 @@ public:
         tree_.reset();
         if (variant_ != PlanesVariant::planes) {
             const auto start = std::chrono::steady_clock::now();
-            bt::VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
-                                       .automatic_inner = scene.bounds.automatic_inner});
-            tree_ = std::make_unique<bt::BeamTree>(scene.light, library.build(scene, nullptr));
+            tree_ = std::make_unique<bt::BeamTree>(bt::build_scene_beam_tree(scene));
             if (variant_ == PlanesVariant::hybrid2) {
                 const bt::RegionMesh lit = bt::extract_regions(*tree_).mesh(bt::Region::lit);
                 analytic_.upload(scene, lit.positions, lit.triangles);
@@ -118,14 +116,14 @@ public:
             influence_slices(inputs.scene.camera, inputs.scene.light, dz);
         slicing_ms_ = ms_since(start);
         start = std::chrono::steady_clock::now();
-        std::vector<PlaneVertex> vertices;
+        // Pieces drawn with the shadow lookup, then (hybrid1) the lit ones drawn without it.
+        std::vector<PlaneVertex> vertices, lit;
         pieces_ = {};
         if (!tree_) {
             for (const Slice& slice : slices)
                 append_fan(slice.polygon, slice.depth, vertices);
             pieces_[size_t(bt::Region::uncertain)] = slices.size();
         } else {
-            std::vector<PlaneVertex> lit;
             const double tolerance = 1e-7 * double(inputs.scene.light.far);
             for (const Slice& slice : slices) {
                 bt::BeamTree::Partition parts = tree_->partition(slice.polygon);
@@ -148,11 +146,10 @@ public:
                 pieces_[size_t(bt::Region::uncertain)] += parts.uncertain.size();
                 pieces_[size_t(bt::Region::unlit)] += parts.unlit.size();
             }
-            shadowed_count_ = GLsizei(vertices.size());
-            vertices.insert(vertices.end(), lit.begin(), lit.end());
         }
-        if (!tree_)
-            shadowed_count_ = GLsizei(vertices.size());
+        const GLsizei shadowed_count = GLsizei(vertices.size());
+        const GLsizei lit_count = GLsizei(lit.size());
+        vertices.insert(vertices.end(), lit.begin(), lit.end());
         partition_ms_ = tree_ ? ms_since(start) : 0.0;
         slice_count_ = slices.size();
         GL.NamedBufferData(vertex_buffer_.id(), GLsizeiptr(vertices.size() * sizeof(PlaneVertex)),
@@ -173,11 +170,10 @@ public:
         GL.Enable(GL_DEPTH_CLAMP);  // planes beyond the camera's far plane still count
         GL.BindVertexArray(vertex_array_.id());
         GL.ProgramUniform1i(program_.id(), kKnownLitLocation, 0);
-        GL.DrawArrays(GL_TRIANGLES, 0, shadowed_count_);
-        const GLsizei lit_count = GLsizei(vertices.size()) - shadowed_count_;
+        GL.DrawArrays(GL_TRIANGLES, 0, shadowed_count);
         if (lit_count > 0) {
             GL.ProgramUniform1i(program_.id(), kKnownLitLocation, 1);
-            GL.DrawArrays(GL_TRIANGLES, shadowed_count_, lit_count);
+            GL.DrawArrays(GL_TRIANGLES, shadowed_count, lit_count);
         }
         GL.Disable(GL_DEPTH_CLAMP);
         GL.Disable(GL_BLEND);
@@ -213,7 +209,6 @@ private:
     gl::Buffer vertex_buffer_;
     gl::VertexArray vertex_array_;
     gl::Query fragments_;
-    GLsizei shadowed_count_ = 0;
     size_t slice_count_ = 0;
     std::array<size_t, 3> pieces_{};
     double beamtree_ms_ = 0.0, slicing_ms_ = 0.0, partition_ms_ = 0.0;

@@ -99,9 +99,7 @@ TEST(Slices, LieOnTheirPlanesInsideThePyramid) {
 TEST(Slices, PartitionConservesArea) {
     for (const char* name : {"toplight", "parallel", "multiple"}) {
         const Scene scene = load_canonical(name);
-        bt::VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
-                                   .automatic_inner = scene.bounds.automatic_inner});
-        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
         size_t pieces = 0;
         for (const sampling::Slice& slice :
              sampling::influence_slices(scene.camera, scene.light, 0.5)) {
