@@ -17,6 +17,8 @@ Command add_gl_info_command(CLI::App& app);
 Command add_regions_command(CLI::App& app);
 Command add_methods_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+Command add_bench_command(CLI::App& app);
+Command add_merge_command(CLI::App& app);
 
 using Clock = std::chrono::steady_clock;
 

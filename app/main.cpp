@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
     add(sl::app::add_scenes_command);
     add(sl::app::add_methods_command);
     add(sl::app::add_compare_command);
+    add(sl::app::add_bench_command);
+    add(sl::app::add_merge_command);
     add(sl::app::add_gl_info_command);
     try {
         app.parse(argc, argv);

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/metrics.h"
 #include "core/output_files.h"
+#include "experiments/measure.h"
 #include "gl/platform.h"
 #include "gl/renderer.h"
 #include "scenes/scene_file.h"
@@ -33,12 +34,6 @@ struct RenderArguments {
     std::string compare;                // "reference": score I_s against it
     std::vector<std::string> settings;  // NAME=VALUE for the method's parameters
 };
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 int run_render(const RenderArguments& args) {
     gl::RenderOptions options;
@@ -77,42 +72,14 @@ int run_render(const RenderArguments& args) {
     start = Clock::now();
     method->prepare(scene);
     const double prepare_ms = ms_since(start);
-    // Warm-up frames first: they absorb shader compilation and first-use costs. Timings are
-    // medians over the measured frames, which read nothing back; the images are the last one's.
-    for (int i = 0; i < args.warmup; ++i) {
-        renderer.draw(*method);
-    }
-    std::vector<double> cpu_ms, gpu_ms[4], total_ms;
-    std::vector<std::pair<std::string, std::vector<double>>> section_ms;
-    std::vector<std::pair<std::string, std::vector<double>>> statistics;
-    auto collect = [](auto& series, const auto& values) {
-        for (const auto& [name, value] : values) {
-            auto same = std::find_if(series.begin(), series.end(),
-                                     [&](const auto& s) { return s.first == name; });
-            if (same == series.end())
-                series.emplace_back(name, std::vector<double>{value});
-            else
-                same->second.push_back(value);
-        }
-    };
-    for (int i = 0; i < args.frames; ++i) {
-        const gl::FrameTimings timings = renderer.draw(*method);
-        cpu_ms.push_back(timings.cpu_ms);
-        gpu_ms[0].push_back(timings.gpu.shadow_ms);
-        gpu_ms[1].push_back(timings.gpu.surface_ms);
-        gpu_ms[2].push_back(timings.gpu.volume_ms);
-        gpu_ms[3].push_back(timings.gpu.composite_ms);
-        total_ms.push_back(timings.gpu.total_ms());
-        collect(section_ms, timings.gpu.volume_sections);
-        collect(statistics, method->statistics());
-    }
+    // Warm-up frames absorb shader compilation and first-use costs; timings are medians over
+    // the measured frames, which read nothing back; the images are the last one's.
+    const experiments::FrameMeasurement measured =
+        experiments::measure_frames(renderer, *method, args.warmup, args.frames);
     gl::Frame frame = renderer.read_back();
-    frame.cpu_ms = median(cpu_ms);
-    frame.gpu = {median(gpu_ms[0]), median(gpu_ms[1]), median(gpu_ms[2]), median(gpu_ms[3]), {}};
-    for (const auto& [name, values] : section_ms) {
-        frame.gpu.volume_sections.emplace_back(name, median(values));
-    }
-    const double frame_gpu_ms = median(total_ms);
+    frame.cpu_ms = measured.frame_ms_median();
+    frame.gpu = measured.gpu;
+    const double frame_gpu_ms = measured.gpu_total_ms;
     const gl::ShadowSettings shadow = renderer.shadow();
 
     // Error against the reference on the I_s buffer, rendered by the same renderer (and cached).
@@ -173,8 +140,8 @@ int run_render(const RenderArguments& args) {
          [&] {
              // Medians over the measured frames.
              nlohmann::ordered_json values = nlohmann::ordered_json::object();
-             for (const auto& [name, series] : statistics)
-                 values[name] = median(series);
+             for (const auto& [name, value] : measured.statistics)
+                 values[name] = value;
              return values;
          }()},
         {"files", {stem + ".png", stem + ".exr", stem + ".inscatter.exr", stem + ".json"}},

@@ -14,32 +14,6 @@
 namespace sl::test {
 namespace {
 
-struct CommandResult {
-    int exit_code;
-    std::string output;  // stdout and stderr together
-};
-
-// Runs the binary with `environment` ("NAME=value " pairs) in front of it.
-CommandResult run_shaftlab_with(const std::string& environment, const std::string& arguments) {
-    const std::string command =
-        environment + std::string(SHAFTLAB_BINARY) + " " + arguments + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) {
-        return {-1, "popen failed"};
-    }
-    std::string output;
-    std::array<char, 4096> buffer{};
-    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) {
-        output.append(buffer.data(), n);
-    }
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
-
-CommandResult run_shaftlab(const std::string& arguments) {
-    return run_shaftlab_with("", arguments);
-}
-
 // `render` writes <scene>.<method>.{png,exr,json}; the JSON records the renderer and timings.
 TEST(Cli, RenderWritesPngExrAndJson) {
     TempDir out;

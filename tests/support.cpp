@@ -1,4 +1,5 @@
 #include "tests/support.h"
+#include <array>
 
 #include <cmath>
 #include <fstream>
@@ -250,6 +251,26 @@ Image unoccluded_in_scattering(const Scene& scene, int width, int height) {
         }
     }
     return image;
+}
+
+CommandResult run_shaftlab_with(const std::string& environment, const std::string& arguments) {
+    const std::string command =
+        environment + std::string(SHAFTLAB_BINARY) + " " + arguments + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) {
+        return {-1, "popen failed"};
+    }
+    std::string output;
+    std::array<char, 4096> buffer{};
+    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) {
+        output.append(buffer.data(), n);
+    }
+    const int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+CommandResult run_shaftlab(const std::string& arguments) {
+    return run_shaftlab_with("", arguments);
 }
 
 }  // namespace sl::test

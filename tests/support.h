@@ -99,4 +99,13 @@ Scene boxes_scene(MediumModel model);
 // The canonical scenes from the source tree.
 Scene load_canonical(const std::string& name);
 
+// The shaftlab executable run through the shell, stdout and stderr together.
+struct CommandResult {
+    int exit_code;
+    std::string output;
+};
+// Runs the binary with `environment` ("NAME=value " pairs) in front of it.
+CommandResult run_shaftlab_with(const std::string& environment, const std::string& arguments);
+CommandResult run_shaftlab(const std::string& arguments);
+
 }  // namespace sl::test

@@ -1,0 +1,125 @@
+// `shaftlab bench EXPERIMENT.toml` and `shaftlab merge`: the harness's command line
+// (experiments/bench.h has the outputs).
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "experiments/bench.h"
+
+namespace sl::app {
+
+namespace {
+
+struct BenchArguments {
+    std::string experiment;
+    std::string out;
+    std::vector<std::string> presets;
+    std::vector<std::string> settings;
+    std::string shard = "1/1";
+    bool list = false;
+    // Process isolation's child: one cell and repetition.
+    std::string cell;
+    int rep = 0;
+};
+
+std::string self_executable() {
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec) {
+        fail("cannot find this executable (/proc/self/exe): {}", ec.message());
+    }
+    return self.string();
+}
+
+int run_bench_command(const BenchArguments& args) {
+    const experiments::Experiment experiment =
+        experiments::load_experiment(args.experiment, args.presets, args.settings);
+    const std::filesystem::path out =
+        args.out.empty() ? experiment.output_directory() : std::filesystem::path(args.out);
+    if (!args.cell.empty()) {
+        nlohmann::json cell;
+        try {
+            cell = nlohmann::json::parse(args.cell);
+        } catch (const nlohmann::json::exception& e) {
+            fail("--cell: not JSON: {}", e.what());
+        }
+        experiments::run_cell(experiment, out, cell, args.rep);
+        return 0;
+    }
+    if (args.list) {
+        const auto cells = experiment.cells();
+        for (const experiments::Cell& cell : cells) {
+            fmt::print("{}\n", cell.id());
+        }
+        fmt::print(stderr, "{}: {} cells × {} repetition(s)\n", experiment.name, cells.size(),
+                   experiment.protocol.repetitions);
+        return 0;
+    }
+    experiments::BenchOptions options;
+    options.out = out;
+    options.shard = experiments::parse_shard(args.shard);
+    options.relaunch = {self_executable(), "bench", args.experiment, "--out", out.string()};
+    for (const std::string& preset : args.presets) {
+        options.relaunch.insert(options.relaunch.end(), {"--preset", preset});
+    }
+    for (const std::string& setting : args.settings) {
+        options.relaunch.insert(options.relaunch.end(), {"--set", setting});
+    }
+    const int failed = experiments::run_bench(experiment, options);
+    std::ifstream table(out / "table.md");
+    std::cout << table.rdbuf() << std::flush;
+    fmt::print(stderr, "bench: results.csv, table.md, env.json{} in {}\n",
+               experiment.plots ? ", plots/" : "", out.string());
+    return failed ? 1 : 0;
+}
+
+}  // namespace
+
+Command add_bench_command(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "bench",
+        "Run an experiment (TOML): every cell's timings and error into DIR/results.csv, "
+        "table.md, env.json, plots/, images/; resumes where a previous run stopped");
+    auto args = std::make_shared<BenchArguments>();
+    command->add_option("experiment", args->experiment, "Experiment file (experiments/*.toml)")
+        ->required();
+    command->add_option("--out", args->out,
+                        "Output directory (default: the experiment's `out`, results/{name})");
+    command->add_option("--preset", args->presets, "Apply a preset of the file (repeatable)");
+    command->add_option("--set", args->settings,
+                        "Override a value, KEY.PATH=VALUE in TOML syntax, e.g. protocol.frames=3 "
+                        "or sweep.sizes='[\"64x64\"]' (repeatable)");
+    command
+        ->add_option("--shard", args->shard,
+                     "Run every n-th cell only, i/n (1 <= i <= n); join with `shaftlab merge`")
+        ->capture_default_str();
+    command->add_flag("--list", args->list, "Print the cells of the sweep and exit");
+    command->add_option("--cell", args->cell)->group("");  // process isolation's child
+    command->add_option("--rep", args->rep)->group("");
+    return [args] { return run_bench_command(*args); };
+}
+
+Command add_merge_command(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "merge", "Join the output directories of `bench --shard` runs and write the summary");
+    auto directories = std::make_shared<std::vector<std::string>>();
+    auto out = std::make_shared<std::string>();
+    command->add_option("shards", *directories, "Shard output directories")->required();
+    command->add_option("--out", *out, "Merged output directory")->required();
+    return [directories, out] {
+        std::vector<std::filesystem::path> shards(directories->begin(), directories->end());
+        experiments::merge_shards(shards, *out);
+        std::ifstream table(std::filesystem::path(*out) / "table.md");
+        std::cout << table.rdbuf() << std::flush;
+        return 0;
+    };
+}
+
+}  // namespace sl::app

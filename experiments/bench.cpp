@@ -1,0 +1,522 @@
+#include "experiments/bench.h"
+
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <random>
+#include <regex>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "core/metrics.h"
+#include "core/output_files.h"
+#include "experiments/equal_error.h"
+#include "experiments/measure.h"
+#include "experiments/report.h"
+#include "gl/platform.h"
+#include "gl/renderer.h"
+#include "scenes/scene_file.h"
+
+extern char** environ;
+
+namespace sl::experiments {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+std::string duration_text(double seconds) {
+    const long s = std::lround(seconds);
+    return s >= 3600 ? fmt::format("{}h{:02}m", s / 3600, s / 60 % 60)
+                     : fmt::format("{}m{:02}s", s / 60, s % 60);
+}
+
+fs::path row_path(const fs::path& out, const Cell& cell, int rep) {
+    return out / "cells" / fmt::format("{}.rep{}.json", cell.id(), rep);
+}
+
+// What one process keeps between cells: scenes, and the region statistics of each view.
+struct Caches {
+    std::map<std::string, Scene> scenes;
+    std::map<std::tuple<std::string, int, int>, RegionStatistics> regions;
+
+    const Scene& scene(const std::string& name) {
+        auto found = scenes.find(name);
+        if (found == scenes.end()) {
+            found = scenes.emplace(name, load_scene(name, SceneSearchPaths::defaults())).first;
+        }
+        return found->second;
+    }
+};
+
+// Renders one cell and repetition in a fresh GL context and returns its result row.
+Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path& out,
+                  Caches& caches) {
+    auto start = Clock::now();
+    const Scene& scene = caches.scene(cell.scene);
+    const double load_ms = ms_since(start);
+
+    std::unique_ptr<gl::VolumeMethod> method = methods::create_volume_method(cell.method);
+    if (method->has_parameter("shadow")) {
+        method->set("shadow", x.render.shadow);
+        method->set("shadow_size", std::to_string(x.render.shadow_map_size));
+    }
+    for (const Setting& s : cell.settings) {
+        method->set(s.name, s.value);
+    }
+    const gl::RenderOptions options{.width = cell.width,
+                                    .height = cell.height,
+                                    .shadow = {.filter = gl::parse_shadow_filter(x.render.shadow),
+                                               .map_size = x.render.shadow_map_size,
+                                               .radius = x.render.pcf_radius}};
+
+    start = Clock::now();
+    const auto platform = gl::create_osmesa_platform();
+    const gl::ContextInfo context = platform->info();
+    gl::SceneRenderer renderer(scene, options);
+    const double setup_ms = ms_since(start);
+    start = Clock::now();
+    method->prepare(scene);
+    const double prepare_ms = ms_since(start);
+
+    const FrameMeasurement m =
+        measure_frames(renderer, *method, x.protocol.warmup, x.protocol.frames);
+    const gl::Frame frame = renderer.read_back();
+
+    std::optional<ErrorMetrics> error;
+    if (!x.reference.empty()) {
+        const auto reference = methods::create_volume_method(x.reference);
+        error = compare_images(frame.in_scattering, renderer.render(*reference).in_scattering);
+    }
+
+    start = Clock::now();
+    const auto region_key = std::make_tuple(cell.scene, cell.width, cell.height);
+    if (!caches.regions.contains(region_key)) {
+        caches.regions[region_key] = region_statistics(scene, cell.width, cell.height);
+    }
+    const RegionStatistics& regions = caches.regions[region_key];
+    const double regions_ms = ms_since(start);
+
+    std::string image;
+    if (rep == 0) {
+        OutputFiles images(out / "images");
+        if (x.images) {
+            images.add(cell.id() + ".inscatter.exr",
+                       [&](const fs::path& path) { write_exr(frame.in_scattering, path); });
+        }
+        if (x.previews && std::max(cell.width, cell.height) <= x.preview_max_size) {
+            image = "images/" + cell.id() + ".png";
+            images.add(cell.id() + ".png", [&](const fs::path& path) {
+                write_png(frame.display_srgb8, cell.width, cell.height, path);
+            });
+        } else if (x.images) {
+            image = "images/" + cell.id() + ".inscatter.exr";
+        }
+        images.commit();
+    }
+
+    const double frame_ms = m.frame_ms_median();
+    Json row = {
+        {"experiment", x.name},
+        {"cell", cell.id()},
+        {"scene", cell.scene},
+        {"method", cell.method},
+        {"width", cell.width},
+        {"height", cell.height},
+        {"params", cell.settings_text()},
+        {"rep", rep},
+        {"frames", x.protocol.frames},
+        {"fps", 1000.0 / frame_ms},
+        {"frame_ms_median", frame_ms},
+        {"frame_ms_p5", percentile(m.frame_ms, 5.0)},
+        {"frame_ms_p95", percentile(m.frame_ms, 95.0)},
+        {"gpu_ms_total", m.gpu_total_ms},
+        {"gpu_ms_shadow", m.gpu.shadow_ms},
+        {"gpu_ms_surface", m.gpu.surface_ms},
+        {"gpu_ms_volume", m.gpu.volume_ms},
+        {"gpu_ms_composite", m.gpu.composite_ms},
+    };
+    for (const auto& [section, ms] : m.gpu.volume_sections) {
+        row["gpu_ms_volume_" + section] = ms;
+    }
+    row["cpu_ms_scene_load"] = load_ms;
+    row["cpu_ms_gl_setup"] = setup_ms;
+    row["cpu_ms_prepare"] = prepare_ms;
+    row["cpu_ms_region_statistics"] = regions_ms;
+    row["cpu_ms_beamtree_regions"] = regions.build_ms;
+    for (const auto& [name, value] : m.statistics) {
+        if (name.starts_with("cpu_ms_")) {
+            row[name] = value;
+        }
+    }
+    auto metric = [&](const char* name, double value) -> Json {
+        const bool wanted =
+            error && std::find(x.metrics.begin(), x.metrics.end(), name) != x.metrics.end();
+        return wanted && std::isfinite(value) ? Json(value) : Json();
+    };
+    row["rel_rmse"] = metric("rel_rmse", error ? error->rel_rmse : 0.0);
+    row["max_abs"] = metric("max_abs", error ? error->max_abs : 0.0);
+    row["psnr"] = metric("psnr", error ? error->psnr : 0.0);  // empty when exact (infinite)
+    row["lit_frac"] = regions.lit_fraction;
+    row["uncertain_frac"] = regions.uncertain_fraction;
+    row["unlit_frac"] = regions.unlit_fraction;
+    row["beams"] = regions.beams;
+    row["region_faces"] = regions.region_faces;
+    Json samples_or_slices;
+    for (const auto& [name, value] : m.statistics) {
+        if (name == "slices") {
+            samples_or_slices = value;
+        }
+    }
+    if (samples_or_slices.is_null() && method->has_parameter("samples")) {
+        samples_or_slices = method->parameter("samples");
+    }
+    row["samples_or_slices"] = samples_or_slices;
+    row["image"] = image;
+    for (const auto& [name, value] : m.statistics) {
+        if (!name.starts_with("cpu_ms_")) {
+            row["stat_" + name] = value;
+        }
+    }
+    for (const gl::Parameter& p : method->parameters()) {
+        row["param_" + p.name] = p.text();
+    }
+    const gl::ShadowSettings shadow = renderer.shadow();
+    row["shadow"] = gl::to_string(shadow.filter);
+    row["shadow_map_size"] = shadow.map_size;
+    row["shadow_radius"] = shadow.radius;
+    row["reference"] = x.reference;
+    row["isolation"] = x.protocol.isolation == Isolation::process ? "process" : "context";
+    row["warmup"] = x.protocol.warmup;
+    row["gl_vendor"] = context.vendor;
+    row["gl_renderer"] = context.renderer;
+    row["gl_version"] = context.version;
+    return row;
+}
+
+void write_row(const fs::path& out, const Cell& cell, int rep, const Json& row) {
+    OutputFiles rows(out / "cells");
+    rows.add_text(row_path(out, cell, rep).filename().string(),
+                  Json{{"cell", cell_to_json(cell)}, {"rep", rep}, {"row", row}}.dump(1) + "\n");
+    rows.commit();
+}
+
+std::optional<Json> read_row(const fs::path& path) {
+    std::ifstream file(path);
+    if (!file) {
+        return std::nullopt;
+    }
+    try {
+        return Json::parse(file);
+    } catch (const nlohmann::json::exception& e) {
+        fail("{}: not a result row ({}); delete it to measure the cell again", path.string(),
+             e.what());
+    }
+}
+
+}  // namespace
+
+int spawn_and_wait(const std::vector<std::string>& arguments) {
+    std::vector<char*> argv;
+    for (const std::string& a : arguments) {
+        argv.push_back(const_cast<char*>(a.c_str()));
+    }
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    if (const int e = posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ)) {
+        fail("cannot start {}: {}", arguments[0], std::strerror(e));
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0) {
+        if (errno != EINTR) {
+            fail("waiting for {}: {}", arguments[0], std::strerror(errno));
+        }
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+namespace {
+
+// The directory holds one experiment: its effective document is written on the first run and
+// must match on every later one (resume), so rows of different settings never mix.
+void claim_directory(const Experiment& x, const fs::path& out) {
+    for (const char* sub : {"cells", "images"}) {
+        std::error_code ec;
+        fs::create_directories(out / sub, ec);
+        if (ec) {
+            fail("{}: cannot create: {}", (out / sub).string(), ec.message());
+        }
+        // Temporaries of a run that was killed mid-write.
+        for (const auto& entry : fs::directory_iterator(out / sub)) {
+            const std::string name = entry.path().filename().string();
+            if (name.starts_with(".") && name.ends_with(".tmp")) {
+                fs::remove(entry.path(), ec);
+            }
+        }
+    }
+    const fs::path marker = out / "experiment.toml";
+    if (fs::exists(marker)) {
+        std::ifstream file(marker, std::ios::binary);
+        std::ostringstream text;
+        text << file.rdbuf();
+        if (text.str() != x.effective) {
+            fail(
+                "{} holds results of a different experiment or different overrides (see its "
+                "experiment.toml); use another --out, or delete the directory",
+                out.string());
+        }
+        return;
+    }
+    OutputFiles files(out);
+    files.add_text("experiment.toml", x.effective);
+    files.commit();
+}
+
+std::string cell_label(const Cell& cell) {
+    return cell.settings.empty() ? fmt::format("{} {} {}", cell.scene, cell.size(), cell.method)
+                                 : fmt::format("{} {} {} {}", cell.scene, cell.size(), cell.method,
+                                               cell.settings_text());
+}
+
+}  // namespace
+
+nlohmann::json cell_to_json(const Cell& cell) {
+    nlohmann::json settings = nlohmann::json::array();
+    for (const Setting& s : cell.settings) {
+        settings.push_back({s.name, s.value});
+    }
+    return {{"scene", cell.scene},
+            {"method", cell.method},
+            {"width", cell.width},
+            {"height", cell.height},
+            {"settings", settings}};
+}
+
+Cell cell_from_json(const nlohmann::json& json) {
+    try {
+        Cell cell{json.at("scene").get<std::string>(),
+                  json.at("method").get<std::string>(),
+                  json.at("width").get<int>(),
+                  json.at("height").get<int>(),
+                  {}};
+        for (const auto& s : json.at("settings")) {
+            cell.settings.push_back({s.at(0).get<std::string>(), s.at(1).get<std::string>()});
+        }
+        return cell;
+    } catch (const nlohmann::json::exception& e) {
+        fail("not a cell description: {}", e.what());
+    }
+}
+
+Shard parse_shard(const std::string& text) {
+    static const std::regex pattern(R"((\d{1,6})/(\d{1,6}))");
+    std::smatch match;
+    if (std::regex_match(text, match, pattern)) {
+        const Shard shard{std::stoi(match[1]), std::stoi(match[2])};
+        if (shard.count >= 1 && shard.index >= 1 && shard.index <= shard.count) {
+            return shard;
+        }
+    }
+    fail("--shard '{}': expected i/n with 1 <= i <= n, e.g. 2/4", text);
+}
+
+void run_cell(const Experiment& x, const fs::path& out, const nlohmann::json& cell_json, int rep) {
+    const Cell cell = cell_from_json(cell_json);
+    Caches caches;
+    write_row(out, cell, rep, measure_cell(x, cell, rep, out, caches));
+}
+
+int run_bench(const Experiment& x, const BenchOptions& options) {
+    const fs::path& out = options.out;
+    claim_directory(x, out);
+    Caches caches;
+    const auto started = Clock::now();
+    int failed = 0, measured = 0;
+    double measured_seconds = 0.0;
+
+    // Measures (or loads) every repetition of a cell; nullopt when one failed.
+    auto ensure = [&](const Cell& cell, const std::string& progress) -> std::optional<CellSummary> {
+        std::vector<double> errors, times;
+        for (int rep = 0; rep < x.protocol.repetitions; ++rep) {
+            const fs::path path = row_path(out, cell, rep);
+            std::optional<Json> row = read_row(path);
+            if (!row) {
+                const auto cell_start = Clock::now();
+                try {
+                    if (x.protocol.isolation == Isolation::process) {
+                        std::vector<std::string> args = options.relaunch;
+                        args.insert(args.end(), {"--cell", cell_to_json(cell).dump(), "--rep",
+                                                 std::to_string(rep)});
+                        if (const int code = spawn_and_wait(args); code != 0) {
+                            fail("the cell's process exited with status {}", code);
+                        }
+                        row = read_row(path);
+                        if (!row) {
+                            fail("the cell's process wrote no row");
+                        }
+                    } else {
+                        const Json measured_row = measure_cell(x, cell, rep, out, caches);
+                        write_row(out, cell, rep, measured_row);
+                        row = Json{{"row", measured_row}};
+                    }
+                } catch (const std::exception& e) {
+                    ++failed;
+                    fmt::print(stderr, "  FAILED {} rep {}: {}\n", cell_label(cell), rep, e.what());
+                    return std::nullopt;
+                }
+                ++measured;
+                measured_seconds += ms_since(cell_start) / 1000.0;
+            }
+            const Json& r = row->at("row");
+            times.push_back(r.at("frame_ms_median").get<double>());
+            errors.push_back(r.at("rel_rmse").is_number() ? r.at("rel_rmse").get<double>() : 0.0);
+            const double elapsed = ms_since(started) / 1000.0;
+            fmt::print(stderr, "{} {} rep {}: {:.2f} fps{}  [{} elapsed{}]\n", progress,
+                       cell_label(cell), rep, 1000.0 / times.back(),
+                       r.at("rel_rmse").is_number()
+                           ? fmt::format(", rel_rmse {:.3g}%", 100.0 * errors.back())
+                           : std::string(),
+                       duration_text(elapsed), measured ? "" : ", from an earlier run");
+        }
+        double error = 0.0;
+        for (const double e : errors) {
+            error += e / double(errors.size());
+        }
+        return CellSummary{error, median(times)};
+    };
+
+    if (x.equal_error) {
+        // One unit per search group; each runs its bisections for every target.
+        const std::vector<Cell> groups = search_groups(x);
+        std::vector<size_t> mine;
+        for (size_t i = 0; i < groups.size(); ++i) {
+            if (int(i % size_t(options.shard.count)) == options.shard.index - 1) {
+                mine.push_back(i);
+            }
+        }
+        for (size_t k = 0; k < mine.size(); ++k) {
+            const Cell& group = groups[mine[k]];
+            for (const double target : x.equal_error->targets) {
+                const std::string progress =
+                    fmt::format("[search {}/{}, target {:.3g}%]", k + 1, mine.size(), 100 * target);
+                const SearchOutcome outcome = search_equal_error(
+                    x, group, target, [&](const Cell& cell) { return ensure(cell, progress); });
+                fmt::print(stderr, "  => {}: {}\n", cell_label(group),
+                           !outcome.complete ? "incomplete"
+                           : outcome.reached ? fmt::format("{}={} at {:.1f} ms", outcome.parameter,
+                                                           outcome.value, outcome.summary.frame_ms)
+                                             : "target not reached");
+            }
+        }
+    } else {
+        std::vector<Cell> cells = x.cells();
+        if (cells.empty()) {
+            fail("{}: the sweep is empty (every cell excluded)", x.source.string());
+        }
+        std::vector<size_t> mine;
+        for (size_t i = 0; i < cells.size(); ++i) {
+            if (int(i % size_t(options.shard.count)) == options.shard.index - 1) {
+                mine.push_back(i);
+            }
+        }
+        if (x.protocol.order_shuffled) {
+            std::mt19937_64 random(x.protocol.seed);
+            std::shuffle(mine.begin(), mine.end(), random);
+        }
+        for (size_t k = 0; k < mine.size(); ++k) {
+            // Remaining time from the cells measured in this run (rows from an earlier run are
+            // free).
+            const std::string remaining =
+                measured ? fmt::format(", ~{} left", duration_text(measured_seconds / measured *
+                                                                   double(mine.size() - k)))
+                         : std::string();
+            ensure(cells[mine[k]], fmt::format("[{}/{}{}]", k + 1, mine.size(), remaining));
+        }
+    }
+    if (options.write_outputs) {
+        write_summary(x, out);
+    }
+    if (failed) {
+        fmt::print(stderr, "{} cell(s) failed; running the same command again retries them\n",
+                   failed);
+    }
+    return failed;
+}
+
+void merge_shards(const std::vector<fs::path>& shards, const fs::path& out) {
+    if (shards.empty()) {
+        fail("merge: no shard directories given");
+    }
+    std::string effective;
+    for (const fs::path& shard : shards) {
+        std::ifstream file(shard / "experiment.toml", std::ios::binary);
+        if (!file) {
+            fail("{}: not a bench output directory (no experiment.toml)", shard.string());
+        }
+        std::ostringstream text;
+        text << file.rdbuf();
+        if (effective.empty()) {
+            effective = text.str();
+        } else if (text.str() != effective) {
+            fail("{}: a different experiment than {} (experiment.toml differs)", shard.string(),
+                 shards.front().string());
+        }
+    }
+    // The experiment as run, re-read from the first shard's env.json (verbatim file and
+    // overrides), so the summary knows its sweep.
+    const fs::path env_path = shards.front() / "env.json";
+    std::ifstream env_file(env_path);
+    if (!env_file) {
+        fail("{}: missing; was the shard run to its end?", env_path.string());
+    }
+    const Json env = Json::parse(env_file);
+    const Json& source = env.at("experiment");
+    std::vector<std::string> presets, overrides;
+    for (const auto& o : source.at("overrides")) {
+        const std::string text = o.get<std::string>();
+        if (text.starts_with("preset ")) {
+            presets.push_back(text.substr(7));
+        } else {
+            overrides.push_back(text);
+        }
+    }
+    const Experiment x = parse_experiment(source.at("text").get<std::string>(),
+                                          source.at("file").get<std::string>(), presets, overrides);
+    claim_directory(x, out);
+    size_t copied = 0;
+    for (const fs::path& shard : shards) {
+        for (const char* sub : {"cells", "images"}) {
+            if (!fs::is_directory(shard / sub)) {
+                continue;
+            }
+            for (const auto& entry : fs::directory_iterator(shard / sub)) {
+                const std::string name = entry.path().filename().string();
+                if (name.starts_with(".")) {
+                    continue;
+                }
+                OutputFiles files(out / sub);
+                files.add(name, [&](const fs::path& path) {
+                    fs::copy_file(entry.path(), path, fs::copy_options::overwrite_existing);
+                });
+                files.commit();
+                copied += sub == std::string("cells");
+            }
+        }
+    }
+    fmt::print(stderr, "merge: {} rows from {} shards into {}\n", copied, shards.size(),
+               out.string());
+    write_summary(x, out);
+}
+
+}  // namespace sl::experiments

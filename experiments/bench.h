@@ -1,0 +1,61 @@
+#pragma once
+// The harness (DESIGN.md §6): runs an experiment's cells and writes, into one directory,
+//   cells/<cell>.rep<r>.json   one result row per cell and repetition, each written atomically;
+//                              a run started again skips the rows that exist (resume);
+//   images/<cell>.inscatter.exr, images/<cell>.png   I_s and the tone-mapped frame (repetition 0);
+//   results.csv                every row, long format;
+//   table.md                   Nilsson Table 6.1's layout (and the equal-error report);
+//   equal_error.csv            when the experiment has [equal_error];
+//   env.json                   machine, GL, compiler, libraries, git, the experiment verbatim;
+//   plots/*.png                by experiments/plots.py (Debian's python3-matplotlib);
+//   experiment.toml            the experiment as run: a directory holds one experiment only.
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiments/experiment.h"
+
+namespace sl::experiments {
+
+struct Shard {
+    int index = 1;  // 1..count
+    int count = 1;
+};
+// "i/n" with 1 <= i <= n; throws sl::Error otherwise.
+Shard parse_shard(const std::string& text);
+
+struct BenchOptions {
+    std::filesystem::path out;
+    Shard shard;
+    // For process isolation: the command line that re-runs this bench (executable, experiment,
+    // presets, overrides, --out); the harness appends --cell JSON --rep R.
+    std::vector<std::string> relaunch;
+    bool write_outputs = true;  // results.csv, table.md, env.json, plots after the cells
+};
+
+// Runs every cell of this shard that has no row yet, printing progress to stderr, then writes
+// the summary outputs. Returns the number of cells that failed (their rows are absent; running
+// again retries them).
+int run_bench(const Experiment& experiment, const BenchOptions& options);
+
+// One cell and repetition in this process (the child of process isolation): writes its row.
+void run_cell(const Experiment& experiment, const std::filesystem::path& out,
+              const nlohmann::json& cell, int rep);
+
+// Joins shard directories of one experiment into `out` (rows and images copied) and writes the
+// summary outputs there.
+void merge_shards(const std::vector<std::filesystem::path>& shards,
+                  const std::filesystem::path& out);
+
+// results.csv, table.md, equal_error.csv, env.json and plots of the rows in `out`.
+void write_summary(const Experiment& experiment, const std::filesystem::path& out);
+
+Cell cell_from_json(const nlohmann::json& json);
+nlohmann::json cell_to_json(const Cell& cell);
+
+}  // namespace sl::experiments

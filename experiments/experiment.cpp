@@ -1,0 +1,664 @@
+#include "experiments/experiment.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "core/error.h"
+#include "gl/volume_method.h"
+#include "scenes/scene_file.h"
+#include "scenes/toml_reader.h"
+
+namespace sl::experiments {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Numbers as the shortest text that reads back to the same value ("0.1", "64").
+std::string value_text(const toml::node& node) {
+    if (const auto* i = node.as_integer()) {
+        return std::to_string(i->get());
+    }
+    if (const auto* d = node.as_floating_point()) {
+        return fmt::format("{}", d->get());
+    }
+    if (const auto* b = node.as_boolean()) {
+        return b->get() ? "1" : "0";
+    }
+    if (const auto* s = node.as_string()) {
+        return s->get();
+    }
+    return {};
+}
+
+bool is_scalar(const toml::node& node) {
+    return node.is_number() || node.is_boolean() || node.is_string();
+}
+
+// A scalar or an array of scalars, as texts; a list sweeps.
+std::vector<std::string> values(TomlTableReader& reader, std::string_view key) {
+    const toml::node* node = reader.take(key);
+    std::vector<std::string> texts;
+    if (!node) {
+        return texts;
+    }
+    if (is_scalar(*node)) {
+        texts.push_back(value_text(*node));
+    } else if (const toml::array* array = node->as_array()) {
+        for (const toml::node& element : *array) {
+            if (!is_scalar(element)) {
+                reader.error(key, "expected a value or an array of values");
+            }
+            texts.push_back(value_text(element));
+        }
+        if (texts.empty()) {
+            reader.error(key, "an empty list sweeps nothing");
+        }
+    } else {
+        reader.error(key, "expected a value or an array of values");
+    }
+    return texts;
+}
+
+std::vector<std::string> strings(TomlTableReader& reader, std::string_view key) {
+    if (const toml::node* node = reader.take(key)) {
+        const toml::array* array = node->as_array();
+        if (node->is_string() ||
+            (array && std::all_of(array->begin(), array->end(),
+                                  [](const toml::node& n) { return n.is_string(); }))) {
+            return values(reader, key);
+        }
+        reader.error(key, "expected a string or an array of strings");
+    }
+    return {};
+}
+
+std::optional<double> as_number(const std::string& text) {
+    double value = 0.0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || ptr != end) {
+        return std::nullopt;
+    }
+    return value;
+}
+
+// Equal as numbers when both are numbers ("0.10" = "0.1"), else as text.
+bool same_value(const std::string& a, const std::string& b) {
+    const auto x = as_number(a), y = as_number(b);
+    return x && y ? *x == *y : a == b;
+}
+
+std::pair<int, int> parse_size_value(TomlTableReader& reader, std::string_view key,
+                                     const std::string& text) {
+    static const std::regex pattern(R"((\d{1,5})(?:x(\d{1,5}))?)");
+    std::smatch match;
+    if (!std::regex_match(text, match, pattern)) {
+        reader.error(key, fmt::format("'{}': expected WIDTHxHEIGHT (or N for NxN)", text));
+    }
+    const int width = std::stoi(match[1]);
+    const int height = match[2].matched ? std::stoi(match[2]) : width;
+    if (width < 1 || height < 1 || width > 16384 || height > 16384) {
+        reader.error(key, fmt::format("'{}': width and height must be in 1..16384", text));
+    }
+    return {width, height};
+}
+
+void assign(toml::table& table, const std::string& key, const toml::node& node) {
+    node.visit([&](const auto& value) { table.insert_or_assign(key, value); });
+}
+
+// Sets `path` (dot-separated) in `root`, creating tables on the way.
+void set_path(toml::table& root, const std::string& path, const toml::node& value,
+              const std::string& origin) {
+    toml::table* table = &root;
+    size_t begin = 0;
+    while (true) {
+        const size_t dot = path.find('.', begin);
+        const std::string key = path.substr(begin, dot == std::string::npos ? dot : dot - begin);
+        if (key.empty()) {
+            fail("{}: override '{}': empty key in the path", origin, path);
+        }
+        if (dot == std::string::npos) {
+            assign(*table, key, value);
+            return;
+        }
+        toml::node* next = table->get(key);
+        if (!next) {
+            next = table->insert_or_assign(key, toml::table{}).first->second.as_table();
+        }
+        if (!next->is_table()) {
+            fail("{}: override '{}': '{}' is not a table", origin, path, key);
+        }
+        table = next->as_table();
+        begin = dot + 1;
+    }
+}
+
+// VALUE in TOML syntax (1, 0.5, "x", [1, 2], true), or else taken as a bare string.
+toml::table parse_override_value(const std::string& value) {
+    try {
+        toml::table parsed = toml::parse("value = " + value);
+        if (parsed.size() == 1 && parsed.contains("value")) {
+            return parsed;
+        }
+    } catch (const toml::parse_error&) {
+    }
+    toml::table parsed;
+    parsed.insert("value", value);
+    return parsed;
+}
+
+// A preset's table flattened into dotted paths ("sweep.sizes" and [presets.x.sweep] sizes alike).
+void flatten(const toml::table& table, const std::string& prefix,
+             std::vector<std::pair<std::string, const toml::node*>>& out) {
+    for (const auto& [key, node] : table) {
+        const std::string path =
+            prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+        if (const toml::table* sub = node.as_table()) {
+            flatten(*sub, path, out);
+        } else {
+            out.emplace_back(path, &node);
+        }
+    }
+}
+
+void check_method_parameter(const std::string& method, const std::string& name,
+                            const std::vector<std::string>& texts, TomlTableReader& reader) {
+    const auto instance = methods::create_volume_method(method);
+    if (!instance->has_parameter(name)) {
+        reader.error(name, fmt::format("method '{}' has no parameter '{}'", method, name));
+    }
+    for (const std::string& text : texts) {
+        try {
+            instance->set(name, text);
+        } catch (const Error& e) {
+            reader.error(name, e.what());
+        }
+    }
+}
+
+}  // namespace
+
+std::string Cell::size() const {
+    return fmt::format("{}x{}", width, height);
+}
+
+std::string Cell::settings_text() const {
+    std::string text;
+    for (const Setting& s : settings) {
+        text += (text.empty() ? "" : ";") + s.name + "=" + s.value;
+    }
+    return text;
+}
+
+std::string Cell::id() const {
+    std::string id = fmt::format("{}.{}.{}", scene, method, size());
+    for (const Setting& s : settings) {
+        id += "." + s.name + "=" + s.value;
+    }
+    for (char& c : id) {
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '=' && c != '-' &&
+            c != '+' && c != '_') {
+            c = '_';
+        }
+    }
+    return id;
+}
+
+const std::string* Cell::setting(const std::string& name) const {
+    for (const Setting& s : settings) {
+        if (s.name == name) {
+            return &s.value;
+        }
+    }
+    return nullptr;
+}
+
+bool Experiment::excluded(const Cell& cell) const {
+    for (const Exclusion& exclusion : exclusions) {
+        bool all = true;
+        for (const auto& [key, accepted] : exclusion.keys) {
+            std::optional<std::string> value;
+            if (key == "scene") {
+                value = cell.scene;
+            } else if (key == "method") {
+                value = cell.method;
+            } else if (key == "size") {
+                value = cell.size();
+            } else if (const std::string* setting = cell.setting(key)) {
+                value = *setting;
+            }
+            all = all && value &&
+                  std::any_of(accepted.begin(), accepted.end(), [&](const std::string& a) {
+                      return same_value(*value, a) || (key == "size" && a + "x" + a == *value);
+                  });
+        }
+        if (all) {
+            return true;
+        }
+    }
+    return false;
+}
+
+std::vector<Cell> Experiment::cells() const {
+    std::vector<Cell> cells;
+    for (const std::string& scene : scenes) {
+        for (const auto& [width, height] : sizes) {
+            for (const std::string& method : methods) {
+                const auto instance = methods::create_volume_method(method);
+                // The swept parameters this method declares; its own lists replace global ones.
+                std::vector<std::pair<std::string, std::vector<std::string>>> axes;
+                for (const auto& axis : params) {
+                    if (instance->has_parameter(axis.first)) {
+                        axes.push_back(axis);
+                    }
+                }
+                if (auto own = method_params.find(method); own != method_params.end()) {
+                    for (const auto& axis : own->second) {
+                        auto same = std::find_if(axes.begin(), axes.end(), [&](const auto& a) {
+                            return a.first == axis.first;
+                        });
+                        if (same != axes.end()) {
+                            same->second = axis.second;
+                        } else {
+                            axes.push_back(axis);
+                        }
+                    }
+                }
+                // Cartesian product, the first axis varying slowest.
+                std::vector<size_t> index(axes.size(), 0);
+                while (true) {
+                    Cell cell{scene, method, width, height, {}};
+                    for (size_t a = 0; a < axes.size(); ++a) {
+                        cell.settings.push_back({axes[a].first, axes[a].second[index[a]]});
+                    }
+                    std::sort(cell.settings.begin(), cell.settings.end(),
+                              [](const Setting& x, const Setting& y) { return x.name < y.name; });
+                    if (!excluded(cell)) {
+                        cells.push_back(std::move(cell));
+                    }
+                    size_t a = axes.size();
+                    while (a > 0 && ++index[a - 1] == axes[a - 1].second.size()) {
+                        index[--a] = 0;
+                    }
+                    if (a == 0) {
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    return cells;
+}
+
+std::vector<std::string> Experiment::listed_values(const std::string& parameter) const {
+    std::vector<std::string> listed;
+    auto add = [&](const auto& axes) {
+        for (const auto& [axis, texts] : axes) {
+            for (const std::string& value : texts) {
+                if (axis == parameter &&
+                    std::none_of(listed.begin(), listed.end(),
+                                 [&](const std::string& l) { return same_value(l, value); })) {
+                    listed.push_back(value);
+                }
+            }
+        }
+    };
+    add(params);
+    for (const auto& [method, axes] : method_params) {
+        add(axes);
+    }
+    return listed;
+}
+
+fs::path Experiment::output_directory() const {
+    std::string path = out;
+    for (size_t at; (at = path.find("{name}")) != std::string::npos;) {
+        path.replace(at, 6, name);
+    }
+    return path;
+}
+
+Experiment parse_experiment(const std::string& text, const std::string& origin,
+                            const std::vector<std::string>& presets,
+                            const std::vector<std::string>& overrides) {
+    toml::table root;
+    try {
+        root = toml::parse(text, origin);
+    } catch (const toml::parse_error& e) {
+        fail("{}:{}: {}", origin, e.source().begin.line, e.description());
+    }
+    Experiment x;
+    x.source = origin;
+    x.text = text;
+
+    // Presets, then --set overrides, into the document itself: they are read and validated
+    // exactly like the file.
+    const toml::table* preset_tables = root["presets"].as_table();
+    for (const std::string& preset : presets) {
+        const toml::table* table = preset_tables ? (*preset_tables)[preset].as_table() : nullptr;
+        if (!table) {
+            std::vector<std::string> known;
+            if (preset_tables) {
+                for (const auto& [key, node] : *preset_tables) {
+                    known.emplace_back(key.str());
+                }
+            }
+            fail("{}: unknown preset '{}' (presets: {})", origin, preset,
+                 known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", ")));
+        }
+        const toml::table copy = *table;  // set_path changes `root`, which holds `table`
+        std::vector<std::pair<std::string, const toml::node*>> paths;
+        flatten(copy, "", paths);
+        for (const auto& [path, node] : paths) {
+            if (path.starts_with("presets")) {
+                fail("{}: preset '{}' may not set presets", origin, preset);
+            }
+            set_path(root, path, *node, origin);
+        }
+        x.overrides.push_back("preset " + preset);
+    }
+    for (const std::string& override_text : overrides) {
+        const size_t equals = override_text.find('=');
+        if (equals == std::string::npos || equals == 0) {
+            fail("--set '{}': expected KEY.PATH=VALUE", override_text);
+        }
+        const std::string path = override_text.substr(0, equals);
+        const toml::table value = parse_override_value(override_text.substr(equals + 1));
+        set_path(root, path, *value.get("value"), origin);
+        x.overrides.push_back(override_text);
+    }
+
+    TomlTableReader top(root, origin, "");
+    x.name = top.string("name");
+    if (!std::regex_match(x.name, std::regex("[A-Za-z0-9_.-]+"))) {
+        top.error("name", "use letters, digits, '_', '-' and '.' only (it names files)");
+    }
+    x.description = top.string("description", "");
+    x.out = top.string("out", x.out);
+    top.table("presets");  // applied above
+
+    const toml::table empty;
+    auto section = [&](std::string_view key) -> const toml::table& {
+        const toml::table* table = top.table(key);
+        return table ? *table : empty;
+    };
+    {
+        TomlTableReader r(section("protocol"), origin, "[protocol]");
+        x.protocol.warmup = r.integer_in("warmup", x.protocol.warmup, 0, 1000);
+        x.protocol.frames = r.integer_in("frames", x.protocol.frames, 1, 100000);
+        x.protocol.repetitions = r.integer_in("repetitions", x.protocol.repetitions, 1, 1000);
+        const std::string isolation = r.string("isolation", "context");
+        if (isolation != "context" && isolation != "process") {
+            r.error("isolation", fmt::format("'{}': expected \"context\" (a fresh GL context per "
+                                             "repetition) or \"process\" (a fresh process)",
+                                             isolation));
+        }
+        x.protocol.isolation = isolation == "process" ? Isolation::process : Isolation::context;
+        const std::string order = r.string("order", "sweep");
+        if (order != "sweep" && order != "shuffled") {
+            r.error("order", fmt::format("'{}': expected \"sweep\" or \"shuffled\"", order));
+        }
+        x.protocol.order_shuffled = order == "shuffled";
+        x.protocol.seed = uint64_t(r.integer_in("seed", 1, 0, 1 << 30));
+        r.finish();
+    }
+    {
+        TomlTableReader r(section("render"), origin, "[render]");
+        x.render.shadow = r.string("shadow", x.render.shadow);
+        try {
+            gl::parse_shadow_filter(x.render.shadow);
+        } catch (const Error& e) {
+            r.error("shadow", e.what());
+        }
+        x.render.shadow_map_size =
+            r.integer_in("shadow_map_size", x.render.shadow_map_size, 16, 16384);
+        x.render.pcf_radius = r.integer_in("pcf_radius", x.render.pcf_radius, 0, 8);
+        r.finish();
+    }
+    {
+        const toml::table* sweep = top.table("sweep");
+        if (!sweep) {
+            top.error("sweep", "missing: an experiment needs [sweep] scenes, methods and sizes");
+        }
+        TomlTableReader r(*sweep, origin, "[sweep]");
+        x.scenes = strings(r, "scenes");
+        x.methods = strings(r, "methods");
+        for (const auto& [key, list] :
+             {std::pair{"scenes", &x.scenes}, std::pair{"methods", &x.methods}}) {
+            if (list->empty()) {
+                r.error(key, "missing: the sweep needs at least one");
+            }
+        }
+        for (const std::string& scene : x.scenes) {
+            try {
+                load_scene(scene, SceneSearchPaths::defaults());
+            } catch (const Error& e) {
+                r.error("scenes", e.what());
+            }
+        }
+        for (const std::string& method : x.methods) {
+            try {
+                methods::create_volume_method(method);
+            } catch (const Error& e) {
+                r.error("methods", e.what());
+            }
+        }
+        std::vector<std::string> sizes = values(r, "sizes");
+        if (sizes.empty()) {
+            r.error("sizes", "missing: the sweep needs at least one size, e.g. [\"256x256\"]");
+        }
+        for (const std::string& size : sizes) {
+            x.sizes.push_back(parse_size_value(r, "sizes", size));
+        }
+        if (const toml::table* params = r.table("params")) {
+            TomlTableReader p(*params, origin, "[sweep.params]");
+            for (const auto& [key_node, node] : *params) {
+                const std::string key(key_node.str());
+                if (const toml::table* own = node.as_table()) {
+                    p.take(key);
+                    if (std::find(x.methods.begin(), x.methods.end(), key) == x.methods.end()) {
+                        p.error(key,
+                                "a table of parameters must be named after a method of the "
+                                "sweep");
+                    }
+                    TomlTableReader m(*own, origin, "[sweep.params." + key + "]");
+                    for (const auto& [name_node, value] : *own) {
+                        const std::string name(name_node.str());
+                        std::vector<std::string> texts = values(m, name);
+                        check_method_parameter(key, name, texts, m);
+                        x.method_params[key].emplace_back(name, std::move(texts));
+                    }
+                    continue;
+                }
+                std::vector<std::string> texts = values(p, key);
+                bool declared = false;
+                for (const std::string& method : x.methods) {
+                    if (methods::create_volume_method(method)->has_parameter(key)) {
+                        check_method_parameter(method, key, texts, p);
+                        declared = true;
+                    }
+                }
+                if (!declared) {
+                    p.error(key, fmt::format("no method of the sweep ({}) has this parameter",
+                                             fmt::join(x.methods, ", ")));
+                }
+                x.params.emplace_back(key, std::move(texts));
+            }
+        }
+        r.finish();
+    }
+    if (const toml::array* exclusions = top.array("exclude")) {
+        for (const toml::node& node : *exclusions) {
+            const toml::table* table = node.as_table();
+            if (!table) {
+                top.error("exclude", "expected [[exclude]] tables");
+            }
+            TomlTableReader r(*table, origin, "[[exclude]]");
+            Exclusion exclusion;
+            for (const auto& [key_node, value] : *table) {
+                const std::string key(key_node.str());
+                const bool known =
+                    key == "scene" || key == "method" || key == "size" ||
+                    std::any_of(x.methods.begin(), x.methods.end(), [&](const std::string& m) {
+                        return methods::create_volume_method(m)->has_parameter(key);
+                    });
+                if (!known) {
+                    r.error(key, "not scene, method, size or a parameter of a method of the sweep");
+                }
+                exclusion.keys[key] = values(r, key);
+            }
+            if (exclusion.keys.empty()) {
+                top.error("exclude", "an empty [[exclude]] would exclude every cell");
+            }
+            x.exclusions.push_back(std::move(exclusion));
+        }
+    }
+    {
+        TomlTableReader r(section("reference"), origin, "[reference]");
+        x.reference = r.string("method", x.reference);
+        if (!x.reference.empty()) {
+            try {
+                methods::create_volume_method(x.reference);
+            } catch (const Error& e) {
+                r.error("method", e.what());
+            }
+        }
+        if (r.has("metrics")) {
+            x.metrics = strings(r, "metrics");
+            for (const std::string& metric : x.metrics) {
+                if (metric != "rel_rmse" && metric != "max_abs" && metric != "psnr") {
+                    r.error("metrics",
+                            fmt::format("unknown metric '{}' (rel_rmse, max_abs, psnr)", metric));
+                }
+            }
+        }
+        r.finish();
+    }
+    {
+        TomlTableReader r(section("outputs"), origin, "[outputs]");
+        x.images = r.boolean("images", x.images);
+        x.previews = r.boolean("previews", x.previews);
+        x.preview_max_size = r.integer_in("preview_max_size", x.preview_max_size, 1, 16384);
+        x.plots = r.boolean("plots", x.plots);
+        r.finish();
+    }
+    {
+        TomlTableReader r(section("table"), origin, "[table]");
+        if (r.has("rows")) {
+            x.table_rows = strings(r, "rows");
+        }
+        x.table_metric = r.string("metric", x.table_metric);
+        if (x.reference.empty() ||
+            std::find(x.metrics.begin(), x.metrics.end(), x.table_metric) == x.metrics.end()) {
+            if (r.has("metric")) {
+                r.error("metric", "not one of the [reference] metrics computed");
+            }
+            x.table_metric = x.reference.empty() || x.metrics.empty() ? "" : x.metrics.front();
+        }
+        r.finish();
+    }
+    if (const toml::table* table = top.table("equal_error")) {
+        TomlTableReader r(*table, origin, "[equal_error]");
+        EqualError e;
+        for (const std::string& target : values(r, "targets")) {
+            const auto value = as_number(target);
+            if (!value || !(*value > 0.0 && *value < 1.0)) {
+                r.error("targets", fmt::format("'{}': a relative RMSE in (0, 1)", target));
+            }
+            e.targets.push_back(*value);
+        }
+        if (e.targets.empty()) {
+            r.error("targets", "missing: the relative RMSE to reach, e.g. [0.01]");
+        }
+        if (x.reference.empty()) {
+            r.error("targets", "equal error needs a [reference] method");
+        }
+        e.baselines = strings(r, "baselines");
+        for (const std::string& baseline : e.baselines) {
+            if (std::find(x.methods.begin(), x.methods.end(), baseline) == x.methods.end()) {
+                r.error("baselines", fmt::format("'{}' is not a method of the sweep", baseline));
+            }
+        }
+        e.tolerance = r.number_in("tolerance", e.tolerance, 1e-3, 10.0);
+        const toml::table* searches = r.table("search");
+        for (const std::string& method : x.methods) {
+            const auto instance = methods::create_volume_method(method);
+            const toml::table* own = searches ? (*searches)[method].as_table() : nullptr;
+            Search search;
+            if (own) {
+                TomlTableReader s(*own, origin, "[equal_error.search." + method + "]");
+                search.parameter = s.string("parameter");
+                if (!instance->has_parameter(search.parameter)) {
+                    s.error("parameter", fmt::format("method '{}' has no parameter '{}'", method,
+                                                     search.parameter));
+                }
+                search.cheap = s.number("cheap");
+                search.expensive = s.number("expensive");
+                s.finish();
+            } else if (instance->has_parameter("dz")) {
+                search = {"dz", 1.0, 0.01};  // slab depth, metres
+            } else if (instance->has_parameter("samples")) {
+                search = {"samples", 4, 1024};  // march steps
+            } else {
+                continue;  // measured as is (beamtree has no parameter to trade)
+            }
+            for (const gl::Parameter& p : instance->parameters()) {
+                if (p.name != search.parameter) {
+                    continue;
+                }
+                if (p.type == gl::Parameter::Type::choice) {
+                    fail("{}: [equal_error.search.{}]: '{}' is a choice, not a number", origin,
+                         method, p.name);
+                }
+                search.integer = p.type == gl::Parameter::Type::integer;
+                auto inside = [&](double v) { return v >= p.min && v <= p.max; };
+                if (!inside(search.cheap) || !inside(search.expensive) || !(search.cheap > 0.0) ||
+                    !(search.expensive > 0.0) || search.cheap == search.expensive) {
+                    fail(
+                        "{}: [equal_error.search.{}]: cheap and expensive must differ and lie in "
+                        "{}'s range [{}, {}]",
+                        origin, method, p.name, p.min, p.max);
+                }
+            }
+            e.search[method] = search;
+        }
+        if (searches) {
+            for (const auto& [key, node] : *searches) {
+                if (!e.search.contains(std::string(key.str())) || !node.is_table()) {
+                    fail("{}: [equal_error.search]: '{}' is not a method of the sweep", origin,
+                         key.str());
+                }
+            }
+        }
+        r.finish();
+        x.equal_error = std::move(e);
+    }
+    top.finish();
+
+    // The document as read (presets dropped: they are applied), for resuming and env.json.
+    root.erase("presets");
+    std::ostringstream effective;
+    effective << root << "\n";
+    x.effective = effective.str();
+    return x;
+}
+
+Experiment load_experiment(const fs::path& path, const std::vector<std::string>& presets,
+                           const std::vector<std::string>& overrides) {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) {
+        fail("{}: cannot read the experiment file", path.string());
+    }
+    std::ostringstream text;
+    text << file.rdbuf();
+    return parse_experiment(text.str(), path.string(), presets, overrides);
+}
+
+}  // namespace sl::experiments

@@ -1,0 +1,149 @@
+#pragma once
+// Experiment files (TOML, DESIGN.md §6): a cartesian sweep of scenes × methods × sizes × method
+// parameters with exclusions, a measuring protocol, the reference the images are scored against,
+// the outputs to write and, optionally, an equal-error search. Every key is read in
+// experiment.cpp next to its validation; an unknown key is an error naming the file and key.
+//
+//   name = "nilsson_table61"          out = "results/{name}"  (the default output directory)
+//   description = "..."
+//   [protocol]    warmup = 2, frames = 10, repetitions = 1, isolation = "context" | "process",
+//                 order = "sweep" | "shuffled", seed = 1 (of the shuffle)
+//   [render]      shadow = "hard" | "pcf" | "vsm", shadow_map_size = 2048, pcf_radius = 1
+//   [sweep]       scenes = [...], methods = [...], sizes = ["256x256", ...]
+//   [sweep.params]          dz = [0.5, 0.1], jitter = 0      (a list sweeps, a scalar is fixed;
+//                           applied to every method that declares the parameter)
+//   [sweep.params.march]    samples = [16, 64]               (for one method only)
+//   [[exclude]]   method = "hybrid1", size = ["1024x1024"]   (a cell matching every key is
+//                 skipped; keys: scene, method, size, any parameter; values or lists of values)
+//   [reference]   method = "reference" (or "" for none), metrics = ["rel_rmse", "max_abs", "psnr"]
+//   [outputs]     images = true (I_s EXR per cell), previews = true (PNG), plots = true,
+//                 preview_max_size = 512 (no PNG for larger cells: committed runs stay small)
+//   [table]       rows = ["dz", "scene", "size"], metric = "rel_rmse"
+//   [equal_error] targets = [0.01], baselines = ["planes", "march"], tolerance = 0.05
+//   [equal_error.search.planes]  parameter = "dz", cheap = 1.0, expensive = 0.01
+//   [presets.quick]  "sweep.sizes" = ["64x64"], "protocol.frames" = 2   (--preset quick)
+//
+// Overrides (`--preset NAME`, then `--set key.path=VALUE`, VALUE in TOML syntax or a bare
+// string) are applied to the document before it is read, so they are validated like the file.
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sl::experiments {
+
+enum class Isolation { context, process };
+
+struct Protocol {
+    int warmup = 2;       // frames drawn before measuring (shader compilation, first use)
+    int frames = 10;      // measured frames per repetition
+    int repetitions = 1;  // fresh GL context (or process) per repetition
+    Isolation isolation = Isolation::context;
+    // The order cells run in: as swept, or shuffled (seeded) so that slow drifts of the machine
+    // (thermal, other load) do not line up with one method or size.
+    bool order_shuffled = false;
+    uint64_t seed = 1;
+};
+
+struct RenderSettings {
+    std::string shadow = "pcf";
+    int shadow_map_size = 2048;
+    int pcf_radius = 1;
+};
+
+// One method parameter setting, as text (numbers as written, choices by name).
+struct Setting {
+    std::string name;
+    std::string value;
+    bool operator==(const Setting&) const = default;
+};
+
+struct Cell {
+    std::string scene;
+    std::string method;
+    int width = 0;
+    int height = 0;
+    std::vector<Setting> settings;  // sorted by name
+
+    std::string size() const;           // "WxH"
+    std::string settings_text() const;  // "dz=0.1;shadow=vsm"
+    std::string id() const;             // file-name safe, unique within an experiment
+    const std::string* setting(const std::string& name) const;  // null when not set
+    bool operator==(const Cell&) const = default;
+};
+
+// The equal-error search over one parameter of a method: the value between `cheap` and
+// `expensive` (log-spaced bisection; integers rounded) that is cheapest while its error is at or
+// below the target.
+struct Search {
+    std::string parameter;
+    double cheap = 0.0;
+    double expensive = 0.0;
+    bool integer = false;
+};
+
+struct EqualError {
+    std::vector<double> targets;           // relative RMSE of I_s
+    std::vector<std::string> baselines;    // the pure methods the hybrids are compared with
+    double tolerance = 0.05;               // stop when expensive/cheap is within 1 + tolerance
+    std::map<std::string, Search> search;  // per method; methods without one are measured as is
+};
+
+struct Exclusion {
+    std::map<std::string, std::vector<std::string>> keys;  // scene, method, size, parameters
+};
+
+struct Experiment {
+    std::string name;
+    std::string description;
+    std::filesystem::path source;
+    std::string text;                    // the file, verbatim
+    std::vector<std::string> overrides;  // presets and --set, in order applied
+    std::string effective;               // the document after overrides, as TOML
+    std::string out = "results/{name}";
+
+    Protocol protocol;
+    RenderSettings render;
+    std::vector<std::string> scenes;
+    std::vector<std::string> methods;
+    std::vector<std::pair<int, int>> sizes;
+    // Parameter → values for every method that declares it, and per method.
+    std::vector<std::pair<std::string, std::vector<std::string>>> params;
+    std::map<std::string, std::vector<std::pair<std::string, std::vector<std::string>>>>
+        method_params;
+    std::vector<Exclusion> exclusions;
+
+    std::string reference = "reference";  // empty: no error metrics
+    std::vector<std::string> metrics = {"rel_rmse", "max_abs", "psnr"};
+    bool images = true;
+    bool previews = true;
+    int preview_max_size = 16384;  // no PNG for cells wider or taller than this
+    bool plots = true;
+    std::vector<std::string> table_rows = {"dz", "scene", "size"};
+    std::string table_metric = "rel_rmse";
+    std::optional<EqualError> equal_error;
+
+    // The sweep expanded: scenes × methods × sizes × every swept parameter the method declares,
+    // exclusions removed, in a stable order (scene, size, method, parameters as listed).
+    std::vector<Cell> cells() const;
+    bool excluded(const Cell& cell) const;
+    // The values listed for a parameter (globally or for a method), in the file's order.
+    std::vector<std::string> listed_values(const std::string& parameter) const;
+    // The output directory: `out` with {name} replaced.
+    std::filesystem::path output_directory() const;
+};
+
+// Reads an experiment file, applies the named presets and then the `key.path=VALUE` overrides.
+// Throws sl::Error naming the file and key on any bad input (unknown keys, methods, parameters or
+// values, empty sweeps).
+Experiment load_experiment(const std::filesystem::path& path,
+                           const std::vector<std::string>& presets = {},
+                           const std::vector<std::string>& overrides = {});
+Experiment parse_experiment(const std::string& text, const std::string& origin,
+                            const std::vector<std::string>& presets = {},
+                            const std::vector<std::string>& overrides = {});
+
+}  // namespace sl::experiments

@@ -1,0 +1,142 @@
+#include "experiments/measure.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include "analytic/in_scattering.h"
+#include "beamtree/beam_tree.h"
+#include "beamtree/regions.h"
+#include "reference/reference.h"
+
+namespace sl::experiments {
+
+namespace {
+
+double ms_between(std::chrono::steady_clock::time_point a,
+                  std::chrono::steady_clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// Appends each named value to its series, keeping first-seen order.
+void collect(std::vector<std::pair<std::string, std::vector<double>>>& series,
+             const std::vector<std::pair<std::string, double>>& values) {
+    for (const auto& [name, value] : values) {
+        auto same = std::find_if(series.begin(), series.end(),
+                                 [&](const auto& s) { return s.first == name; });
+        if (same == series.end()) {
+            series.emplace_back(name, std::vector<double>{value});
+        } else {
+            same->second.push_back(value);
+        }
+    }
+}
+
+std::vector<std::pair<std::string, double>> medians(
+    const std::vector<std::pair<std::string, std::vector<double>>>& series) {
+    std::vector<std::pair<std::string, double>> out;
+    for (const auto& [name, values] : series) {
+        out.emplace_back(name, median(values));
+    }
+    return out;
+}
+
+}  // namespace
+
+double median(std::vector<double> values) {
+    return percentile(std::move(values), 50.0);
+}
+
+double percentile(std::vector<double> values, double p) {
+    if (values.empty()) {
+        return 0.0;
+    }
+    std::sort(values.begin(), values.end());
+    const double position = std::clamp(p, 0.0, 100.0) / 100.0 * double(values.size() - 1);
+    const size_t below = size_t(std::floor(position));
+    const size_t above = std::min(below + 1, values.size() - 1);
+    return values[below] + (position - double(below)) * (values[above] - values[below]);
+}
+
+FrameMeasurement measure_frames(gl::SceneRenderer& renderer, gl::VolumeMethod& method, int warmup,
+                                int frames) {
+    for (int i = 0; i < warmup; ++i) {
+        renderer.draw(method);
+    }
+    FrameMeasurement m;
+    std::vector<double> passes[4], totals;
+    std::vector<std::pair<std::string, std::vector<double>>> sections, statistics;
+    for (int i = 0; i < frames; ++i) {
+        const gl::FrameTimings timings = renderer.draw(method);
+        m.frame_ms.push_back(timings.cpu_ms);
+        passes[0].push_back(timings.gpu.shadow_ms);
+        passes[1].push_back(timings.gpu.surface_ms);
+        passes[2].push_back(timings.gpu.volume_ms);
+        passes[3].push_back(timings.gpu.composite_ms);
+        totals.push_back(timings.gpu.total_ms());
+        collect(sections, timings.gpu.volume_sections);
+        collect(statistics, method.statistics());
+    }
+    m.gpu = {median(passes[0]), median(passes[1]), median(passes[2]), median(passes[3]),
+             medians(sections)};
+    m.gpu_total_ms = median(totals);
+    m.statistics = medians(statistics);
+    return m;
+}
+
+RegionStatistics region_statistics(const Scene& scene, int width, int height) {
+    const auto start = std::chrono::steady_clock::now();
+    RegionStatistics stats;
+    const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
+    const bt::Regions regions = bt::extract_regions(tree);
+    stats.build_ms = ms_between(start, std::chrono::steady_clock::now());
+    stats.beams = regions.beam_count;
+    for (const bt::Region region : {bt::Region::lit, bt::Region::uncertain, bt::Region::unlit}) {
+        stats.region_faces += regions.face_count(region);
+    }
+
+    // A grid of eye rays with the image's aspect, at pixel centres of a scaled-down image.
+    const int columns = std::min(width, 160);
+    const int rows = std::max(1, int(std::lround(double(height) * columns / width)));
+    const reference::ReferenceRenderer caster(scene);
+    const PixelUnprojector pixels(scene.camera, columns, rows);
+    const glm::dvec3 eye(scene.camera.position);
+    constexpr int kPointsPerRay = 64;
+    std::vector<std::array<double, 3>> row_lengths(size_t(rows), {0.0, 0.0, 0.0});
+    tbb::parallel_for(0, rows, [&](int y) {
+        for (int x = 0; x < columns; ++x) {
+            const glm::dvec3 far = pixels.point(x, y, 1.0);
+            const analytic::EyeRay ray{eye, glm::normalize(far - eye)};
+            const double t_max = caster.first_hit(ray, glm::length(far - eye));
+            const analytic::Interval beam = analytic::light_interval(ray, scene.light, t_max);
+            if (beam.empty()) {
+                continue;
+            }
+            const double step = (beam.end - beam.begin) / kPointsPerRay;
+            for (int i = 0; i < kPointsPerRay; ++i) {
+                const glm::dvec3 p = ray.origin + ray.direction * (beam.begin + (i + 0.5) * step);
+                row_lengths[size_t(y)][size_t(tree.classify(p))] += step;
+            }
+        }
+    });
+    std::array<double, 3> lengths{0.0, 0.0, 0.0};
+    for (const auto& row : row_lengths) {
+        for (size_t r = 0; r < 3; ++r) {
+            lengths[r] += row[r];
+        }
+    }
+    const double total = lengths[0] + lengths[1] + lengths[2];
+    if (total > 0.0) {
+        stats.lit_fraction = lengths[0] / total;
+        stats.uncertain_fraction = lengths[1] / total;
+        stats.unlit_fraction = lengths[2] / total;
+    }
+    stats.ms = ms_between(start, std::chrono::steady_clock::now());
+    return stats;
+}
+
+}  // namespace sl::experiments

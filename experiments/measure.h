@@ -1,0 +1,48 @@
+#pragma once
+// Measuring one cell (DESIGN.md §6): frame timings over a protocol, the error of I_s against the
+// reference, and the beam-tree region statistics of the view. Shared by `shaftlab render` and the
+// harness, so a cell in a sweep measures exactly what a single render reports.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/metrics.h"
+#include "gl/renderer.h"
+#include "scenes/scene.h"
+
+namespace sl::experiments {
+
+double median(std::vector<double> values);
+// The p-th percentile (p in [0, 100]) with linear interpolation between order statistics.
+double percentile(std::vector<double> values, double p);
+
+struct FrameMeasurement {
+    std::vector<double> frame_ms;     // wall time of each measured frame (CPU work + GPU wait)
+    gl::PassTimings gpu;              // median GPU time of each pass and volume section
+    double gpu_total_ms = 0.0;        // median of the frames' summed GPU time
+    gl::MethodStatistics statistics;  // median of each method counter over the frames
+    double frame_ms_median() const { return median(frame_ms); }
+};
+
+// `warmup` frames (shader compilation, first-use costs), then `frames` measured frames that read
+// nothing back. The renderer holds the last frame for read_back().
+FrameMeasurement measure_frames(gl::SceneRenderer& renderer, gl::VolumeMethod& method, int warmup,
+                                int frames);
+
+// How the view's eye rays cross the beam-tree regions (DESIGN.md §6 "region statistics"): of the
+// eye-ray length inside the light's cone and range, in front of the first surface, the fractions
+// lying in lit, uncertain and unlit regions (classified at 64 stratified points per ray, on a grid
+// of at most 160 rays across), and the tree's size.
+struct RegionStatistics {
+    double lit_fraction = 0.0;
+    double uncertain_fraction = 0.0;
+    double unlit_fraction = 0.0;
+    size_t beams = 0;
+    size_t region_faces = 0;  // faces of all region polyhedra
+    double build_ms = 0.0;    // beam tree build + region extraction
+    double ms = 0.0;          // the whole computation
+};
+RegionStatistics region_statistics(const Scene& scene, int width, int height);
+
+}  // namespace sl::experiments

@@ -1,0 +1,658 @@
+#include "experiments/report.h"
+
+#include <unistd.h>
+
+#include <CGAL/version.h>
+#include <OpenEXR/OpenEXRConfig.h>
+#include <embree3/rtcore_config.h>
+#include <tbb/version.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <ctime>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include <glm/detail/setup.hpp>
+
+#include "core/error.h"
+#include "core/output_files.h"
+#include "experiments/bench.h"
+#include "experiments/equal_error.h"
+#include "experiments/measure.h"
+
+#ifndef SHAFTLAB_SOURCE_DIR
+#error "SHAFTLAB_SOURCE_DIR must be defined by the build"
+#endif
+
+namespace sl::experiments {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+std::optional<double> number(const std::string& text) {
+    double value = 0.0;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    return ec == std::errc() && ptr == text.data() + text.size() ? std::optional(value)
+                                                                 : std::nullopt;
+}
+
+// Values of one parameter ordered as numbers when they are numbers.
+bool value_less(const std::string& a, const std::string& b) {
+    const auto x = number(a), y = number(b);
+    return x && y ? *x < *y : a < b;
+}
+
+template <typename T>
+size_t rank(const std::vector<T>& list, const T& value) {
+    return size_t(std::find(list.begin(), list.end(), value) - list.begin());
+}
+
+std::string csv_field(const Json& value) {
+    if (value.is_null()) {
+        return "";
+    }
+    if (value.is_number_float()) {
+        return fmt::format("{}", value.get<double>());
+    }
+    if (!value.is_string()) {
+        return value.dump();
+    }
+    std::string text = value.get<std::string>();
+    if (text.find_first_of(",\"\n") == std::string::npos) {
+        return text;
+    }
+    std::string quoted = "\"";
+    for (const char c : text) {
+        quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    }
+    return quoted + "\"";
+}
+
+// The output of a command, trimmed; empty when it fails.
+std::string command_output(const std::string& command) {
+    std::string output;
+    if (FILE* pipe = popen((command + " 2>/dev/null").c_str(), "r")) {
+        char buffer[256];
+        while (fgets(buffer, sizeof buffer, pipe)) {
+            output += buffer;
+        }
+        if (pclose(pipe) != 0) {
+            return {};
+        }
+    }
+    while (!output.empty() && (output.back() == '\n' || output.back() == ' ')) {
+        output.pop_back();
+    }
+    return output;
+}
+
+std::string proc_field(const char* file, const std::string& key) {
+    std::ifstream in(file);
+    for (std::string line; std::getline(in, line);) {
+        if (line.starts_with(key)) {
+            const size_t colon = line.find_first_of(":=");
+            std::string value = colon == std::string::npos ? "" : line.substr(colon + 1);
+            value.erase(0, value.find_first_not_of(" \t\""));
+            while (!value.empty() && (value.back() == '"' || value.back() == ' ')) {
+                value.pop_back();
+            }
+            return value;
+        }
+    }
+    return {};
+}
+
+// Per cell, over its repetitions: the median frame time and the mean error.
+struct Entry {
+    Cell cell;
+    double frame_ms = 0.0;
+    std::optional<double> error;
+};
+
+std::vector<Entry> aggregate(const std::vector<StoredRow>& rows, const std::string& metric) {
+    std::vector<Entry> entries;
+    std::vector<std::vector<double>> times, errors;
+    for (const StoredRow& r : rows) {
+        auto found = std::find_if(entries.begin(), entries.end(),
+                                  [&](const Entry& e) { return e.cell == r.cell; });
+        size_t i = size_t(found - entries.begin());
+        if (found == entries.end()) {
+            entries.push_back({r.cell, 0.0, std::nullopt});
+            times.emplace_back();
+            errors.emplace_back();
+        }
+        times[i].push_back(r.row.at("frame_ms_median").get<double>());
+        if (!metric.empty() && r.row.contains(metric) && r.row.at(metric).is_number()) {
+            errors[i].push_back(r.row.at(metric).get<double>());
+        }
+    }
+    for (size_t i = 0; i < entries.size(); ++i) {
+        entries[i].frame_ms = median(times[i]);
+        if (!errors[i].empty()) {
+            double sum = 0.0;
+            for (const double e : errors[i]) {
+                sum += e;
+            }
+            entries[i].error = sum / double(errors[i].size());
+        }
+    }
+    return entries;
+}
+
+std::string format_error(const std::string& metric, double value) {
+    return metric == "psnr"       ? fmt::format("{:.1f} dB", value)
+           : metric == "rel_rmse" ? fmt::format("{:.2f}%", 100.0 * value)
+                                  : fmt::format("{:.3g}", value);
+}
+
+std::string protocol_text(const Experiment& x) {
+    return fmt::format(
+        "{} warm-up and {} measured frames per repetition, {} repetition(s) in fresh GL {}s; "
+        "shadow maps {} {}² (r = {})",
+        x.protocol.warmup, x.protocol.frames, x.protocol.repetitions,
+        x.protocol.isolation == Isolation::process ? "process" : "context", x.render.shadow,
+        x.render.shadow_map_size, x.render.pcf_radius);
+}
+
+// The equal-error report (markdown) and equal_error.csv from the rows at hand.
+std::pair<std::string, std::string> equal_error_report(const Experiment& x,
+                                                       const std::vector<StoredRow>& rows) {
+    const std::vector<Entry> entries = aggregate(rows, "rel_rmse");
+    const CellMeasure lookup = [&](const Cell& cell) -> std::optional<CellSummary> {
+        for (const Entry& e : entries) {
+            if (e.cell == cell && e.error) {
+                return CellSummary{*e.error, e.frame_ms};
+            }
+        }
+        return std::nullopt;
+    };
+    std::string csv =
+        "target,scene,width,height,method,params,parameter,value,reached,complete,rel_rmse,"
+        "frame_ms,fps,best_baseline,speedup_vs_best_baseline,probes\n";
+    std::string md = "## Equal error\n\n";
+    md += fmt::format(
+        "Per method, the cheapest value of its cost parameter whose relative RMSE of I_s reaches "
+        "the target (bisection in log space, tolerance {:.0f}%), the median frame time there and "
+        "the speed-up against the fastest of the pure methods ({}) at the same target. Methods "
+        "without a cost parameter are measured as they are.\n",
+        100 * x.equal_error->tolerance, fmt::join(x.equal_error->baselines, ", "));
+
+    const std::vector<Cell> groups = search_groups(x);
+    std::vector<std::string> headlines;
+    for (const double target : x.equal_error->targets) {
+        std::vector<SearchOutcome> outcomes;
+        for (const Cell& group : groups) {
+            outcomes.push_back(search_equal_error(x, group, target, lookup));
+        }
+        md += fmt::format("\n### Target: relative RMSE {:.3g}%\n\n", 100 * target);
+        md += fmt::format("| scene | size | {} |\n|---|---|", fmt::join(x.methods, " | "));
+        for (size_t i = 0; i < x.methods.size(); ++i) {
+            md += "---:|";
+        }
+        md += "\n";
+        std::map<std::tuple<std::string, int, int>, const SearchOutcome*> baselines;
+        for (const std::string& scene : x.scenes) {
+            for (const auto& [w, h] : x.sizes) {
+                // Each method's cheapest reached variant.
+                std::map<std::string, const SearchOutcome*> best;
+                for (const SearchOutcome& o : outcomes) {
+                    if (o.group.scene != scene || o.group.width != w || o.group.height != h ||
+                        !o.reached || !o.complete) {
+                        continue;
+                    }
+                    const SearchOutcome*& b = best[o.group.method];
+                    if (!b || o.summary.frame_ms < b->summary.frame_ms) {
+                        b = &o;
+                    }
+                }
+                const SearchOutcome* baseline = nullptr;
+                for (const std::string& name : x.equal_error->baselines) {
+                    if (best.contains(name) &&
+                        (!baseline || best[name]->summary.frame_ms < baseline->summary.frame_ms)) {
+                        baseline = best[name];
+                    }
+                }
+                baselines[{scene, w, h}] = baseline;
+                auto speedup = [&](const SearchOutcome& o) {
+                    return baseline ? baseline->summary.frame_ms / o.summary.frame_ms : 0.0;
+                };
+                md += fmt::format("| {} | {}x{} |", scene, w, h);
+                for (const std::string& method : x.methods) {
+                    if (!best.contains(method)) {
+                        md += " not reached |";
+                        continue;
+                    }
+                    const SearchOutcome& o = *best[method];
+                    md += fmt::format(
+                        " {}{:.1f} ms{} |",
+                        o.parameter.empty() ? "" : fmt::format("{}={}: ", o.parameter, o.value),
+                        o.summary.frame_ms,
+                        baseline ? fmt::format(" (×{:.2f})", speedup(o)) : std::string());
+                }
+                md += "\n";
+                // The headline: the best method that is not a baseline against the best baseline.
+                const SearchOutcome* hybrid = nullptr;
+                for (const auto& [method, o] : best) {
+                    const auto& b = x.equal_error->baselines;
+                    if (std::find(b.begin(), b.end(), method) == b.end() &&
+                        (!hybrid || o->summary.frame_ms < hybrid->summary.frame_ms)) {
+                        hybrid = o;
+                    }
+                }
+                if (hybrid && baseline) {
+                    headlines.push_back(fmt::format(
+                        "- {:.3g}% on {} {}x{}: **{}** {:.1f} ms vs **{}** {:.1f} ms: ×{:.2f}",
+                        100 * target, scene, w, h, hybrid->group.method, hybrid->summary.frame_ms,
+                        baseline->group.method, baseline->summary.frame_ms, speedup(*hybrid)));
+                }
+            }
+        }
+        for (const SearchOutcome& o : outcomes) {
+            const SearchOutcome* baseline =
+                baselines[{o.group.scene, o.group.width, o.group.height}];
+            const bool measured = o.complete && (o.reached || !o.value.empty());
+            csv += fmt::format(
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", target,
+                csv_field(o.group.scene), o.group.width, o.group.height, o.group.method,
+                csv_field(o.group.settings_text()), o.parameter, o.value, o.reached ? 1 : 0,
+                o.complete ? 1 : 0, measured ? fmt::format("{}", o.summary.rel_rmse) : "",
+                measured ? fmt::format("{}", o.summary.frame_ms) : "",
+                measured ? fmt::format("{}", 1000.0 / o.summary.frame_ms) : "",
+                baseline ? baseline->group.method : "",
+                baseline && o.reached
+                    ? fmt::format("{}", baseline->summary.frame_ms / o.summary.frame_ms)
+                    : "",
+                o.probes.size());
+        }
+    }
+    if (!headlines.empty()) {
+        md += "\n### Headline: best other method against the best baseline, at equal error\n\n" +
+              fmt::format("{}\n", fmt::join(headlines, "\n"));
+    }
+    return {md, csv};
+}
+
+// Per scene and size: the beam tree and how the view's eye rays cross its regions.
+std::string regions_table(const std::vector<StoredRow>& rows) {
+    std::string md =
+        "| scene | size | beams | region faces | lit | uncertain | unlit | tree + regions ms |\n"
+        "|---|---|---:|---:|---:|---:|---:|---:|\n";
+    std::set<std::pair<std::string, std::string>> done;
+    for (const StoredRow& r : rows) {
+        if (!done.insert({r.cell.scene, r.cell.size()}).second) {
+            continue;
+        }
+        const Json& v = r.row;
+        md += fmt::format("| {} | {} | {} | {} | {:.1f}% | {:.1f}% | {:.1f}% | {:.1f} |\n",
+                          r.cell.scene, r.cell.size(), v.value("beams", 0),
+                          v.value("region_faces", 0), 100 * v.value("lit_frac", 0.0),
+                          100 * v.value("uncertain_frac", 0.0), 100 * v.value("unlit_frac", 0.0),
+                          v.value("cpu_ms_beamtree_regions", 0.0));
+    }
+    return md;
+}
+
+}  // namespace
+
+std::vector<StoredRow> load_rows(const Experiment& x, const fs::path& out) {
+    std::vector<StoredRow> rows;
+    if (!fs::is_directory(out / "cells")) {
+        return rows;
+    }
+    for (const auto& entry : fs::directory_iterator(out / "cells")) {
+        const std::string name = entry.path().filename().string();
+        if (name.starts_with(".") || !name.ends_with(".json")) {
+            continue;
+        }
+        std::ifstream file(entry.path());
+        try {
+            const Json json = Json::parse(file);
+            rows.push_back(
+                {cell_from_json(json.at("cell")), json.at("rep").get<int>(), json.at("row")});
+        } catch (const std::exception& e) {
+            fail("{}: not a result row: {}", entry.path().string(), e.what());
+        }
+    }
+    auto key = [&](const StoredRow& r) {
+        return std::tuple(rank(x.scenes, r.cell.scene),
+                          rank(x.sizes, std::pair(r.cell.width, r.cell.height)),
+                          rank(x.methods, r.cell.method));
+    };
+    std::sort(rows.begin(), rows.end(), [&](const StoredRow& a, const StoredRow& b) {
+        if (key(a) != key(b)) {
+            return key(a) < key(b);
+        }
+        const auto& s = a.cell.settings;
+        const auto& t = b.cell.settings;
+        for (size_t i = 0; i < std::min(s.size(), t.size()); ++i) {
+            if (s[i].name != t[i].name) {
+                return s[i].name < t[i].name;
+            }
+            if (s[i].value != t[i].value) {
+                return value_less(s[i].value, t[i].value);
+            }
+        }
+        if (s.size() != t.size()) {
+            return s.size() < t.size();
+        }
+        return a.rep < b.rep;
+    });
+    return rows;
+}
+
+std::string results_csv(const std::vector<StoredRow>& rows) {
+    // Columns: the fixed ones in this order, then per family in first-seen order.
+    static const std::vector<std::string> head = {
+        "experiment", "cell",   "scene", "method",          "width",       "height",      "params",
+        "rep",        "frames", "fps",   "frame_ms_median", "frame_ms_p5", "frame_ms_p95"};
+    static const std::vector<std::string> middle = {
+        "rel_rmse",   "max_abs", "psnr",         "lit_frac",          "uncertain_frac",
+        "unlit_frac", "beams",   "region_faces", "samples_or_slices", "image"};
+    std::vector<std::string> seen;
+    for (const StoredRow& r : rows) {
+        for (const auto& [key, value] : r.row.items()) {
+            if (std::find(seen.begin(), seen.end(), key) == seen.end()) {
+                seen.push_back(key);
+            }
+        }
+    }
+    std::vector<std::string> columns = head;
+    auto family = [&](const std::string& prefix) {
+        for (const std::string& key : seen) {
+            if (key.starts_with(prefix) && rank(columns, key) == columns.size()) {
+                columns.push_back(key);
+            }
+        }
+    };
+    family("gpu_ms_");
+    family("cpu_ms_");
+    columns.insert(columns.end(), middle.begin(), middle.end());
+    family("stat_");
+    family("param_");
+    family("");
+    std::string csv = fmt::format("{}\n", fmt::join(columns, ","));
+    for (const StoredRow& r : rows) {
+        std::vector<std::string> fields;
+        for (const std::string& column : columns) {
+            fields.push_back(r.row.contains(column) ? csv_field(r.row.at(column)) : "");
+        }
+        csv += fmt::format("{}\n", fmt::join(fields, ","));
+    }
+    return csv;
+}
+
+std::string sweep_table(const Experiment& x, const std::vector<StoredRow>& rows) {
+    const std::vector<Entry> entries = aggregate(rows, x.table_metric);
+    if (entries.empty()) {
+        return "No cells measured.\n";
+    }
+    // Row dimensions: the configured ones that some cell has (scene and size always).
+    auto value_of = [](const Cell& cell, const std::string& dim) -> std::optional<std::string> {
+        if (dim == "scene") {
+            return cell.scene;
+        }
+        if (dim == "size") {
+            return cell.size();
+        }
+        if (const std::string* v = cell.setting(dim)) {
+            return *v;
+        }
+        return std::nullopt;
+    };
+    std::vector<std::string> dims;
+    for (const std::string& dim : x.table_rows) {
+        if (std::any_of(entries.begin(), entries.end(),
+                        [&](const Entry& e) { return value_of(e.cell, dim).has_value(); })) {
+            dims.push_back(dim);
+        }
+    }
+    for (const char* always : {"scene", "size"}) {
+        if (rank(dims, std::string(always)) == dims.size()) {
+            dims.push_back(always);
+        }
+    }
+    // Columns: the method, plus its parameters that vary and are not row dimensions.
+    std::map<std::string, std::set<std::string>> varying;  // method → parameter names
+    {
+        std::map<std::pair<std::string, std::string>, std::set<std::string>> values;
+        for (const Entry& e : entries) {
+            for (const Setting& s : e.cell.settings) {
+                values[{e.cell.method, s.name}].insert(s.value);
+            }
+        }
+        for (const auto& [key, set] : values) {
+            if (set.size() > 1 && rank(dims, key.second) == dims.size()) {
+                varying[key.first].insert(key.second);
+            }
+        }
+    }
+    auto column_of = [&](const Cell& cell) {
+        std::string label = cell.method;
+        for (const Setting& s : cell.settings) {
+            if (varying[cell.method].contains(s.name)) {
+                label += " " + s.name + "=" + s.value;
+            }
+        }
+        return label;
+    };
+    std::vector<std::string> columns;
+    for (const std::string& method : x.methods) {
+        for (const Entry& e : entries) {
+            if (e.cell.method == method && rank(columns, column_of(e.cell)) == columns.size()) {
+                columns.push_back(column_of(e.cell));
+            }
+        }
+    }
+    // Rows: distinct values of the dimensions among the cells that have them all; a cell that
+    // lacks a dimension (beamtree has no dz) appears in every row agreeing on the rest.
+    std::vector<std::vector<std::string>> table_rows;
+    for (const Entry& e : entries) {
+        std::vector<std::string> key;
+        for (const std::string& dim : dims) {
+            if (const auto v = value_of(e.cell, dim)) {
+                key.push_back(*v);
+            }
+        }
+        if (key.size() == dims.size() && rank(table_rows, key) == table_rows.size()) {
+            table_rows.push_back(key);
+        }
+    }
+    if (table_rows.empty()) {  // no cell has every dimension: scene × size only
+        std::erase_if(dims, [](const std::string& d) { return d != "scene" && d != "size"; });
+        return sweep_table(
+            [&] {
+                Experiment y = x;
+                y.table_rows = dims;
+                return y;
+            }(),
+            rows);
+    }
+    std::vector<std::vector<std::string>> order(dims.size());  // first-seen order per dimension
+    for (const auto& key : table_rows) {
+        for (size_t d = 0; d < dims.size(); ++d) {
+            if (rank(order[d], key[d]) == order[d].size()) {
+                order[d].push_back(key[d]);
+            }
+        }
+    }
+    auto dim_rank = [&](size_t d, const std::string& v) {
+        if (dims[d] == "scene") {
+            return rank(x.scenes, v);
+        }
+        if (dims[d] == "size") {
+            for (size_t i = 0; i < x.sizes.size(); ++i) {
+                if (fmt::format("{}x{}", x.sizes[i].first, x.sizes[i].second) == v) {
+                    return i;
+                }
+            }
+        }
+        // Parameters in the order the file lists them (Nilsson's dz 0.5 before 0.1).
+        const std::vector<std::string> listed = x.listed_values(dims[d]);
+        for (size_t i = 0; i < listed.size(); ++i) {
+            if (number(listed[i]) && number(v) ? *number(listed[i]) == *number(v)
+                                               : listed[i] == v) {
+                return i;
+            }
+        }
+        return listed.size() + rank(order[d], v);
+    };
+    std::stable_sort(table_rows.begin(), table_rows.end(), [&](const auto& a, const auto& b) {
+        for (size_t d = 0; d < dims.size(); ++d) {
+            if (dim_rank(d, a[d]) != dim_rank(d, b[d])) {
+                return dim_rank(d, a[d]) < dim_rank(d, b[d]);
+            }
+        }
+        return false;
+    });
+
+    std::string md =
+        fmt::format("| {} | {} |\n", fmt::join(dims, " | "), fmt::join(columns, " | "));
+    for (size_t d = 0; d < dims.size(); ++d) {
+        md += "|---";
+    }
+    for (size_t c = 0; c < columns.size(); ++c) {
+        md += "|---:";
+    }
+    md += "|\n";
+    for (const auto& key : table_rows) {
+        std::vector<const Entry*> cells(columns.size(), nullptr);
+        for (const Entry& e : entries) {
+            bool match = true;
+            for (size_t d = 0; d < dims.size(); ++d) {
+                const auto v = value_of(e.cell, dims[d]);
+                match = match && (!v || *v == key[d]);
+            }
+            const size_t c = rank(columns, column_of(e.cell));
+            if (match && !cells[c]) {
+                cells[c] = &e;
+            }
+        }
+        double fastest = 1e300;
+        for (const Entry* e : cells) {
+            fastest = e ? std::min(fastest, e->frame_ms) : fastest;
+        }
+        md += fmt::format("| {} |", fmt::join(key, " | "));
+        for (const Entry* e : cells) {
+            if (!e) {
+                md += " – |";
+                continue;
+            }
+            const std::string fps = fmt::format("{:.1f}", 1000.0 / e->frame_ms);
+            md += fmt::format(" {}{} |", e->frame_ms == fastest ? "**" + fps + "**" : fps,
+                              e->error ? " (" + format_error(x.table_metric, *e->error) + ")" : "");
+        }
+        md += "\n";
+    }
+    return md;
+}
+
+Json environment(const Experiment& x, const std::vector<StoredRow>& rows) {
+    const std::string source = SHAFTLAB_SOURCE_DIR;
+    const std::string sha = command_output("git -C '" + source + "' rev-parse HEAD");
+    const std::string status = command_output("git -C '" + source + "' status --porcelain");
+    char host[256] = {};
+    gethostname(host, sizeof host - 1);
+    const std::time_t now = std::time(nullptr);
+    char date[64];
+    std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    Json gl = Json::object();
+    if (!rows.empty()) {
+        gl = {{"vendor", rows.front().row.value("gl_vendor", "")},
+              {"renderer", rows.front().row.value("gl_renderer", "")},
+              {"version", rows.front().row.value("gl_version", "")}};
+    }
+    return {
+        {"date", date},
+        {"host", host},
+        {"os", proc_field("/etc/os-release", "PRETTY_NAME")},
+        {"cpu",
+         {{"model", proc_field("/proc/cpuinfo", "model name")},
+          {"cores", std::thread::hardware_concurrency()},
+          {"memory", proc_field("/proc/meminfo", "MemTotal")}}},
+        {"gl", gl},
+        {"compiler",
+         {{"id", SHAFTLAB_CXX_COMPILER},
+          {"flags", SHAFTLAB_CXX_FLAGS},
+          {"build_type", SHAFTLAB_BUILD_TYPE}}},
+        {"libraries",
+         {{"embree", RTC_VERSION_STRING},
+          {"cgal", CGAL_VERSION_STR},
+          {"openexr", OPENEXR_VERSION_STRING},
+          {"tbb", fmt::format("{}.{}", TBB_VERSION_MAJOR, TBB_VERSION_MINOR)},
+          {"glm", GLM_VERSION},
+          {"tomlplusplus", fmt::format("{}.{}.{}", TOML_LIB_MAJOR, TOML_LIB_MINOR, TOML_LIB_PATCH)},
+          {"fmt", FMT_VERSION},
+          {"nlohmann_json",
+           fmt::format("{}.{}.{}", NLOHMANN_JSON_VERSION_MAJOR, NLOHMANN_JSON_VERSION_MINOR,
+                       NLOHMANN_JSON_VERSION_PATCH)}}},
+        {"git",
+         {{"sha", sha.empty() ? Json() : Json(sha)},
+          {"dirty", sha.empty() ? Json() : Json(!status.empty())}}},
+        {"experiment",
+         {{"name", x.name},
+          {"file", x.source.string()},
+          {"text", x.text},
+          {"overrides", x.overrides},
+          {"effective", x.effective}}},
+        {"rows", rows.size()},
+    };
+}
+
+void write_summary(const Experiment& x, const fs::path& out) {
+    const std::vector<StoredRow> rows = load_rows(x, out);
+    const Json env = environment(x, rows);
+    std::string md = fmt::format("# {}\n\n", x.name);
+    if (!x.description.empty()) {
+        md += x.description + "\n\n";
+    }
+    md += fmt::format(
+        "Generated by `shaftlab bench {}`{} on {} ({} cores), GL: {} ({}). {}. Each cell: frames "
+        "per second from the median wall time of a frame (CPU work of the method and the wait for "
+        "the GPU){}; the fastest in each row in bold.\n\n",
+        x.source.filename().string(),
+        x.overrides.empty() ? "" : fmt::format(" ({})", fmt::join(x.overrides, ", ")),
+        env["cpu"]["model"].get<std::string>(), env["cpu"]["cores"].get<unsigned>(),
+        env["gl"].value("renderer", "?"), env["gl"].value("version", "?"), protocol_text(x),
+        x.table_metric.empty() ? std::string()
+                               : fmt::format(", and in parentheses the {} of I_s against `{}`",
+                                             x.table_metric, x.reference));
+    std::string equal_error_csv;
+    if (x.equal_error) {
+        auto [section, csv] = equal_error_report(x, rows);
+        md += section + "\n## All probes\n\n" + sweep_table(x, rows);
+        equal_error_csv = std::move(csv);
+    } else {
+        md += sweep_table(x, rows);
+    }
+    md +=
+        "\n## Regions\n\nThe beam tree of each scene and the fractions of the eye-ray length "
+        "inside the light's cone (in front of the first surface) that lie in its lit, uncertain "
+        "and unlit regions.\n\n" +
+        regions_table(rows);
+    OutputFiles files(out);
+    files.add_text("results.csv", results_csv(rows));
+    files.add_text("table.md", md);
+    files.add_text("env.json", env.dump(2) + "\n");
+    if (x.equal_error) {
+        files.add_text("equal_error.csv", equal_error_csv);
+    }
+    files.commit();
+    if (x.plots && !rows.empty()) {
+        // Debian's interpreter has Debian's matplotlib (python3-matplotlib), whatever is on PATH.
+        const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+        const int code = spawn_and_wait(
+            {python, std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/plots.py", out.string()});
+        if (code != 0) {
+            fail("experiments/plots.py failed (status {}); is python3-matplotlib installed?", code);
+        }
+    }
+}
+
+}  // namespace sl::experiments

@@ -1,0 +1,36 @@
+#pragma once
+// The summary outputs of a bench directory (see bench.h): results.csv, table.md,
+// equal_error.csv, env.json and plots/, all from the rows in cells/, each written atomically.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiments/experiment.h"
+
+namespace sl::experiments {
+
+// Every row of the directory, with its cell, in sweep order (scene, size, method, parameters,
+// repetition).
+struct StoredRow {
+    Cell cell;
+    int rep = 0;
+    nlohmann::ordered_json row;
+};
+std::vector<StoredRow> load_rows(const Experiment& experiment, const std::filesystem::path& out);
+
+// results.csv's text: the union of the rows' columns, fixed ones first.
+std::string results_csv(const std::vector<StoredRow>& rows);
+// Nilsson Table 6.1's layout: rows (dz ×) scene × size, columns methods, FPS with the error.
+std::string sweep_table(const Experiment& experiment, const std::vector<StoredRow>& rows);
+
+// Machine, GL, compiler, libraries, git state and the experiment (file verbatim, overrides).
+nlohmann::ordered_json environment(const Experiment& experiment,
+                                   const std::vector<StoredRow>& rows);
+
+// Runs a program and waits for it; returns its exit status (128 + signal when killed).
+int spawn_and_wait(const std::vector<std::string>& arguments);
+
+}  // namespace sl::experiments

@@ -1,0 +1,460 @@
+// The harness (issue 7): experiment files expand into the right cells, overrides and presets
+// apply, bad files give one clear error, the equal-error bisection finds the cheapest parameter,
+// and `shaftlab bench` runs smoke.toml end to end, resumes after a kill, shards and merges.
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "core/error.h"
+#include "experiments/bench.h"
+#include "experiments/equal_error.h"
+#include "experiments/experiment.h"
+#include "experiments/measure.h"
+#include "experiments/report.h"
+
+#include "tests/support.h"
+
+extern char** environ;
+
+namespace sl::test {
+namespace {
+
+namespace fs = std::filesystem;
+using experiments::Cell;
+using experiments::Experiment;
+using experiments::parse_experiment;
+
+const char* const kSweep = R"(
+name = "t"
+[sweep]
+scenes = ["toplight", "parallel"]
+methods = ["beamtree", "planes", "march"]
+sizes = ["32x16", 64]
+[sweep.params]
+dz = [0.5, 0.25]
+[sweep.params.march]
+samples = [4, 8]
+)";
+
+std::string read_file(const fs::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+// The message of the sl::Error that parsing `text` throws ("" when it parses).
+std::string parse_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
+    try {
+        parse_experiment(text, "bad.toml", {}, overrides);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// Rows of a CSV file (header first), split at commas outside quotes.
+std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
+    std::vector<std::vector<std::string>> rows;
+    std::ifstream file(path);
+    for (std::string line; std::getline(file, line);) {
+        std::vector<std::string> fields(1);
+        bool quoted = false;
+        for (const char c : line) {
+            if (c == '"') {
+                quoted = !quoted;
+            } else if (c == ',' && !quoted) {
+                fields.emplace_back();
+            } else {
+                fields.back() += c;
+            }
+        }
+        rows.push_back(std::move(fields));
+    }
+    return rows;
+}
+
+TEST(Experiment, SweepIsTheCartesianProductOfWhatEachMethodDeclares) {
+    const Experiment x = parse_experiment(kSweep, "t.toml");
+    const std::vector<Cell> cells = x.cells();
+    // 2 scenes × 2 sizes × (beamtree 1 + planes 2 dz + march 2 samples).
+    ASSERT_EQ(cells.size(), 20u);
+    std::set<std::string> ids;
+    for (const Cell& cell : cells) {
+        ids.insert(cell.id());
+        if (cell.method == "beamtree") {
+            EXPECT_TRUE(cell.settings.empty()) << cell.id();
+        } else if (cell.method == "planes") {
+            EXPECT_TRUE(cell.setting("dz") && !cell.setting("samples")) << cell.id();
+        } else {
+            EXPECT_TRUE(cell.setting("samples") && !cell.setting("dz")) << cell.id();
+        }
+    }
+    EXPECT_EQ(ids.size(), cells.size()) << "cell ids must be unique";
+    EXPECT_EQ(cells.front().size(), "32x16");
+    EXPECT_EQ(cells[3].size(), "32x16");
+    EXPECT_EQ(cells[5].size(), "64x64") << "a bare number is a square size";
+}
+
+TEST(Experiment, ExclusionsRemoveOnlyCellsMatchingEveryKey) {
+    const std::string text = std::string(kSweep) + R"(
+[[exclude]]
+dz = 0.25
+[[exclude]]
+method = "march"
+scene = "parallel"
+size = ["64x64"]
+)";
+    const std::vector<Cell> cells = parse_experiment(text, "t.toml").cells();
+    // dz 0.25 removes 4 planes cells (beamtree has no dz and stays); the second removes the 2
+    // march cells of parallel at 64².
+    EXPECT_EQ(cells.size(), 14u);
+    for (const Cell& cell : cells) {
+        EXPECT_FALSE(cell.setting("dz") && *cell.setting("dz") == "0.25") << cell.id();
+        EXPECT_FALSE(cell.method == "march" && cell.scene == "parallel" && cell.width == 64);
+    }
+}
+
+TEST(Experiment, SetAndPresetsOverrideValuesAndAreRecorded) {
+    const std::string text = std::string(kSweep) + R"(
+[protocol]
+frames = 3
+[presets.small]
+"sweep.sizes" = ["8x4"]
+protocol.warmup = 0
+)";
+    const Experiment x = parse_experiment(text, "t.toml", {"small"},
+                                          {"protocol.frames=7", "sweep.scenes=toplight",
+                                           "sweep.params.dz=[0.125]", "render.shadow=vsm"});
+    EXPECT_EQ(x.protocol.frames, 7);
+    EXPECT_EQ(x.protocol.warmup, 0);
+    EXPECT_EQ(x.render.shadow, "vsm") << "a bare word is a string";
+    ASSERT_EQ(x.scenes, std::vector<std::string>{"toplight"});
+    ASSERT_EQ(x.sizes.size(), 1u);
+    EXPECT_EQ(x.sizes[0], std::pair(8, 4));
+    EXPECT_EQ(x.cells().size(), 1u + 1u + 2u);
+    EXPECT_EQ(x.overrides.size(), 5u);
+    EXPECT_NE(x.effective.find("frames = 7"), std::string::npos) << x.effective;
+    EXPECT_NE(parse_error(text, {"protocol.frames=0"}).find("frames"), std::string::npos);
+    try {
+        parse_experiment(text, "t.toml", {"large"});
+        FAIL() << "an unknown preset must be an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("small"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Experiment, BadFilesGiveOneErrorNamingTheFileAndKey) {
+    const std::string base =
+        "name = \"t\"\n[sweep]\nscenes = [\"toplight\"]\n"
+        "methods = [\"planes\"]\nsizes = [\"32x16\"]\n";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {base + "[protocol]\nfraems = 3\n", "fraems: unknown key"},
+        {base + "colour = 1\n", "colour: unknown key"},
+        {base + "[sweep.params]\ndz = -1\n", "dz"},
+        {base + "[sweep.params]\nsamples = 8\n", "samples"},
+        {base + "[sweep.params.planes]\nsamples = 8\n", "samples"},
+        {base + "[[exclude]]\nfoo = 1\n", "foo"},
+        {base + "[protocol]\nisolation = \"thread\"\n", "isolation"},
+        {base + "[table]\nmetric = \"ssim\"\n", "metric"},
+        {base + "[equal_error]\ntargets = [2.0]\n", "targets"},
+        {base + "[equal_error]\ntargets = [0.01]\nbaselines = [\"march\"]\n", "baselines"},
+        {"name = \"t\"\n[sweep]\nscenes = [\"nowhere\"]\nmethods = [\"planes\"]\n"
+         "sizes = [\"32x16\"]\n",
+         "nowhere"},
+        {"name = \"t\"\n[sweep]\nscenes = [\"toplight\"]\nmethods = [\"plains\"]\n"
+         "sizes = [\"32x16\"]\n",
+         "plains"},
+        {"name = \"t\"\n[sweep]\nscenes = [\"toplight\"]\nmethods = [\"planes\"]\n"
+         "sizes = [\"32by16\"]\n",
+         "32by16"},
+        {"name = \"t\"\n[sweep]\nscenes = []\nmethods = [\"planes\"]\nsizes = [1]\n", "scenes"},
+        {"name = \"t\"\n", "sweep"},
+        {"name = \"t\"\n[sweep\n", "bad.toml:2"},
+    };
+    for (const auto& [text, expected] : cases) {
+        const std::string message = parse_error(text);
+        EXPECT_NE(message.find("bad.toml"), std::string::npos) << text << "\n=> " << message;
+        EXPECT_NE(message.find(expected), std::string::npos) << text << "\n=> " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    EXPECT_NE(parse_error(base, {"protocol.frmes=2"}).find("frmes: unknown key"),
+              std::string::npos);
+    EXPECT_NE(parse_error(base, {"protocol.frmes=2"}).find("command line"), std::string::npos);
+}
+
+TEST(Experiment, PercentilesInterpolateBetweenOrderStatistics) {
+    EXPECT_DOUBLE_EQ(experiments::median({3.0, 1.0, 2.0}), 2.0);
+    EXPECT_DOUBLE_EQ(experiments::median({4.0, 1.0, 2.0, 3.0}), 2.5);
+    EXPECT_DOUBLE_EQ(experiments::percentile({0.0, 10.0}, 5.0), 0.5);
+    EXPECT_DOUBLE_EQ(experiments::percentile({0.0, 10.0, 20.0}, 95.0), 19.0);
+}
+
+// The bisection against synthetic monotone error models: the value it returns reaches the
+// target, and one step cheaper (within the tolerance) does not.
+TEST(EqualError, BisectionFindsTheCheapestParameterReachingTheTarget) {
+    const std::string text = R"(
+name = "t"
+[sweep]
+scenes = ["toplight"]
+methods = ["planes", "march", "beamtree"]
+sizes = ["32x16"]
+[equal_error]
+targets = [0.01]
+baselines = ["planes"]
+tolerance = 0.02
+[equal_error.search.march]
+parameter = "samples"
+cheap = 2
+expensive = 512
+)";
+    const Experiment x = parse_experiment(text, "t.toml");
+    const std::vector<Cell> groups = experiments::search_groups(x);
+    ASSERT_EQ(groups.size(), 3u);
+    int measured = 0;
+    const experiments::CellMeasure model =
+        [&](const Cell& cell) -> std::optional<experiments::CellSummary> {
+        ++measured;
+        if (cell.method == "planes") {  // error ∝ dz, cost ∝ 1/dz
+            const double dz = std::stod(*cell.setting("dz"));
+            return experiments::CellSummary{0.04 * dz, 1.0 / dz};
+        }
+        if (cell.method == "march") {  // error ∝ 1/N, cost ∝ N
+            const double n = std::stod(*cell.setting("samples"));
+            return experiments::CellSummary{0.5 / n, n};
+        }
+        return experiments::CellSummary{0.02, 3.0};  // beamtree: fixed
+    };
+    const auto planes = experiments::search_equal_error(x, groups[0], 0.01, model);
+    ASSERT_TRUE(planes.reached && planes.complete);
+    EXPECT_EQ(planes.parameter, "dz");
+    const double dz = std::stod(planes.value);
+    EXPECT_LE(0.04 * dz, 0.01);
+    EXPECT_GT(dz, 0.25 / 1.03) << "the cheapest dz reaching 1% is 0.25";
+    EXPECT_LE(planes.probes.size(), 12u);
+
+    const auto march = experiments::search_equal_error(x, groups[1], 0.01, model);
+    ASSERT_TRUE(march.reached);
+    EXPECT_EQ(march.value, "50") << "smallest N with 0.5/N <= 1%";
+
+    const auto beamtree = experiments::search_equal_error(x, groups[2], 0.01, model);
+    EXPECT_TRUE(beamtree.parameter.empty());
+    EXPECT_FALSE(beamtree.reached) << "a fixed 2% never reaches 1%";
+
+    const auto unreachable = experiments::search_equal_error(x, groups[1], 1e-4, model);
+    EXPECT_FALSE(unreachable.reached);
+    EXPECT_EQ(unreachable.value, "512") << "reports the most expensive value tried";
+    EXPECT_GT(measured, 0);
+}
+
+TEST(Report, TableRepeatsParameterlessMethodsInEveryRowInListedOrder) {
+    const Experiment x = parse_experiment(R"(
+name = "t"
+[sweep]
+scenes = ["toplight"]
+methods = ["beamtree", "planes"]
+sizes = ["32x16"]
+[sweep.params]
+dz = [0.5, 0.1]
+)",
+                                          "t.toml");
+    std::vector<experiments::StoredRow> rows;
+    for (const Cell& cell : x.cells()) {
+        const double ms = cell.method == "beamtree" ? 10.0 : std::stod(*cell.setting("dz")) * 40;
+        rows.push_back({cell, 0, {{"frame_ms_median", ms}, {"rel_rmse", 0.01}}});
+    }
+    const std::string table = experiments::sweep_table(x, rows);
+    const size_t first =
+        table.find("| 0.5 | toplight | 32x16 | **100.0** (1.00%) | 50.0 (1.00%) |");
+    const size_t second =
+        table.find("| 0.1 | toplight | 32x16 | 100.0 (1.00%) | **250.0** (1.00%) |");
+    EXPECT_NE(first, std::string::npos) << table;
+    EXPECT_NE(second, std::string::npos) << table;
+    EXPECT_LT(first, second) << "dz rows in the file's order";
+}
+
+TEST(Bench, BadExperimentFileIsOneErrorAndWritesNothing) {
+    TempDir dir;
+    write_text(dir.path() / "bad.toml",
+               "name = \"bad\"\n[sweep]\nscenes = [\"toplight\"]\n"
+               "methods = [\"planes\"]\nsizes = [\"32x16\"]\nfoo = 1\n");
+    const CommandResult run = run_shaftlab("bench " + (dir.path() / "bad.toml").string() +
+                                           " --out " + (dir.path() / "out").string());
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_NE(run.output.find("foo: unknown key"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(dir.path() / "out"));
+    EXPECT_NE(
+        run_shaftlab("bench " + std::string(SHAFTLAB_SOURCE_DIR) +
+                     "/experiments/smoke.toml --shard 3/2 --out " + (dir.path() / "out").string())
+            .exit_code,
+        0);
+}
+
+// smoke.toml end to end: every output, every required column, one row per cell.
+TEST(Bench, SmokeExperimentWritesEveryOutput) {
+    TempDir dir;
+    const std::string smoke = std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/smoke.toml";
+    const CommandResult run = run_shaftlab("bench " + smoke + " --out " + dir.path().string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const auto csv = read_csv(dir.path() / "results.csv");
+    const Experiment x = experiments::load_experiment(smoke);
+    ASSERT_EQ(csv.size(), 1 + x.cells().size());
+    const std::vector<std::string>& header = csv[0];
+    for (const char* column : {"scene",
+                               "method",
+                               "width",
+                               "height",
+                               "params",
+                               "rep",
+                               "frames",
+                               "fps",
+                               "frame_ms_median",
+                               "frame_ms_p5",
+                               "frame_ms_p95",
+                               "gpu_ms_total",
+                               "gpu_ms_volume",
+                               "cpu_ms_prepare",
+                               "rel_rmse",
+                               "max_abs",
+                               "psnr",
+                               "lit_frac",
+                               "uncertain_frac",
+                               "unlit_frac",
+                               "beams",
+                               "region_faces",
+                               "samples_or_slices",
+                               "image"}) {
+        EXPECT_NE(std::find(header.begin(), header.end(), column), header.end()) << column;
+    }
+    auto column = [&](const std::string& name) {
+        return size_t(std::find(header.begin(), header.end(), name) - header.begin());
+    };
+    std::set<std::string> cells;
+    for (size_t r = 1; r < csv.size(); ++r) {
+        ASSERT_EQ(csv[r].size(), header.size()) << "row " << r;
+        cells.insert(csv[r][column("cell")]);
+        const double fps = std::stod(csv[r][column("fps")]);
+        const double error = std::stod(csv[r][column("rel_rmse")]);
+        const double lit = std::stod(csv[r][column("lit_frac")]);
+        const double uncertain = std::stod(csv[r][column("uncertain_frac")]);
+        const double unlit = std::stod(csv[r][column("unlit_frac")]);
+        EXPECT_GT(fps, 0.0);
+        EXPECT_TRUE(error >= 0.0 && error < 0.5) << csv[r][column("cell")] << " " << error;
+        EXPECT_NEAR(lit + uncertain + unlit, 1.0, 1e-9);
+        EXPECT_GT(lit, 0.5) << "most of these beams is lit";
+        EXPECT_LE(std::stod(csv[r][column("frame_ms_p5")]),
+                  std::stod(csv[r][column("frame_ms_p95")]));
+        EXPECT_TRUE(fs::exists(dir.path() / csv[r][column("image")])) << csv[r][column("image")];
+    }
+    EXPECT_EQ(cells.size(), x.cells().size());
+    const std::string table = read_file(dir.path() / "table.md");
+    EXPECT_NE(table.find("| dz | scene | size | beamtree | planes | hybrid2 | march | hybrid3 |"),
+              std::string::npos)
+        << table;
+    EXPECT_NE(run.output.find("| dz | scene | size |"), std::string::npos) << "printed";
+    const auto env = nlohmann::json::parse(read_file(dir.path() / "env.json"));
+    EXPECT_EQ(env["experiment"]["text"].get<std::string>(), read_file(smoke)) << "verbatim";
+    for (const char* key : {"cpu", "gl", "compiler", "libraries", "git"}) {
+        EXPECT_TRUE(env.contains(key)) << key;
+    }
+    EXPECT_FALSE(env["gl"]["renderer"].get<std::string>().empty());
+    for (const char* plot : {"fps_vs_resolution_toplight.png", "error_vs_time_parallel.png"}) {
+        EXPECT_GT(fs::file_size(dir.path() / "plots" / plot), 1000u) << plot;
+    }
+}
+
+// Kill a run after some rows exist; the rerun keeps every finished row untouched (no cell
+// measured twice) and completes the rest.
+TEST(Bench, ResumeAfterKillLosesAndDuplicatesNothing) {
+    TempDir dir;
+    const std::string smoke = std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/smoke.toml";
+    const std::string out = (dir.path() / "out").string();
+    std::vector<std::string> args = {SHAFTLAB_BINARY,      "bench", smoke,
+                                     "--preset",           "tiny",  "--set",
+                                     "protocol.frames=12", "--out", out};
+    std::vector<char*> argv;
+    for (std::string& a : args) {
+        argv.push_back(a.data());
+    }
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    ASSERT_EQ(posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+    auto rows = [&] {
+        std::map<std::string, std::string> found;
+        if (fs::is_directory(dir.path() / "out" / "cells")) {
+            for (const auto& e : fs::directory_iterator(dir.path() / "out" / "cells")) {
+                const std::string name = e.path().filename().string();
+                if (!name.starts_with(".")) {
+                    found[name] = read_file(e.path());
+                }
+            }
+        }
+        return found;
+    };
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(3);
+    while (rows().size() < 2 && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed";
+    const auto before = rows();
+    const size_t total = experiments::load_experiment(smoke, {"tiny"}).cells().size();
+    ASSERT_GE(before.size(), 2u);
+    ASSERT_LT(before.size(), total);
+
+    const CommandResult rerun =
+        run_shaftlab("bench " + smoke + " --preset tiny --set protocol.frames=12 --out " + out);
+    ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
+    const auto after = rows();
+    EXPECT_EQ(after.size(), total);
+    for (const auto& [name, text] : before) {
+        ASSERT_TRUE(after.contains(name));
+        EXPECT_EQ(after.at(name), text) << name << " was measured again";
+    }
+    const auto csv = read_csv(dir.path() / "out" / "results.csv");
+    EXPECT_EQ(csv.size(), 1 + total);
+    for (const auto& e : fs::directory_iterator(dir.path() / "out" / "cells")) {
+        EXPECT_FALSE(e.path().filename().string().starts_with(".")) << "temporary left behind";
+    }
+    // Different overrides into the same directory are refused.
+    EXPECT_NE(run_shaftlab("bench " + smoke + " --preset tiny --out " + out).exit_code, 0);
+}
+
+// Two shards cover the sweep between them, and merge joins them into one complete result.
+TEST(Bench, ShardsMergeIntoTheWholeSweep) {
+    TempDir dir;
+    const std::string smoke = std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/smoke.toml";
+    const std::string common = "bench " + smoke + " --preset tiny --set protocol.frames=1 ";
+    const std::string a = (dir.path() / "a").string(), b = (dir.path() / "b").string();
+    ASSERT_EQ(run_shaftlab(common + "--shard 1/2 --out " + a).exit_code, 0);
+    ASSERT_EQ(run_shaftlab(common + "--shard 2/2 --out " + b).exit_code, 0);
+    const size_t total =
+        experiments::load_experiment(smoke, {"tiny"}, {"protocol.frames=1"}).cells().size();
+    const size_t rows_a = read_csv(dir.path() / "a" / "results.csv").size() - 1;
+    const size_t rows_b = read_csv(dir.path() / "b" / "results.csv").size() - 1;
+    EXPECT_EQ(rows_a + rows_b, total);
+    EXPECT_GT(rows_b, 0u);
+    const CommandResult merge =
+        run_shaftlab("merge " + a + " " + b + " --out " + (dir.path() / "m").string());
+    ASSERT_EQ(merge.exit_code, 0) << merge.output;
+    const auto csv = read_csv(dir.path() / "m" / "results.csv");
+    std::set<std::string> cells;
+    for (size_t r = 1; r < csv.size(); ++r) {
+        cells.insert(csv[r][1]);
+    }
+    EXPECT_EQ(cells.size(), total);
+    EXPECT_EQ(csv.size(), 1 + total);
+    EXPECT_TRUE(fs::exists(dir.path() / "m" / "table.md"));
+}
+
+}  // namespace
+}  // namespace sl::test
