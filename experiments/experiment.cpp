@@ -463,10 +463,14 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
                 const std::string key(key_node.str());
                 if (const toml::table* own = node.as_table()) {
                     p.take(key);
+                    const auto known = methods::volume_method_names();
+                    if (std::find(known.begin(), known.end(), key) == known.end()) {
+                        p.error(key, fmt::format("a table of parameters must be named after a "
+                                                 "method (known: {})",
+                                                 fmt::join(known, ", ")));
+                    }
                     if (std::find(x.methods.begin(), x.methods.end(), key) == x.methods.end()) {
-                        p.error(key,
-                                "a table of parameters must be named after a method of the "
-                                "sweep");
+                        continue;  // not swept (e.g. --set sweep.methods=...): not applied
                     }
                     TomlTableReader m(*own, origin, "[sweep.params." + key + "]");
                     for (const auto& [name_node, value] : *own) {
@@ -486,8 +490,15 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
                     }
                 }
                 if (!declared) {
-                    p.error(key, fmt::format("no method of the sweep ({}) has this parameter",
-                                             fmt::join(x.methods, ", ")));
+                    // A parameter of no swept method is fine when some method has it (the sweep's
+                    // methods may have been overridden); otherwise it is a typo.
+                    const auto known = methods::volume_method_names();
+                    if (std::none_of(known.begin(), known.end(), [&](const std::string& m) {
+                            return methods::create_volume_method(m)->has_parameter(key);
+                        })) {
+                        p.error(key, "no method has this parameter (see `shaftlab methods`)");
+                    }
+                    continue;
                 }
                 x.params.emplace_back(key, std::move(texts));
             }

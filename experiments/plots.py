@@ -4,7 +4,9 @@
   fps_vs_resolution_<scene>.png  frames per second against pixels, one line per method (and per
                                  value of its swept parameters), log-log;
   error_vs_time_<scene>.png      relative RMSE of I_s against frame time, one panel per size, one
-                                 curve per method with its swept parameter along the curve.
+                                 curve per method with its swept parameter along the curve;
+  scaling.png                    when three or more scenes are `multiple:N`: the beam tree (beams,
+                                 region faces, build time) and each method's FPS against N.
 
 Repetitions are combined as in table.md: median frame time, mean error. Every file is written
 under a temporary name and renamed into place. Needs Debian's python3-matplotlib.
@@ -44,7 +46,7 @@ def load(directory):
         settings = OrderedDict(p.split("=", 1) for p in params.split(";") if p)
         out.append({"scene": scene, "w": w, "h": h, "method": method, "settings": settings,
                     "frame_ms": frame_ms, "fps": 1000.0 / frame_ms,
-                    "error": sum(errors) / len(errors) if errors else None})
+                    "error": sum(errors) / len(errors) if errors else None, "row": reps[0]})
     return out
 
 
@@ -136,6 +138,42 @@ def error_vs_time(cells, scene, vary, path):
     return True
 
 
+def scaling(cells, path):
+    """Beam tree and frame rate against N for the generated scenes multiple:N."""
+    mine = [c for c in cells if c["scene"].startswith("multiple:")]
+    counts = sorted({int(c["scene"].split(":")[1]) for c in mine})
+    if len(counts) < 3:
+        return False
+    figure, (tree, fps) = plt.subplots(1, 2, figsize=(11, 4.5))
+    first = {}
+    for c in mine:
+        first.setdefault(int(c["scene"].split(":")[1]), c["row"])
+    for key, label in (("beams", "beams"), ("region_faces", "region faces"),
+                       ("cpu_ms_beamtree_regions", "tree + regions build (ms)")):
+        tree.plot(counts, [float(first[n][key]) for n in counts], "o-", label=label)
+    tree.set_xscale("log")
+    tree.set_yscale("log")
+    tree.set_xlabel("objects N")
+    tree.set_title("beam tree against N")
+    tree.grid(True, which="both", alpha=0.3)
+    tree.legend(fontsize=8)
+    methods = OrderedDict()
+    for c in mine:
+        methods.setdefault(c["method"], []).append((int(c["scene"].split(":")[1]), c["fps"]))
+    for method, points in methods.items():
+        points.sort()
+        fps.plot([p[0] for p in points], [p[1] for p in points], "o-", label=method)
+    fps.set_xscale("log")
+    fps.set_yscale("log")
+    fps.set_xlabel("objects N")
+    fps.set_ylabel("frames per second")
+    fps.set_title("frame rate against N")
+    fps.grid(True, which="both", alpha=0.3)
+    fps.legend(fontsize=8)
+    save(figure, path)
+    return True
+
+
 def main(directory):
     cells = load(directory)
     plots = os.path.join(directory, "plots")
@@ -149,6 +187,8 @@ def main(directory):
             path = os.path.join(plots, f"{name}_{safe}.png")
             if plot(cells, scene, vary, path):
                 written.append(path)
+    if scaling(cells, os.path.join(plots, "scaling.png")):
+        written.append("scaling.png")
     print(f"plots: {len(written)} in {plots}", file=sys.stderr)
 
 

@@ -155,7 +155,7 @@ std::string format_error(const std::string& metric, double value) {
 std::string protocol_text(const Experiment& x) {
     return fmt::format(
         "{} warm-up and {} measured frames per repetition, {} repetition(s) in fresh GL {}s; "
-        "shadow maps {} {}² (r = {})",
+        "shadow maps {} {}² (r = {}) unless a method's `shadow` parameter says otherwise",
         x.protocol.warmup, x.protocol.frames, x.protocol.repetitions,
         x.protocol.isolation == Isolation::process ? "process" : "context", x.render.shadow,
         x.render.shadow_map_size, x.render.pcf_radius);

@@ -159,7 +159,8 @@ TEST(Experiment, BadFilesGiveOneErrorNamingTheFileAndKey) {
         {base + "[protocol]\nfraems = 3\n", "fraems: unknown key"},
         {base + "colour = 1\n", "colour: unknown key"},
         {base + "[sweep.params]\ndz = -1\n", "dz"},
-        {base + "[sweep.params]\nsamples = 8\n", "samples"},
+        {base + "[sweep.params]\nsamplez = 8\n", "samplez"},
+        {base + "[sweep.params.plains]\ndz = 0.5\n", "plains"},
         {base + "[sweep.params.planes]\nsamples = 8\n", "samples"},
         {base + "[[exclude]]\nfoo = 1\n", "foo"},
         {base + "[protocol]\nisolation = \"thread\"\n", "isolation"},
@@ -454,6 +455,33 @@ TEST(Bench, ShardsMergeIntoTheWholeSweep) {
     EXPECT_EQ(cells.size(), total);
     EXPECT_EQ(csv.size(), 1 + total);
     EXPECT_TRUE(fs::exists(dir.path() / "m" / "table.md"));
+}
+
+// Process isolation: each repetition runs in a child process of its own and lands as its own row.
+TEST(Bench, ProcessIsolationWritesOneRowPerRepetition) {
+    TempDir dir;
+    const std::string smoke = std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/smoke.toml";
+    const CommandResult run =
+        run_shaftlab("bench " + smoke +
+                     " --preset tiny --set protocol.isolation=process --set protocol.repetitions=2 "
+                     "--set protocol.frames=1 --set 'sweep.methods=[\"beamtree\", \"planes\"]' "
+                     "--set sweep.params.dz=0.5 --out " +
+                     dir.path().string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const auto csv = read_csv(dir.path() / "results.csv");
+    ASSERT_EQ(csv.size(), 1u + 2u * 2u);
+    const auto& header = csv[0];
+    const size_t isolation =
+        size_t(std::find(header.begin(), header.end(), "isolation") - header.begin());
+    const size_t rep = size_t(std::find(header.begin(), header.end(), "rep") - header.begin());
+    ASSERT_LT(isolation, header.size());
+    std::multiset<std::string> reps;
+    for (size_t r = 1; r < csv.size(); ++r) {
+        EXPECT_EQ(csv[r][isolation], "process");
+        reps.insert(csv[r][rep]);
+    }
+    EXPECT_EQ(reps.count("0"), 2u);
+    EXPECT_EQ(reps.count("1"), 2u);
 }
 
 }  // namespace
