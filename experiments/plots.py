@@ -51,7 +51,8 @@ def load(directory):
 
 
 def varying(cells):
-    """Per method, the parameters that take more than one value."""
+    """Per method, the parameters that take more than one value; the first is the one to put along
+    a curve: numeric, with the most values."""
     values = defaultdict(set)
     for c in cells:
         for name, value in c["settings"].items():
@@ -60,6 +61,9 @@ def varying(cells):
     for (method, name), vs in values.items():
         if len(vs) > 1:
             result[method].append(name)
+    for method, names in result.items():
+        names.sort(key=lambda n: (not all(number(v) is not None for v in values[(method, n)]),
+                                  -len(values[(method, n)])))
     return result
 
 
