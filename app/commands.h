@@ -7,6 +7,8 @@
 #include <chrono>
 #include <functional>
 
+#include "experiments/measure.h"
+
 namespace sl::app {
 
 using Command = std::function<int()>;
@@ -23,9 +25,7 @@ Command add_merge_command(CLI::App& app);
 using Clock = std::chrono::steady_clock;
 
 // Milliseconds of wall time since `start`, for the stage timings the commands report.
-inline double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+using experiments::ms_since;
 
 // "WxH" with both positive; throws sl::Error otherwise.
 void parse_size(const std::string& text, int& width, int& height);

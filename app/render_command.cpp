@@ -41,20 +41,18 @@ int run_render(const RenderArguments& args) {
     options.shadow = {.filter = gl::parse_shadow_filter(args.shadow),
                       .map_size = args.shadow_map_size,
                       .radius = args.pcf_radius};
-    // Fail on an unknown method before any expensive work.
-    std::unique_ptr<gl::VolumeMethod> method = methods::create_volume_method(args.method);
-    // The run's shadow options are the defaults of a method's own `shadow` parameters.
-    if (method->has_parameter("shadow")) {
-        method->set("shadow", args.shadow);
-        method->set("shadow_size", std::to_string(args.shadow_map_size));
-    }
+    // Fail on an unknown method or setting before any expensive work. The run's shadow
+    // options are the defaults of a method's own `shadow` parameters.
+    std::vector<std::pair<std::string, std::string>> settings;
     for (const std::string& setting : args.settings) {
         const size_t equals = setting.find('=');
         if (equals == std::string::npos || equals == 0) {
             fail("--set '{}': expected NAME=VALUE", setting);
         }
-        method->set(setting.substr(0, equals), setting.substr(equals + 1));
+        settings.emplace_back(setting.substr(0, equals), setting.substr(equals + 1));
     }
+    const std::unique_ptr<gl::VolumeMethod> method =
+        experiments::create_configured_method(args.method, options.shadow, settings);
     if (!args.compare.empty() && args.compare != "reference") {
         fail("--compare '{}': only 'reference' can be compared against", args.compare);
     }

@@ -32,10 +32,6 @@ using Json = nlohmann::ordered_json;
 
 namespace {
 
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
 std::string duration_text(double seconds) {
     const long s = std::lround(seconds);
     return s >= 3600 ? fmt::format("{}h{:02}m", s / 3600, s / 60 % 60)
@@ -67,19 +63,17 @@ Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path
     const Scene& scene = caches.scene(cell.scene);
     const double load_ms = ms_since(start);
 
-    std::unique_ptr<gl::VolumeMethod> method = methods::create_volume_method(cell.method);
-    if (method->has_parameter("shadow")) {
-        method->set("shadow", x.render.shadow);
-        method->set("shadow_size", std::to_string(x.render.shadow_map_size));
-    }
-    for (const Setting& s : cell.settings) {
-        method->set(s.name, s.value);
-    }
     const gl::RenderOptions options{.width = cell.width,
                                     .height = cell.height,
                                     .shadow = {.filter = gl::parse_shadow_filter(x.render.shadow),
                                                .map_size = x.render.shadow_map_size,
                                                .radius = x.render.pcf_radius}};
+    std::vector<std::pair<std::string, std::string>> settings;
+    for (const Setting& s : cell.settings) {
+        settings.emplace_back(s.name, s.value);
+    }
+    const std::unique_ptr<gl::VolumeMethod> method =
+        create_configured_method(cell.method, options.shadow, settings);
 
     start = Clock::now();
     const auto platform = gl::create_osmesa_platform();
@@ -412,11 +406,15 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
                     fmt::format("[search {}/{}, target {:.3g}%]", k + 1, mine.size(), 100 * target);
                 const SearchOutcome outcome = search_equal_error(
                     x, group, target, [&](const Cell& cell) { return ensure(cell, progress); });
+                const std::string setting =
+                    outcome.parameter.empty()
+                        ? std::string("as is")
+                        : fmt::format("{}={}", outcome.parameter, outcome.value);
                 fmt::print(stderr, "  => {}: {}\n", cell_label(group),
                            !outcome.complete ? "incomplete"
-                           : outcome.reached ? fmt::format("{}={} at {:.1f} ms", outcome.parameter,
-                                                           outcome.value, outcome.summary.frame_ms)
-                                             : "target not reached");
+                           : outcome.reached
+                               ? fmt::format("{} at {:.1f} ms", setting, outcome.summary.frame_ms)
+                               : "target not reached");
             }
         }
     } else {

@@ -78,22 +78,6 @@ std::vector<std::string> strings(TomlTableReader& reader, std::string_view key) 
     return {};
 }
 
-std::optional<double> as_number(const std::string& text) {
-    double value = 0.0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec != std::errc() || ptr != end) {
-        return std::nullopt;
-    }
-    return value;
-}
-
-// Equal as numbers when both are numbers ("0.10" = "0.1"), else as text.
-bool same_value(const std::string& a, const std::string& b) {
-    const auto x = as_number(a), y = as_number(b);
-    return x && y ? *x == *y : a == b;
-}
-
 std::pair<int, int> parse_size_value(TomlTableReader& reader, std::string_view key,
                                      const std::string& text) {
     static const std::regex pattern(R"((\d{1,5})(?:x(\d{1,5}))?)");
@@ -184,6 +168,21 @@ void check_method_parameter(const std::string& method, const std::string& name,
 }
 
 }  // namespace
+
+std::optional<double> parse_number(const std::string& text) {
+    double value = 0.0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || ptr != end) {
+        return std::nullopt;
+    }
+    return value;
+}
+
+bool same_value(const std::string& a, const std::string& b) {
+    const auto x = parse_number(a), y = parse_number(b);
+    return x && y ? *x == *y : a == b;
+}
 
 std::string Cell::size() const {
     return fmt::format("{}x{}", width, height);
@@ -579,7 +578,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
         TomlTableReader r(*table, origin, "[equal_error]");
         EqualError e;
         for (const std::string& target : values(r, "targets")) {
-            const auto value = as_number(target);
+            const auto value = parse_number(target);
             if (!value || !(*value > 0.0 && *value < 1.0)) {
                 r.error("targets", fmt::format("'{}': a relative RMSE in (0, 1)", target));
             }

@@ -136,6 +136,11 @@ struct Experiment {
     std::filesystem::path output_directory() const;
 };
 
+// Setting values as numbers when they are numbers: parse_number("0.10") = 0.1, nullopt for
+// "vsm"; same_value compares as numbers when both are ("0.10" = "0.1"), else as text.
+std::optional<double> parse_number(const std::string& text);
+bool same_value(const std::string& a, const std::string& b);
+
 // Reads an experiment file, applies the named presets and then the `key.path=VALUE` overrides.
 // Throws sl::Error naming the file and key on any bad input (unknown keys, methods, parameters or
 // values, empty sweeps).

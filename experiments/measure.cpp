@@ -17,11 +17,6 @@ namespace sl::experiments {
 
 namespace {
 
-double ms_between(std::chrono::steady_clock::time_point a,
-                  std::chrono::steady_clock::time_point b) {
-    return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
 // Appends each named value to its series, keeping first-seen order.
 void collect(std::vector<std::pair<std::string, std::vector<double>>>& series,
              const std::vector<std::pair<std::string, double>>& values) {
@@ -46,6 +41,20 @@ std::vector<std::pair<std::string, double>> medians(
 }
 
 }  // namespace
+
+std::unique_ptr<gl::VolumeMethod> create_configured_method(
+    const std::string& name, const gl::ShadowSettings& run,
+    const std::vector<std::pair<std::string, std::string>>& settings) {
+    std::unique_ptr<gl::VolumeMethod> method = methods::create_volume_method(name);
+    if (method->has_parameter("shadow")) {
+        method->set("shadow", gl::to_string(run.filter));
+        method->set("shadow_size", std::to_string(run.map_size));
+    }
+    for (const auto& [parameter, value] : settings) {
+        method->set(parameter, value);
+    }
+    return method;
+}
 
 double median(std::vector<double> values) {
     return percentile(std::move(values), 50.0);
@@ -93,7 +102,7 @@ RegionStatistics region_statistics(const Scene& scene, int width, int height) {
     RegionStatistics stats;
     const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
     const bt::Regions regions = bt::extract_regions(tree);
-    stats.build_ms = ms_between(start, std::chrono::steady_clock::now());
+    stats.build_ms = ms_since(start);
     stats.beams = regions.beam_count;
     for (const bt::Region region : {bt::Region::lit, bt::Region::uncertain, bt::Region::unlit}) {
         stats.region_faces += regions.face_count(region);
@@ -135,7 +144,7 @@ RegionStatistics region_statistics(const Scene& scene, int width, int height) {
         stats.uncertain_fraction = lengths[1] / total;
         stats.unlit_fraction = lengths[2] / total;
     }
-    stats.ms = ms_between(start, std::chrono::steady_clock::now());
+    stats.ms = ms_since(start);
     return stats;
 }
 

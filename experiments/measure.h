@@ -3,6 +3,8 @@
 // reference, and the beam-tree region statistics of the view. Shared by `shaftlab render` and the
 // harness, so a cell in a sweep measures exactly what a single render reports.
 
+#include <chrono>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +14,19 @@
 #include "scenes/scene.h"
 
 namespace sl::experiments {
+
+// Milliseconds of wall time since `start`, for stage timings.
+inline double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+// The method `name` with the run's shadow map as the default of its own `shadow` parameters
+// (when it declares them), then each (name, value) setting applied; throws sl::Error naming the
+// method and parameter on an unknown one or a bad value.
+std::unique_ptr<gl::VolumeMethod> create_configured_method(
+    const std::string& name, const gl::ShadowSettings& run,
+    const std::vector<std::pair<std::string, std::string>>& settings);
 
 double median(std::vector<double> values);
 // The p-th percentile (p in [0, 100]) with linear interpolation between order statistics.

@@ -9,7 +9,6 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <charconv>
 #include <ctime>
 #include <fstream>
 #include <map>
@@ -36,16 +35,9 @@ using Json = nlohmann::ordered_json;
 
 namespace {
 
-std::optional<double> number(const std::string& text) {
-    double value = 0.0;
-    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return ec == std::errc() && ptr == text.data() + text.size() ? std::optional(value)
-                                                                 : std::nullopt;
-}
-
 // Values of one parameter ordered as numbers when they are numbers.
 bool value_less(const std::string& a, const std::string& b) {
-    const auto x = number(a), y = number(b);
+    const auto x = parse_number(a), y = parse_number(b);
     return x && y ? *x < *y : a < b;
 }
 
@@ -496,8 +488,7 @@ std::string sweep_table(const Experiment& x, const std::vector<StoredRow>& rows)
         // Parameters in the order the file lists them (Nilsson's dz 0.5 before 0.1).
         const std::vector<std::string> listed = x.listed_values(dims[d]);
         for (size_t i = 0; i < listed.size(); ++i) {
-            if (number(listed[i]) && number(v) ? *number(listed[i]) == *number(v)
-                                               : listed[i] == v) {
+            if (same_value(listed[i], v)) {
                 return i;
             }
         }
