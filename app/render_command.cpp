@@ -43,16 +43,8 @@ int run_render(const RenderArguments& args) {
                       .radius = args.pcf_radius};
     // Fail on an unknown method or setting before any expensive work. The run's shadow
     // options are the defaults of a method's own `shadow` parameters.
-    std::vector<std::pair<std::string, std::string>> settings;
-    for (const std::string& setting : args.settings) {
-        const size_t equals = setting.find('=');
-        if (equals == std::string::npos || equals == 0) {
-            fail("--set '{}': expected NAME=VALUE", setting);
-        }
-        settings.emplace_back(setting.substr(0, equals), setting.substr(equals + 1));
-    }
-    const std::unique_ptr<gl::VolumeMethod> method =
-        experiments::create_configured_method(args.method, options.shadow, settings);
+    const std::unique_ptr<gl::VolumeMethod> method = experiments::create_configured_method(
+        args.method, options.shadow, experiments::parse_settings(args.settings));
     if (!args.compare.empty() && args.compare != "reference") {
         fail("--compare '{}': only 'reference' can be compared against", args.compare);
     }

@@ -29,4 +29,51 @@ ErrorMetrics compare_images(const Image& image, const Image& reference) {
     return metrics;
 }
 
+glm::vec3 heat_color(double t) {
+    // Five stops of matplotlib's inferno, linear in between.
+    static constexpr float stops[5][3] = {{0.0f, 0.0f, 0.015f},
+                                          {0.34f, 0.06f, 0.43f},
+                                          {0.73f, 0.21f, 0.33f},
+                                          {0.98f, 0.55f, 0.04f},
+                                          {0.99f, 1.0f, 0.64f}};
+    const double x = std::clamp(t, 0.0, 1.0) * 4.0;
+    const int i = std::min(int(x), 3);
+    const float f = float(x - i);
+    return glm::vec3(stops[i][0], stops[i][1], stops[i][2]) * (1.0f - f) +
+           glm::vec3(stops[i + 1][0], stops[i + 1][1], stops[i + 1][2]) * f;
+}
+
+std::vector<unsigned char> error_heat_map(const Image& image, const Image& reference,
+                                          double full_scale) {
+    if (image.width != reference.width || image.height != reference.height) {
+        fail("error heat map: image is {}x{}, reference {}x{}", image.width, image.height,
+             reference.width, reference.height);
+    }
+    if (!(full_scale > 0.0)) {
+        fail("error heat map: full scale must be positive");
+    }
+    double sum_squares = 0.0;
+    for (const float v : reference.rgb) {
+        sum_squares += double(v) * v;
+    }
+    const size_t pixels = size_t(image.width) * image.height;
+    const double rms = std::sqrt(sum_squares / double(std::max<size_t>(pixels, 1)));
+    const double scale = rms > 0.0 ? 1.0 / (rms * full_scale) : 0.0;
+    std::vector<unsigned char> rgb(pixels * 3);
+    for (size_t p = 0; p < pixels; ++p) {
+        double d2 = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            const double d = double(image.rgb[p * 3 + c]) - reference.rgb[p * 3 + c];
+            d2 += d * d;
+        }
+        // A non-finite pixel is an error at full scale, never hidden.
+        const double t = std::isfinite(d2) ? std::sqrt(d2) * scale : 1.0;
+        const glm::vec3 color = heat_color(rms > 0.0 ? t : (d2 > 0.0 ? 1.0 : 0.0));
+        for (int c = 0; c < 3; ++c) {
+            rgb[p * 3 + c] = static_cast<unsigned char>(std::lround(255.0f * color[c]));
+        }
+    }
+    return rgb;
+}
+
 }  // namespace sl

@@ -4,6 +4,8 @@
 //   max_abs  = max |a - r| over pixels and channels
 //   psnr     = 20 log10(max r / rmse) in dB, rmse = sqrt(mean (a - r)²); +inf when equal
 
+#include <vector>
+
 #include "core/image.h"
 
 namespace sl {
@@ -16,5 +18,14 @@ struct ErrorMetrics {
 
 // Throws sl::Error when the sizes differ.
 ErrorMetrics compare_images(const Image& image, const Image& reference);
+
+// Per-pixel error |a - r| (the RGB difference's length) relative to the reference's RMS pixel
+// value sqrt(mean |r|²) — the pixel-level counterpart of rel_rmse — as an 8-bit RGB heat map,
+// rows top to bottom: 0 black, through purple, red and orange, to pale yellow at `full_scale`
+// and above (an inferno-like ramp). Throws sl::Error when the sizes differ or full_scale <= 0.
+std::vector<unsigned char> error_heat_map(const Image& image, const Image& reference,
+                                          double full_scale);
+// The ramp itself, t in [0, 1] (clamped).
+glm::vec3 heat_color(double t);
 
 }  // namespace sl

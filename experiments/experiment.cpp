@@ -435,7 +435,14 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
                 r.error(key, "missing: the sweep needs at least one");
             }
         }
-        for (const std::string& scene : x.scenes) {
+        const fs::path folder = fs::path(origin).parent_path();
+        for (std::string& scene : x.scenes) {
+            // A scene file named relative to the experiment file is found beside it first.
+            std::error_code ec;
+            if (scene.ends_with(".toml") && fs::path(scene).is_relative() && !folder.empty() &&
+                fs::is_regular_file(folder / scene, ec)) {
+                scene = (folder / scene).lexically_normal().string();
+            }
             try {
                 load_scene(scene, SceneSearchPaths::defaults());
             } catch (const Error& e) {

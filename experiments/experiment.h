@@ -9,7 +9,8 @@
 //   [protocol]    warmup = 2, frames = 10, repetitions = 1, isolation = "context" | "process",
 //                 order = "sweep" | "shuffled", seed = 1 (of the shuffle)
 //   [render]      shadow = "hard" | "pcf" | "vsm", shadow_map_size = 2048, pcf_radius = 1
-//   [sweep]       scenes = [...], methods = [...], sizes = ["256x256", ...]
+//   [sweep]       scenes = [...], methods = [...], sizes = ["256x256", ...]   (scene files
+//                 relative to the experiment file are found beside it first)
 //   [sweep.params]          dz = [0.5, 0.1], jitter = 0      (a list sweeps, a scalar is fixed;
 //                           applied to every method that declares the parameter)
 //   [sweep.params.march]    samples = [16, 64]               (for one method only)

@@ -11,6 +11,7 @@
 #include "analytic/in_scattering.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
+#include "core/error.h"
 #include "reference/reference.h"
 
 namespace sl::experiments {
@@ -41,6 +42,19 @@ std::vector<std::pair<std::string, double>> medians(
 }
 
 }  // namespace
+
+std::vector<std::pair<std::string, std::string>> parse_settings(
+    const std::vector<std::string>& name_value) {
+    std::vector<std::pair<std::string, std::string>> settings;
+    for (const std::string& setting : name_value) {
+        const size_t equals = setting.find('=');
+        if (equals == std::string::npos || equals == 0) {
+            fail("--set '{}': expected NAME=VALUE", setting);
+        }
+        settings.emplace_back(setting.substr(0, equals), setting.substr(equals + 1));
+    }
+    return settings;
+}
 
 std::unique_ptr<gl::VolumeMethod> create_configured_method(
     const std::string& name, const gl::ShadowSettings& run,

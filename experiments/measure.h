@@ -28,6 +28,10 @@ std::unique_ptr<gl::VolumeMethod> create_configured_method(
     const std::string& name, const gl::ShadowSettings& run,
     const std::vector<std::pair<std::string, std::string>>& settings);
 
+// "NAME=VALUE" command-line settings split into pairs; throws sl::Error on one without '='.
+std::vector<std::pair<std::string, std::string>> parse_settings(
+    const std::vector<std::string>& name_value);
+
 double median(std::vector<double> values);
 // The p-th percentile (p in [0, 100]) with linear interpolation between order statistics.
 double percentile(std::vector<double> values, double p);

@@ -116,4 +116,12 @@ double AnalyticRegionPass::fragments() const {
     return double(count);
 }
 
+TextureViews AnalyticRegionPass::textures(const std::string& owner) const {
+    if (!sun_table_) {
+        return {};
+    }
+    return {{owner + "/G(z) table (Sun et al.)", sun_table_.id()},
+            {owner + "/phase CDF table", phase_table_.id()}};
+}
+
 }  // namespace sl::gl

@@ -37,6 +37,8 @@ public:
     // uncertain_interval.glsl) is left out of every ray: hybrid3 marches it instead.
     void draw(const VolumeInputs& inputs, bool exclude_interval = false) const;
     size_t triangle_count() const { return size_t(index_count_) / 3; }
+    // Its lookup tables, named "<owner>/...".
+    TextureViews textures(const std::string& owner) const;
     // Fragment-shader invocations of the last draw (waits for it).
     double fragments() const;
 

@@ -91,7 +91,15 @@ namespace sl::gl {
     X(PFNGLDELETEQUERIESPROC, DeleteQueries)                             \
     X(PFNGLBEGINQUERYPROC, BeginQuery)                                   \
     X(PFNGLENDQUERYPROC, EndQuery)                                       \
-    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
+    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)                 \
+    X(PFNGLCREATESAMPLERSPROC, CreateSamplers)                           \
+    X(PFNGLDELETESAMPLERSPROC, DeleteSamplers)                           \
+    X(PFNGLSAMPLERPARAMETERIPROC, SamplerParameteri)                     \
+    X(PFNGLBINDSAMPLERPROC, BindSampler)                                 \
+    X(PFNGLGETTEXTURELEVELPARAMETERIVPROC, GetTextureLevelParameteriv)   \
+    X(PFNGLPROGRAMUNIFORM2FPROC, ProgramUniform2f)                       \
+    X(PFNGLREADBUFFERPROC, ReadBuffer)                                   \
+    X(PFNGLREADPIXELSPROC, ReadPixels)
 
 struct Api {
 #define SL_GL_DECLARE(type, name) type name = nullptr;

@@ -50,4 +50,16 @@ Query create_query(GLenum target) {
     return Query(id);
 }
 
+Sampler create_plain_sampler(GLenum filter) {
+    GLuint id = 0;
+    GL.CreateSamplers(1, &id);
+    Sampler sampler(id);
+    GL.SamplerParameteri(id, GL_TEXTURE_MIN_FILTER, GLint(filter));
+    GL.SamplerParameteri(id, GL_TEXTURE_MAG_FILTER, GLint(filter));
+    GL.SamplerParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    GL.SamplerParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    GL.SamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    return sampler;
+}
+
 }  // namespace sl::gl

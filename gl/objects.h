@@ -68,6 +68,10 @@ struct ShaderKind {
     static constexpr GLenum identifier = GL_SHADER;
     static void destroy(GLuint id) { GL.DeleteShader(id); }
 };
+struct SamplerKind {
+    static constexpr GLenum identifier = GL_SAMPLER;
+    static void destroy(GLuint id) { GL.DeleteSamplers(1, &id); }
+};
 struct QueryKind {
     static constexpr GLenum identifier = GL_QUERY;
     static void destroy(GLuint id) { GL.DeleteQueries(1, &id); }
@@ -80,6 +84,7 @@ using VertexArray = GlObject<VertexArrayKind>;
 using Program = GlObject<ProgramKind>;
 using Shader = GlObject<ShaderKind>;
 using Query = GlObject<QueryKind>;
+using Sampler = GlObject<SamplerKind>;
 
 // An immutable-storage buffer holding `bytes` (flags: e.g. GL_DYNAMIC_STORAGE_BIT for updates).
 Buffer create_buffer(const void* data, size_t bytes, GLbitfield flags = 0);
@@ -90,5 +95,7 @@ Texture create_texture_2d(GLenum internal_format, int width, int height, GLenum 
 Framebuffer create_framebuffer();
 VertexArray create_vertex_array();
 Query create_query(GLenum target);
+// A sampler that reads any 2D texture as plain values: clamped, `filter`, depth comparison off.
+Sampler create_plain_sampler(GLenum filter);
 
 }  // namespace sl::gl

@@ -292,9 +292,11 @@ void SceneRenderer::draw_objects(GLuint program, bool with_normals) {
 FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     const auto start = std::chrono::steady_clock::now();
     const int w = options_.width, h = options_.height;
+    uniforms_ = make_frame_uniforms(scene_, options_);
     if (const ShadowSettings wanted = method.shadow_settings(options_.shadow); wanted != shadow_) {
         allocate_shadow(wanted);
     }
+    uniforms_.shadow = shadow_uniform(shadow_);
     GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, uniform_buffer_.id());
     GL.NamedBufferSubData(uniform_buffer_.id(), 0, sizeof(uniforms_), &uniforms_);
     GL.Disable(GL_BLEND);
@@ -394,6 +396,19 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     timings.cpu_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return timings;
+}
+
+TextureViews SceneRenderer::textures() const {
+    TextureViews views = {{"frame/shadow map", shadow_map_.id()},
+                          {"frame/surface depth", surface_depth_.id()},
+                          {"frame/surface radiance", surface_color_.id()},
+                          {"frame/in-scattering I_s", in_scattering_.id()},
+                          {"frame/radiance (HDR)", hdr_.id()},
+                          {"frame/display", display_.id()}};
+    if (shadow_.filter == ShadowFilter::vsm) {
+        views.insert(views.begin() + 1, {"frame/shadow moments", shadow_moments_.id()});
+    }
+    return views;
 }
 
 Frame SceneRenderer::read_back() const {

@@ -56,12 +56,18 @@ public:
     ~SceneRenderer();
 
     // Draws one frame with `method`, waits for it, and returns its timings: what a measured
-    // frame costs, with nothing read back.
+    // frame costs, with nothing read back. The frame uniforms are made from the scene at each
+    // draw, so a caller may move the camera or the light of the scene between frames (a light
+    // or medium change also needs the method's prepare() again).
     FrameTimings draw(VolumeMethod& method);
     // Every buffer of the last frame drawn, read back (timings left empty).
     Frame read_back() const;
     // draw() then read_back().
     Frame render(VolumeMethod& method);
+
+    // The frame's buffers: shadow map (and VSM moments), surface colour and depth, I_s, the
+    // composited HDR radiance and the tone-mapped display image.
+    TextureViews textures() const;
 
     const RenderOptions& options() const { return options_; }
     // The shadow map settings of the last frame drawn (the method's, or the options').

@@ -53,6 +53,14 @@ struct VolumeInputs {
     PassTimeline& timeline;
 };
 
+// A texture a pass declares for inspection (the viewer's buffer previewer): 2D, float or depth
+// (depth textures are read with comparison off). Valid until the next frame or prepare().
+struct TextureView {
+    std::string name;  // "<owner>/<what>", e.g. "frame/shadow map", "march/intervals 0"
+    GLuint texture = 0;
+};
+using TextureViews = std::vector<TextureView>;
+
 // A named per-frame counter a method reports (slices, pieces, fragments, CPU time of a stage).
 using MethodStatistics = std::vector<std::pair<std::string, double>>;
 
@@ -90,6 +98,8 @@ public:
     virtual void render(const VolumeInputs& inputs) = 0;
     // Counters of the last frame rendered (empty by default); may wait for the GPU.
     virtual MethodStatistics statistics() const { return {}; }
+    // The method's own textures of the last frame (render targets, lookup tables).
+    virtual TextureViews textures() const { return {}; }
     // The shadow map the method asks for: `frame` with the filter and size replaced when the
     // method declared the `shadow` parameters.
     ShadowSettings shadow_settings(ShadowSettings frame) const;

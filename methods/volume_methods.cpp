@@ -20,7 +20,7 @@
 #include "gl/analytic_pass.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
-#include "reference/reference.h"
+#include "reference/cache.h"
 #include "sampling/march.h"
 #include "sampling/planes.h"
 
@@ -63,9 +63,13 @@ public:
     std::string name() const override { return "reference"; }
     void prepare(const Scene&) override {}
     void render(const VolumeInputs& inputs) override {
-        if (!texture_ || width_ != inputs.width || height_ != inputs.height ||
-            computed_with_ != parameters_key()) {
+        // Recomputed (or loaded from the cache) whenever anything it depends on changes: the
+        // viewer moves the camera and the light between frames.
+        const uint64_t key =
+            reference::reference_key(inputs.scene, inputs.width, inputs.height, options());
+        if (!texture_ || key != computed_key_) {
             upload(compute(inputs.scene, inputs.width, inputs.height));
+            computed_key_ = key;
         }
         GL.UseProgram(program_.id());
         GL.BindTextureUnit(0, texture_.id());
@@ -73,60 +77,34 @@ public:
         GL.DrawArrays(GL_TRIANGLES, 0, 3);
     }
     const Image& in_scattering() const { return image_; }
-
-private:
-    static std::filesystem::path cache_directory() {
-        if (const char* dir = std::getenv("SHAFTLAB_CACHE"); dir && *dir)
-            return dir;
-        if (const char* home = std::getenv("HOME"); home && *home) {
-            return std::filesystem::path(home) / ".cache" / "shaftlab";
-        }
-        return std::filesystem::temp_directory_path() / "shaftlab-cache";
+    gl::TextureViews textures() const override {
+        return texture_ ? gl::TextureViews{{"reference/I_s", texture_.id()}} : gl::TextureViews{};
     }
 
-    Image compute(const Scene& scene, int width, int height) {
-        const reference::ReferenceOptions options{
-            .shadow_samples = int(parameter("shadow_samples")),
-            .transition_tolerance = parameter("transition_tolerance")};
-        const std::filesystem::path file =
-            cache_directory() /
-            fmt::format("reference-{:016x}.exr",
-                        reference::reference_key(scene, width, height, options));
-        std::error_code ec;
-        if (std::filesystem::is_regular_file(file, ec)) {
-            return read_exr(file);
-        }
-        const reference::ReferenceRenderer renderer(scene);
+private:
+    reference::ReferenceOptions options() const {
+        return {.shadow_samples = int(parameter("shadow_samples")),
+                .transition_tolerance = parameter("transition_tolerance")};
+    }
+
+    Image compute(const Scene& scene, int width, int height) const {
         const bool show = isatty(STDERR_FILENO);
         std::atomic<int> shown = -1;
-        const Image image = renderer.render(width, height, options, [&](double done) {
-            const int percent = int(100.0 * done);
-            if (show && percent / 2 > shown.exchange(percent / 2)) {
-                std::fprintf(stderr, "\rreference %dx%d [%-50s] %3d%%", width, height,
-                             std::string(size_t(percent / 2), '#').c_str(), percent);
-            }
-        });
-        if (show) {
+        Image image =
+            reference::cached_reference(scene, width, height, options(), [&](double done) {
+                const int percent = int(100.0 * done);
+                if (show && percent / 2 > shown.exchange(percent / 2)) {
+                    std::fprintf(stderr, "\rreference %dx%d [%-50s] %3d%%", width, height,
+                                 std::string(size_t(percent / 2), '#').c_str(), percent);
+                }
+            });
+        if (show && shown >= 0) {
             std::fputs("\n", stderr);
-        }
-        // Cache it: a failure here only costs the next run the time again.
-        std::filesystem::create_directories(file.parent_path(), ec);
-        const std::filesystem::path temporary = file.string() + fmt::format(".{}.tmp", getpid());
-        try {
-            write_exr(image, temporary);
-            std::filesystem::rename(temporary, file, ec);
-        } catch (const Error&) {
-            std::filesystem::remove(temporary, ec);
         }
         return image;
     }
 
-    std::pair<double, double> parameters_key() const {
-        return {parameter("shadow_samples"), parameter("transition_tolerance")};
-    }
-
     void upload(Image image) {
-        computed_with_ = parameters_key();
         image_ = std::move(image);
         width_ = image_.width;
         height_ = image_.height;
@@ -147,7 +125,7 @@ private:
 
     Image image_;
     int width_ = 0, height_ = 0;
-    std::pair<double, double> computed_with_;
+    uint64_t computed_key_ = 0;
     gl::Texture texture_;
     gl::Program program_;
     gl::VertexArray vertex_array_;
@@ -171,6 +149,7 @@ public:
         pass_.upload(scene, lit.positions, lit.triangles);
     }
     void render(const VolumeInputs& inputs) override { pass_.draw(inputs); }
+    gl::TextureViews textures() const override { return pass_.textures(name()); }
     gl::MethodStatistics statistics() const override {
         return {{"cpu_ms_beamtree", build_ms_}, {"region_faces", double(pass_.triangle_count())}};
     }

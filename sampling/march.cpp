@@ -195,6 +195,24 @@ public:
         return stats;
     }
 
+    gl::TextureViews textures() const override {
+        if (!march_target_) {
+            return {};
+        }
+        gl::TextureViews views = {
+            {name() + "/marching buffer (rgb I_s, a samples)", march_target_.id()}};
+        if (variant_ == MarchVariant::hybrid3) {
+            const char* names[3] = {"uncertain entry", "uncertain exit", "camera inside"};
+            for (int i = 0; i < 3; ++i) {
+                views.push_back({name() + "/interval " + names[i], interval_textures_[i].id()});
+            }
+            for (gl::TextureView& view : analytic_.textures(name())) {
+                views.push_back(std::move(view));
+            }
+        }
+        return views;
+    }
+
 private:
     void allocate(int width, int height, double scale) {
         const int w = std::max(1, int(std::ceil(width * scale)));

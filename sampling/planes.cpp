@@ -180,6 +180,8 @@ public:
         GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
     }
 
+    gl::TextureViews textures() const override { return analytic_.textures(name()); }
+
     gl::MethodStatistics statistics() const override {
         GLuint64 fragments = 0;
         GL.GetQueryObjectui64v(fragments_.id(), GL_QUERY_RESULT, &fragments);

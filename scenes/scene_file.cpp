@@ -263,16 +263,128 @@ std::vector<Box> read_inner_boxes(TableReader& r, const std::string& origin,
     return boxes;
 }
 
+// A scene's TOML text with the name its errors use and the folder its relative paths start from.
+struct SceneText {
+    std::string text;
+    std::string origin;
+    fs::path dir;
+};
+
+std::string read_text_file(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        fail("{}: cannot read scene file (no such file)", path.string());
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) {
+        fail("{}: cannot read scene file", path.string());
+    }
+    return text;
+}
+
+// A canonical name, multiple:N, or a file (relative paths from `dir` first, then as given).
+SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSearchPaths& paths) {
+    constexpr std::string_view kMultiple = "multiple:";
+    if (name.starts_with(kMultiple)) {
+        const std::string count_text = name.substr(kMultiple.size());
+        char* end = nullptr;
+        const long count = std::strtol(count_text.c_str(), &end, 10);
+        if (count_text.empty() || *end != '\0' || count < 1 || count > 100000) {
+            fail("scene '{}': N in multiple:N must be an integer in [1, 100000]", name);
+        }
+        return {generate_multiple_scene(int(count)), name, paths.scenes};
+    }
+    const auto names = canonical_scene_names();
+    if (std::find(names.begin(), names.end(), name) != names.end()) {
+        const fs::path path = paths.scenes / (name + ".toml");
+        return {read_text_file(path), path.string(), paths.scenes};
+    }
+    if (fs::path(name).extension() == ".toml" || name.find('/') != std::string::npos) {
+        fs::path path = name;
+        std::error_code ec;
+        if (path.is_relative() && !dir.empty() && fs::is_regular_file(dir / path, ec)) {
+            path = dir / path;
+        }
+        return {read_text_file(path), path.string(), path.parent_path()};
+    }
+    fail(
+        "unknown scene '{}' (canonical: toplight, parallel, multiple, multiple:N; or a .toml "
+        "file)",
+        name);
+}
+
+toml::table parse_toml(const std::string& text, const std::string& origin) {
+    try {
+        return toml::parse(text, origin);
+    } catch (const toml::parse_error& e) {
+        fail("{}:{}: malformed TOML: {}", origin, e.source().begin.line, e.description());
+    }
+}
+
+// Keys of `over` replace those of `base`; tables merge key by key, arrays ([[objects]]) replace.
+void merge_into(toml::table& base, const toml::table& over) {
+    for (const auto& [key, node] : over) {
+        toml::node* existing = base.get(key);
+        if (existing && existing->is_table() && node.is_table()) {
+            merge_into(*existing->as_table(), *node.as_table());
+        } else {
+            base.insert_or_assign(key, node);
+        }
+    }
+}
+
+// `[scene] base = "NAME"`: the scene is its base (a canonical name, multiple:N or a file,
+// relative to this file's folder) with this file's keys on top. The base's mesh files keep
+// resolving from the base's folder. Bases may chain, up to a depth of 8.
+toml::table resolve_base(toml::table root, const std::string& origin, const fs::path& dir,
+                         const SceneSearchPaths& paths, int depth) {
+    toml::table* scene = root["scene"].as_table();
+    const toml::node* base_node = scene ? scene->get("base") : nullptr;
+    if (!base_node) {
+        return root;
+    }
+    const std::optional<std::string> base_name = base_node->value<std::string>();
+    if (!base_name || base_name->empty()) {
+        fail("{}:{}: [scene] base: expected the name or file of a scene", origin,
+             base_node->source().begin.line);
+    }
+    if (depth >= 8) {
+        fail("{}: [scene] base: bases nest deeper than 8 (a cycle?)", origin);
+    }
+    SceneText base;
+    try {
+        base = scene_text(*base_name, dir, paths);
+    } catch (const Error& e) {
+        fail("{}:{}: [scene] base: {}", origin, base_node->source().begin.line, e.what());
+    }
+    toml::table merged =
+        resolve_base(parse_toml(base.text, base.origin), base.origin, base.dir, paths, depth + 1);
+    if (toml::array* objects = merged["objects"].as_array()) {
+        for (toml::node& object : *objects) {
+            toml::table* table = object.as_table();
+            const std::optional<std::string> file =
+                table ? (*table)["file"].value<std::string>() : std::nullopt;
+            std::error_code ec;
+            if (file && fs::path(*file).is_relative() &&
+                fs::is_regular_file(base.dir / *file, ec)) {
+                table->insert_or_assign("file", fs::absolute(base.dir / *file).string());
+            }
+        }
+    }
+    scene->erase("base");
+    if (toml::table* merged_scene = merged["scene"].as_table()) {
+        merged_scene->erase("name");  // the derived scene is named by its own file
+    }
+    merge_into(merged, root);
+    return merged;
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& origin, const fs::path& base_dir,
                   const SceneSearchPaths& paths) {
-    toml::table root;
-    try {
-        root = toml::parse(text, origin);
-    } catch (const toml::parse_error& e) {
-        fail("{}:{}: malformed TOML: {}", origin, e.source().begin.line, e.description());
-    }
+    const toml::table root = resolve_base(parse_toml(text, origin), origin, base_dir, paths, 0);
     TableReader top(root, origin, "");
     Scene scene;
 
@@ -348,18 +460,63 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
 }
 
 Scene load_scene_file(const fs::path& path, const SceneSearchPaths& paths) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
-        fail("{}: cannot read scene file (no such file)", path.string());
-    }
-    std::ifstream in(path, std::ios::binary);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (!in && !in.eof()) {
-        fail("{}: cannot read scene file", path.string());
-    }
-    Scene scene = parse_scene(text, path.string(), path.parent_path(), paths);
+    Scene scene = parse_scene(read_text_file(path), path.string(), path.parent_path(), paths);
     scene.source = path;
     return scene;
+}
+
+namespace {
+
+// Shortest text that reads back to the same float, always a TOML float.
+std::string toml_float(float value) {
+    std::string text = fmt::format("{}", value);
+    if (text.find_first_of(".eEn") == std::string::npos) {
+        text += ".0";
+    }
+    return text;
+}
+
+std::string toml_vec3(glm::vec3 v) {
+    return fmt::format("[{}, {}, {}]", toml_float(v.x), toml_float(v.y), toml_float(v.z));
+}
+
+std::string toml_string(const std::string& text) {
+    std::string quoted = "\"";
+    for (const char c : text) {
+        if (c == '"' || c == '\\') {
+            quoted += '\\';
+        }
+        quoted += c;
+    }
+    return quoted + "\"";
+}
+
+}  // namespace
+
+std::string scene_view_toml(const Scene& scene, const std::string& base, const std::string& name) {
+    const Camera& c = scene.camera;
+    const SpotLight& l = scene.light;
+    const Medium& m = scene.medium;
+    std::string text;
+    text += fmt::format("[scene]\nbase = {}\nname = {}\nambient = {}\n\n", toml_string(base),
+                        toml_string(name), toml_vec3(scene.ambient));
+    text += fmt::format(
+        "[camera]\nposition = {}\ntarget = {}\nup = {}\nfov = {}\nnear = {}\nfar = {}\n"
+        "exposure = {}\n\n",
+        toml_vec3(c.position), toml_vec3(c.target), toml_vec3(c.up), toml_float(c.fov_y_degrees),
+        toml_float(c.near), toml_float(c.far), toml_float(c.exposure));
+    text += fmt::format(
+        "[light]\nposition = {}\ntarget = {}\ncone_angle = {}\nnear = {}\nfar = {}\n"
+        "intensity = {}\nfalloff = {}\n\n",
+        toml_vec3(l.position), toml_vec3(l.target), toml_float(l.cone_half_angle_degrees),
+        toml_float(l.near), toml_float(l.far), toml_vec3(l.intensity),
+        toml_float(l.falloff_degrees));
+    text += fmt::format(
+        "[medium]\nsigma_s = {}\nsigma_a = {}\nphase = {}\ng = {}\nmodel = {}\na0 = {}\n"
+        "a1 = {}\n",
+        toml_vec3(m.sigma_s), toml_vec3(m.sigma_a), toml_string(to_string(m.phase)),
+        toml_float(m.g), toml_string(to_string(m.model)), toml_float(m.a0), toml_float(m.a1));
+    return text;
 }
 
 std::vector<std::string> canonical_scene_names() {
@@ -367,27 +524,12 @@ std::vector<std::string> canonical_scene_names() {
 }
 
 Scene load_scene(const std::string& name, const SceneSearchPaths& paths) {
-    constexpr std::string_view kMultiple = "multiple:";
-    if (name.starts_with(kMultiple)) {
-        const std::string count_text = name.substr(kMultiple.size());
-        char* end = nullptr;
-        const long count = std::strtol(count_text.c_str(), &end, 10);
-        if (count_text.empty() || *end != '\0' || count < 1 || count > 100000) {
-            fail("scene '{}': N in multiple:N must be an integer in [1, 100000]", name);
-        }
-        return parse_scene(generate_multiple_scene(int(count)), name, paths.scenes, paths);
+    const SceneText text = scene_text(name, {}, paths);
+    Scene scene = parse_scene(text.text, text.origin, text.dir, paths);
+    if (!name.starts_with("multiple:")) {
+        scene.source = text.origin;
     }
-    const auto names = canonical_scene_names();
-    if (std::find(names.begin(), names.end(), name) != names.end()) {
-        return load_scene_file(paths.scenes / (name + ".toml"), paths);
-    }
-    if (fs::path(name).extension() == ".toml" || name.find('/') != std::string::npos) {
-        return load_scene_file(name, paths);
-    }
-    fail(
-        "unknown scene '{}' (canonical: toplight, parallel, multiple, multiple:N; or a .toml "
-        "file)",
-        name);
+    return scene;
 }
 
 }  // namespace sl

@@ -3,7 +3,9 @@
 // validation; an unknown key, a wrong type or an out-of-range value is an error naming the file,
 // line, table and key. The format:
 //
-//   [scene]     name, ambient = [r, g, b]
+//   [scene]     name, ambient = [r, g, b], base = "toplight" (optional: start from that scene, a
+//               canonical name, multiple:N or a file relative to this one, and let this file's
+//               tables override it key by key; [[objects]] replace the base's objects)
 //   [camera]    position, target, up, fov (vertical, degrees), near, far, exposure
 //   [light]     position, target, cone_angle (half-angle, degrees), near, far,
 //               intensity = [r, g, b], falloff (degrees, 0 = hard edge)
@@ -35,6 +37,11 @@ Scene load_scene_file(const std::filesystem::path& path, const SceneSearchPaths&
 // `origin` names the text in error messages (a path or "multiple:40").
 Scene parse_scene(const std::string& text, const std::string& origin,
                   const std::filesystem::path& base_dir, const SceneSearchPaths& paths);
+
+// A scene file that derives from `base` (`[scene] base = ...`: a canonical name, multiple:N or a
+// file) and sets the scene's camera, light and medium, every value written so that it reads back
+// to the same float: how the viewer saves a view of a scene.
+std::string scene_view_toml(const Scene& scene, const std::string& base, const std::string& name);
 
 // The canonical scenes in display order, and the generated `multiple:N` family.
 std::vector<std::string> canonical_scene_names();

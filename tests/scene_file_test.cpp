@@ -187,5 +187,81 @@ TEST(SceneFile, UnreadableFilesAndUnknownNamesAreErrors) {
                  Error);
 }
 
+// A derived scene ([scene] base) is its base with the derived keys on top: objects and meshes
+// from the base, the derived camera, and keys it does not set kept from the base.
+TEST(SceneFile, BaseSceneIsInheritedAndOverriddenKeyByKey) {
+    TempDir dir;
+    write_text(dir / "view.toml", R"([scene]
+base = "toplight"
+[camera]
+position = [3.0, 2.0, 6.0]
+[light]
+cone_angle = 20.0
+)");
+    const Scene base = load_canonical("toplight");
+    const Scene view = load_scene((dir / "view.toml").string(), SceneSearchPaths::defaults());
+    EXPECT_EQ(view.name, "view");
+    ASSERT_EQ(view.objects.size(), base.objects.size());
+    EXPECT_EQ(view.triangle_count(), base.triangle_count());
+    EXPECT_EQ(view.camera.position, glm::vec3(3.0f, 2.0f, 6.0f));
+    EXPECT_EQ(view.camera.target, base.camera.target);
+    EXPECT_EQ(view.light.cone_half_angle_degrees, 20.0f);
+    EXPECT_EQ(view.light.position, base.light.position);
+    EXPECT_EQ(view.medium.sigma_s, base.medium.sigma_s);
+
+    // A base file relative to the derived one, chaining to a canonical scene.
+    fs::create_directory(dir / "sub");
+    write_text(dir / "sub" / "second.toml", "[scene]\nbase = \"../view.toml\"\nname = \"two\"\n");
+    const Scene second =
+        load_scene((dir / "sub" / "second.toml").string(), SceneSearchPaths::defaults());
+    EXPECT_EQ(second.name, "two");
+    EXPECT_EQ(second.camera.position, view.camera.position);
+
+    // A cycle, an unknown base and a base of the wrong type are one clear error each.
+    write_text(dir / "a.toml", "[scene]\nbase = \"b.toml\"\n");
+    write_text(dir / "b.toml", "[scene]\nbase = \"a.toml\"\n");
+    for (const auto& [file, expected] :
+         {std::pair{"a.toml", "deeper than 8"}, std::pair{"bad.toml", "unknown scene"},
+          std::pair{"type.toml", "expected the name"}}) {
+        if (std::string(file) == "bad.toml")
+            write_text(dir / file, "[scene]\nbase = \"nowhere\"\n");
+        if (std::string(file) == "type.toml")
+            write_text(dir / file, "[scene]\nbase = 3\n");
+        try {
+            load_scene((dir / file).string(), SceneSearchPaths::defaults());
+            ADD_FAILURE() << file << " loaded";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+        }
+    }
+}
+
+// scene_view_toml writes a file that reads back to exactly the scene's camera, light and medium,
+// on top of the base's objects.
+TEST(SceneFile, SavedViewReadsBackExactly) {
+    Scene scene = load_canonical("parallel");
+    scene.camera.position = {1.0f / 3.0f, 2.123456789f, -7.5e-3f};
+    scene.camera.fov_y_degrees = 37.77f;
+    scene.light.position += glm::vec3(0.1f, -0.2f, 0.3f);
+    scene.light.cone_half_angle_degrees = 17.0f;
+    scene.light.falloff_degrees = 2.5f;
+    scene.medium.sigma_s = {0.1f, 0.2f, 1e-7f};
+    scene.medium.phase = PhaseFunction::henyey_greenstein;
+    scene.medium.g = -0.3f;
+    TempDir dir;
+    write_text(dir / "saved.toml", scene_view_toml(scene, "parallel", "saved view"));
+    const Scene back = load_scene((dir / "saved.toml").string(), SceneSearchPaths::defaults());
+    EXPECT_EQ(back.name, "saved view");
+    EXPECT_EQ(back.camera.position, scene.camera.position);
+    EXPECT_EQ(back.camera.fov_y_degrees, scene.camera.fov_y_degrees);
+    EXPECT_EQ(back.light.position, scene.light.position);
+    EXPECT_EQ(back.light.target, scene.light.target);
+    EXPECT_EQ(back.light.falloff_degrees, scene.light.falloff_degrees);
+    EXPECT_EQ(back.medium.sigma_s, scene.medium.sigma_s);
+    EXPECT_EQ(back.medium.phase, scene.medium.phase);
+    EXPECT_EQ(back.medium.g, scene.medium.g);
+    EXPECT_EQ(back.triangle_count(), scene.triangle_count());
+}
+
 }  // namespace
 }  // namespace sl::test

@@ -1,0 +1,82 @@
+// `shaftlab view`: the interactive viewer (viewer/viewer.h), or its scripted mode for tests and
+// demos (--frames N --screenshot FILE, with a camera/light path).
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "gl/volume_method.h"
+#include "viewer/viewer.h"
+
+namespace sl::app {
+
+namespace {
+
+struct ViewArguments {
+    viewer::ViewerOptions options;
+    std::string size = "1280x720";
+    std::string shadow = "pcf";
+    int pcf_radius = 1;
+    int shadow_map_size = 2048;
+    bool no_ui = false;
+};
+
+int run_view(ViewArguments& args) {
+    viewer::ViewerOptions& options = args.options;
+    parse_size(args.size, options.width, options.height);
+    options.shadow = {.filter = gl::parse_shadow_filter(args.shadow),
+                      .map_size = args.shadow_map_size,
+                      .radius = args.pcf_radius};
+    options.ui = !args.no_ui;
+    const bool scripted_output = !options.screenshot.empty() || !options.in_scattering.empty() ||
+                                 !options.path.empty() || options.orbit_degrees != 0.0f;
+    if (scripted_output && options.frames == 0) {
+        fail("--screenshot, --in-scattering, --path and --orbit need --frames N (scripted mode)");
+    }
+    return viewer::run_viewer(options);
+}
+
+}  // namespace
+
+Command add_view_command(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "view",
+        "Interactive viewer: regions, methods and parameters live, buffers, timings, error view");
+    auto args = std::make_shared<ViewArguments>();
+    viewer::ViewerOptions& o = args->options;
+    command->add_option("--scene", o.scene, "Canonical name, multiple:N, or a .toml file")
+        ->required();
+    command->add_option("--method", o.method, "Volumetric method at start")->capture_default_str();
+    command->add_option("--set", o.settings, "Set a parameter of the method, NAME=VALUE");
+    command->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
+    command->add_option("--shadow", args->shadow, "Shadow map filter")
+        ->check(CLI::IsMember({"hard", "pcf", "vsm"}))
+        ->capture_default_str();
+    command->add_option("--pcf-radius", args->pcf_radius, "PCF taps or VSM blur radius r")
+        ->check(CLI::Range(0, 8))
+        ->capture_default_str();
+    command->add_option("--shadow-map-size", args->shadow_map_size, "Shadow map resolution")
+        ->check(CLI::Range(16, 16384))
+        ->capture_default_str();
+    std::string layers;
+    for (const std::string& name : viewer::layer_names())
+        layers += (layers.empty() ? "" : ", ") + name;
+    command->add_option("--layers", o.layers, "Layers shown at start, comma separated: " + layers)
+        ->delimiter(',');
+    command->add_option("--preview", o.preview,
+                        "The buffer previewer's texture at start (by name)");
+    command->add_flag("--no-ui", args->no_ui, "Hide the panels (F1 toggles them)");
+    command->add_flag("--hidden", o.hidden, "No visible window (still needs a display)");
+    command->add_option("--frames", o.frames, "Scripted mode: draw N frames, write outputs, exit")
+        ->check(CLI::Range(1, 1000000));
+    command->add_option("--path", o.path, "Scripted mode: camera/light path (TOML [[key]]s)");
+    command->add_option("--orbit", o.orbit_degrees,
+                        "Scripted mode: orbit the camera this many degrees over the frames");
+    command->add_option("--screenshot", o.screenshot, "Scripted mode: PNG of the last frame");
+    command->add_option("--in-scattering", o.in_scattering,
+                        "Scripted mode: EXR of the last frame's I_s");
+    command->add_option("--save-experiment", o.save_experiment,
+                        "Scripted mode: save the last view as an experiment (FILE.toml and "
+                        "FILE.scene.toml); interactively, the default file of the Save panel");
+    return [args] { return run_view(*args); };
+}
+
+}  // namespace sl::app

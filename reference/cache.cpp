@@ -1,0 +1,58 @@
+#include "reference/cache.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdlib>
+
+#include "core/error.h"
+
+namespace sl::reference {
+
+std::filesystem::path cache_directory() {
+    if (const char* dir = std::getenv("SHAFTLAB_CACHE"); dir && *dir) {
+        return dir;
+    }
+    if (const char* home = std::getenv("HOME"); home && *home) {
+        return std::filesystem::path(home) / ".cache" / "shaftlab";
+    }
+    return std::filesystem::temp_directory_path() / "shaftlab-cache";
+}
+
+std::filesystem::path cache_file(const Scene& scene, int width, int height,
+                                 const ReferenceOptions& options) {
+    return cache_directory() /
+           fmt::format("reference-{:016x}.exr", reference_key(scene, width, height, options));
+}
+
+std::optional<Image> find_cached(const Scene& scene, int width, int height,
+                                 const ReferenceOptions& options) {
+    const std::filesystem::path file = cache_file(scene, width, height, options);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) {
+        return std::nullopt;
+    }
+    return read_exr(file);
+}
+
+Image cached_reference(const Scene& scene, int width, int height, const ReferenceOptions& options,
+                       const std::function<void(double)>& progress) {
+    if (std::optional<Image> cached = find_cached(scene, width, height, options)) {
+        return std::move(*cached);
+    }
+    const ReferenceRenderer renderer(scene);
+    Image image = renderer.render(width, height, options, progress);
+    const std::filesystem::path file = cache_file(scene, width, height, options);
+    std::error_code ec;
+    std::filesystem::create_directories(file.parent_path(), ec);
+    const std::filesystem::path temporary = file.string() + fmt::format(".{}.tmp", getpid());
+    try {
+        write_exr(image, temporary);
+        std::filesystem::rename(temporary, file, ec);
+    } catch (const Error&) {
+    }
+    std::filesystem::remove(temporary, ec);
+    return image;
+}
+
+}  // namespace sl::reference
