@@ -179,6 +179,38 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
     }
 }
 
+// `view` rejects bad options, scenes, methods and paths with one line before it opens a window,
+// and says so when there is no display, writing nothing.
+TEST(Cli, ViewRejectsBadInputBeforeOpeningAWindow) {
+    TempDir dir;
+    write_text(dir / "path.toml", "[[key]]\nframe = 2\n[[key]]\nframe = 1\n");
+    const std::pair<std::string, std::string> cases[] = {
+        {"--scene nowhere", "unknown scene 'nowhere'"},
+        {"--scene toplight --method magic", "unknown method 'magic'"},
+        {"--scene toplight --set samples=0", "parameter 'samples': 0 is out of range"},
+        {"--scene toplight --layers volumes,fog", "unknown layer 'fog' (known: volumes"},
+        {"--scene toplight --screenshot x.png", "need --frames N"},
+        {"--scene toplight --frames 2 --path " + (dir / "absent.toml").string(),
+         "cannot read the path file"},
+        {"--scene toplight --frames 2 --path " + (dir / "path.toml").string(),
+         "frame: 1 is not after the previous key's 2"},
+        {"--scene toplight --size 8x8", "window size 8x8"},
+    };
+    for (const auto& [arguments, expected] : cases) {
+        const CommandResult run = run_shaftlab("view " + arguments);
+        EXPECT_EQ(run.exit_code, 1) << arguments;
+        EXPECT_NE(run.output.find(expected), std::string::npos)
+            << arguments << "\nexpected: " << expected << "\ngot: " << run.output;
+        EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+    }
+    const CommandResult headless =
+        run_shaftlab_with("DISPLAY= WAYLAND_DISPLAY= ", "view --scene toplight --frames 1");
+    EXPECT_EQ(headless.exit_code, 1);
+    EXPECT_NE(headless.output.find("GLFW could not initialise (no display?)"), std::string::npos)
+        << headless.output;
+    EXPECT_EQ(dir.file_count(), 1u) << "nothing written";
+}
+
 // An output directory that cannot be created is an error, not a crash.
 // `compare` prints the metrics and writes the difference picture; images of different sizes are
 // one clear error and no picture.

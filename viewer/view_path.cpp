@@ -19,7 +19,10 @@ std::optional<T> ViewPath::Track<T>::at(int frame) const {
         return keys.front().second;
     }
     for (size_t i = 1; i < keys.size(); ++i) {
-        if (frame <= keys[i].first) {
+        if (frame == keys[i].first) {
+            return keys[i].second;  // exact at its key
+        }
+        if (frame < keys[i].first) {
             const auto& [f0, v0] = keys[i - 1];
             const auto& [f1, v1] = keys[i];
             const float t = float(frame - f0) / float(f1 - f0);
