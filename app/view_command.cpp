@@ -63,6 +63,11 @@ Command add_view_command(CLI::App& app) {
         ->delimiter(',');
     command->add_option("--preview", o.preview,
                         "The buffer previewer's texture at start (by name)");
+    command
+        ->add_option(
+            "--error-scale", o.error_scale,
+            "Error view: full scale of the heat map, in units of the reference's RMS pixel")
+        ->capture_default_str();
     command->add_flag("--no-ui", args->no_ui, "Hide the panels (F1 toggles them)");
     command->add_flag("--hidden", o.hidden, "No visible window (still needs a display)");
     command->add_option("--frames", o.frames, "Scripted mode: draw N frames, write outputs, exit")

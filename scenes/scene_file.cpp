@@ -480,17 +480,6 @@ std::string toml_vec3(glm::vec3 v) {
     return fmt::format("[{}, {}, {}]", toml_float(v.x), toml_float(v.y), toml_float(v.z));
 }
 
-std::string toml_string(const std::string& text) {
-    std::string quoted = "\"";
-    for (const char c : text) {
-        if (c == '"' || c == '\\') {
-            quoted += '\\';
-        }
-        quoted += c;
-    }
-    return quoted + "\"";
-}
-
 }  // namespace
 
 std::string scene_view_toml(const Scene& scene, const std::string& base, const std::string& name) {
@@ -498,8 +487,8 @@ std::string scene_view_toml(const Scene& scene, const std::string& base, const s
     const SpotLight& l = scene.light;
     const Medium& m = scene.medium;
     std::string text;
-    text += fmt::format("[scene]\nbase = {}\nname = {}\nambient = {}\n\n", toml_string(base),
-                        toml_string(name), toml_vec3(scene.ambient));
+    text += fmt::format("[scene]\nbase = {}\nname = {}\nambient = {}\n\n", toml_quoted(base),
+                        toml_quoted(name), toml_vec3(scene.ambient));
     text += fmt::format(
         "[camera]\nposition = {}\ntarget = {}\nup = {}\nfov = {}\nnear = {}\nfar = {}\n"
         "exposure = {}\n\n",
@@ -514,8 +503,8 @@ std::string scene_view_toml(const Scene& scene, const std::string& base, const s
     text += fmt::format(
         "[medium]\nsigma_s = {}\nsigma_a = {}\nphase = {}\ng = {}\nmodel = {}\na0 = {}\n"
         "a1 = {}\n",
-        toml_vec3(m.sigma_s), toml_vec3(m.sigma_a), toml_string(to_string(m.phase)),
-        toml_float(m.g), toml_string(to_string(m.model)), toml_float(m.a0), toml_float(m.a1));
+        toml_vec3(m.sigma_s), toml_vec3(m.sigma_a), toml_quoted(to_string(m.phase)),
+        toml_float(m.g), toml_quoted(to_string(m.model)), toml_float(m.a0), toml_float(m.a1));
     return text;
 }
 

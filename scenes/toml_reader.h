@@ -17,6 +17,18 @@
 
 namespace sl {
 
+// `text` as a TOML basic string literal, quotes and backslashes escaped (for files we write).
+inline std::string toml_quoted(const std::string& text) {
+    std::string quoted = "\"";
+    for (const char c : text) {
+        if (c == '"' || c == '\\') {
+            quoted += '\\';
+        }
+        quoted += c;
+    }
+    return quoted + "\"";
+}
+
 // Reads the keys of one TOML table, remembering which were read so that finish() can reject the
 // rest: a misspelt key is an error, never silently ignored.
 class TomlTableReader {

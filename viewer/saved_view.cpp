@@ -7,25 +7,11 @@
 #include "core/error.h"
 #include "core/output_files.h"
 #include "scenes/scene_file.h"
+#include "scenes/toml_reader.h"
 
 namespace sl::viewer {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string quoted(const std::string& text) {
-    std::string q = "\"";
-    for (const char c : text) {
-        if (c == '"' || c == '\\') {
-            q += '\\';
-        }
-        q += c;
-    }
-    return q + "\"";
-}
-
-}  // namespace
 
 SavedView save_view_as_experiment(const fs::path& experiment, const Scene& scene,
                                   const std::string& opened, const gl::VolumeMethod& method,
@@ -59,22 +45,22 @@ SavedView save_view_as_experiment(const fs::path& experiment, const Scene& scene
         "# Saved by `shaftlab view` on {}: {} seen with {} at {}x{}.\n"
         "# Run it with `shaftlab bench {}`.\n\n",
         date, scene.name, method.name(), width, height, experiment.filename().string());
-    text += fmt::format("name = {}\n", quoted(stem));
+    text += fmt::format("name = {}\n", toml_quoted(stem));
     text += fmt::format("description = {}\n",
-                        quoted(fmt::format("The view of {} saved from the viewer: {} "
-                                           "with its parameters as set there.",
-                                           opened, method.name())));
+                        toml_quoted(fmt::format("The view of {} saved from the viewer: {} "
+                                                "with its parameters as set there.",
+                                                opened, method.name())));
     text += "out = \"results/{name}\"\n\n";
     text += "[protocol]\nwarmup = 2\nframes = 10\n\n";
     text += fmt::format("[render]\nshadow = {}\nshadow_map_size = {}\npcf_radius = {}\n\n",
-                        quoted(gl::to_string(shadow.filter)), shadow.map_size, shadow.radius);
+                        toml_quoted(gl::to_string(shadow.filter)), shadow.map_size, shadow.radius);
     text += fmt::format("[sweep]\nscenes = [{}]\nmethods = [{}]\nsizes = [\"{}x{}\"]\n",
-                        quoted(scene_file), quoted(method.name()), width, height);
+                        toml_quoted(scene_file), toml_quoted(method.name()), width, height);
     if (!method.parameters().empty()) {
         text += fmt::format("\n[sweep.params.{}]\n", method.name());
         for (const gl::Parameter& p : method.parameters()) {
             const std::string value =
-                p.type == gl::Parameter::Type::choice ? quoted(p.text()) : p.text();
+                p.type == gl::Parameter::Type::choice ? toml_quoted(p.text()) : p.text();
             text += fmt::format("{} = {}\n", p.name, value);
         }
     }

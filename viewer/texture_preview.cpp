@@ -37,7 +37,8 @@ std::pair<float, float> value_range(GLuint texture, int channel, bool logarithmi
         for (int c = 0; c < (info.depth ? 1 : 4); ++c) {
             const bool wanted = info.depth || (channel == 0 ? c < 3 : c == channel - 1);
             float v = values[t * (info.depth ? 1 : 4) + size_t(c)];
-            if (!wanted || !std::isfinite(v) || (logarithmic && v <= 0.0f)) {
+            // Values beyond ±1e20 are "no value" sentinels (an empty interval's 1e30).
+            if (!wanted || !std::isfinite(v) || std::abs(v) > 1e20f || (logarithmic && v <= 0.0f)) {
                 continue;
             }
             if (logarithmic) {

@@ -25,7 +25,8 @@ struct TextureInfo {
 TextureInfo texture_info(GLuint texture);
 
 // The smallest and largest finite value of the channel (log10 of the positive ones when
-// `logarithmic`); reads the texture back. {0, 1} when there are none.
+// `logarithmic`), ignoring sentinels beyond ±1e20; reads the texture back. {0, 1} when there
+// are none.
 std::pair<float, float> value_range(GLuint texture, int channel, bool logarithmic);
 
 class TexturePreview {

@@ -192,6 +192,10 @@ Viewer::Viewer(const ViewerOptions& options)
     save_path_ = options.save_experiment.empty()
                      ? fmt::format("experiments/view-{}-{}.toml", scene_.name, method_->name())
                      : options.save_experiment;
+    if (!(options.error_scale > 0.0f)) {
+        fail("--error-scale {} must be positive", options.error_scale);
+    }
+    heat_scale_ = options.error_scale;
     preview_name_ = options.preview.empty() ? "frame/in-scattering I_s" : options.preview;
     good_light_ = scene_.light;
     good_medium_ = scene_.medium;

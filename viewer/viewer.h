@@ -23,6 +23,7 @@ struct ViewerOptions {
     std::vector<std::string> layers;  // shown at start: volumes, outlines, light-view, error,
                                       // previewer, timings
     std::string preview;              // the previewer's texture at start (by name)
+    float error_scale = 0.5f;         // the heat map's full scale, times the reference's RMS
     bool ui = true;                   // panels drawn (F1 toggles)
     bool hidden = false;              // no visible window (still needs a display)
 
