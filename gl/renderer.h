@@ -62,6 +62,8 @@ public:
     FrameTimings draw(VolumeMethod& method);
     // Every buffer of the last frame drawn, read back (timings left empty).
     Frame read_back() const;
+    // I_s of the last frame drawn, read back alone (the error view's per-frame need).
+    Image read_in_scattering() const { return read_rgb(in_scattering_.id()); }
     // draw() then read_back().
     Frame render(VolumeMethod& method);
 

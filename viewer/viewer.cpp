@@ -106,7 +106,6 @@ private:
     gl::TextureViews all_textures() const;
     void screenshot(const std::string& path);
     void write_in_scattering(const std::string& path);
-    Image read_in_scattering() const;
     bool layer(const char* name) const;
 
     ViewerOptions options_;
@@ -114,7 +113,8 @@ private:
     Scene scene_;
     CameraController controller_;
     CameraMode mode_ = CameraMode::orbit;
-    float fly_speed_ = 2.0f;  // metres per second
+    std::optional<ViewPath> path_;  // scripted mode
+    float fly_speed_ = 2.0f;        // metres per second
     std::unique_ptr<gl::VolumeMethod> method_;
     std::unique_ptr<gl::SceneRenderer> renderer_;
     int width_ = 0, height_ = 0;
@@ -181,9 +181,8 @@ Viewer::Viewer(const ViewerOptions& options)
     // Fail on an unknown method, setting or path before opening a window.
     method_ = experiments::create_configured_method(options.method, options.shadow,
                                                     experiments::parse_settings(options.settings));
-    std::optional<ViewPath> path;
     if (!options.path.empty()) {
-        path = ViewPath::load(options.path);
+        path_ = ViewPath::load(options.path);
     }
     if (options.width < 16 || options.height < 16 || options.width > 8192 ||
         options.height > 8192) {
@@ -367,25 +366,6 @@ void Viewer::handle_input(double dt) {
     }
 }
 
-Image Viewer::read_in_scattering() const {
-    for (const gl::TextureView& view : renderer_->textures()) {
-        if (view.name == "frame/in-scattering I_s") {
-            std::vector<float> rgba(size_t(width_) * height_ * 4);
-            GL.GetTextureImage(view.texture, 0, GL_RGBA, GL_FLOAT,
-                               GLsizei(rgba.size() * sizeof(float)), rgba.data());
-            Image image(width_, height_);
-            for (int y = 0; y < height_; ++y) {
-                for (int x = 0; x < width_; ++x) {
-                    const size_t s = (size_t(height_ - 1 - y) * width_ + x) * 4;
-                    image.set(x, y, {rgba[s], rgba[s + 1], rgba[s + 2]});
-                }
-            }
-            return image;
-        }
-    }
-    fail("the renderer declares no in-scattering buffer");
-}
-
 void Viewer::update_error_view() {
     if (job_ && job_->done) {
         job_->thread.join();
@@ -402,7 +382,7 @@ void Viewer::update_error_view() {
     if (!reference_) {
         return;
     }
-    const Image image = read_in_scattering();
+    const Image image = renderer_->read_in_scattering();
     error_ = compare_images(image, *reference_);
     const std::vector<unsigned char> rgb = error_heat_map(image, *reference_, heat_scale_);
     std::vector<unsigned char> flipped(rgb.size());
@@ -511,7 +491,7 @@ void Viewer::screenshot(const std::string& path) {
 }
 
 void Viewer::write_in_scattering(const std::string& path) {
-    const Image image = read_in_scattering();
+    const Image image = renderer_->read_in_scattering();
     const std::filesystem::path file = std::filesystem::absolute(path);
     OutputFiles outputs(file.parent_path());
     outputs.add(file.filename().string(),
@@ -520,10 +500,6 @@ void Viewer::write_in_scattering(const std::string& path) {
 }
 
 int Viewer::run() {
-    std::optional<ViewPath> path;
-    if (!options_.path.empty()) {
-        path = ViewPath::load(options_.path);
-    }
     const float orbit_step = options_.frames > 1
                                  ? glm::radians(options_.orbit_degrees) / float(options_.frames - 1)
                                  : 0.0f;
@@ -534,9 +510,9 @@ int Viewer::run() {
         ImGui::NewFrame();
         const double dt = std::min(ImGui::GetIO().DeltaTime, 0.1f);
         if (scripted()) {
-            if (path) {
+            if (path_) {
                 const SpotLight before = scene_.light;
-                path->apply(frame_, scene_);
+                path_->apply(frame_, scene_);
                 controller_ = CameraController(scene_.camera);
                 if (before.position != scene_.light.position ||
                     before.target != scene_.light.target ||
