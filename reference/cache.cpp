@@ -3,21 +3,10 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <cstdlib>
-
+#include "core/cache.h"
 #include "core/error.h"
 
 namespace sl::reference {
-
-std::filesystem::path cache_directory() {
-    if (const char* dir = std::getenv("SHAFTLAB_CACHE"); dir && *dir) {
-        return dir;
-    }
-    if (const char* home = std::getenv("HOME"); home && *home) {
-        return std::filesystem::path(home) / ".cache" / "shaftlab";
-    }
-    return std::filesystem::temp_directory_path() / "shaftlab-cache";
-}
 
 std::filesystem::path cache_file(const Scene& scene, int width, int height,
                                  const ReferenceOptions& options) {

@@ -8,13 +8,13 @@
 #include <functional>
 #include <optional>
 
+#include "core/cache.h"
 #include "core/image.h"
 #include "reference/reference.h"
 #include "scenes/scene.h"
 
 namespace sl::reference {
 
-std::filesystem::path cache_directory();
 std::filesystem::path cache_file(const Scene& scene, int width, int height,
                                  const ReferenceOptions& options);
 // The cached image for exactly this scene, view, size and options, if one exists.

@@ -12,6 +12,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "ibl/settings.h"
 #include "scenes/mesh.h"
 
 namespace sl {
@@ -19,7 +20,7 @@ namespace sl {
 struct Material {
     std::string name;
     glm::vec3 albedo{0.8f};  // diffuse reflectance in [0, 1]
-    float roughness = 0.5f;  // for the IBL work; the surface pass here is Lambertian
+    float roughness = 0.5f;  // microfacet α (Beckmann's m, GGX's α); used when IBL is on
     glm::vec3 f0{0.04f};     // normal-incidence specular reflectance, likewise
 };
 
@@ -121,6 +122,19 @@ struct BoundsSettings {
     bool automatic_inner = true;  // inscribed boxes for closed meshes without explicit ones
 };
 
+// Image-based lighting from an HDR environment (ibl/, Moschos §3.3); off when `file` is empty.
+struct Environment {
+    std::filesystem::path file;     // equirectangular OpenEXR, resolved when the scene is read
+    float intensity = 1.0f;         // radiance scale
+    float rotation_degrees = 0.0f;  // about +y
+    int face_size = 256;            // the cube map's level 0, a power of two
+    ibl::PrefilterSettings prefilter;
+    ibl::Shading shading = ibl::Shading::split_sum;
+    bool skybox = true;  // draw the environment behind the scene
+
+    bool enabled() const { return !file.empty(); }
+};
+
 struct Scene {
     std::string name;
     std::filesystem::path source;  // the file it was read from, empty for generated scenes
@@ -130,6 +144,7 @@ struct Scene {
     // Constant incident radiance from every direction: a surface reflects albedo * ambient.
     glm::vec3 ambient{0.0f};
     BoundsSettings bounds;
+    Environment environment;
     std::vector<Material> materials;
     std::vector<Object> objects;
 

@@ -21,18 +21,25 @@
 #ifndef SHAFTLAB_DATA_DIR
 #error "SHAFTLAB_DATA_DIR must be defined by the build"
 #endif
+#ifndef SHAFTLAB_ENVIRONMENTS_DIR
+#error "SHAFTLAB_ENVIRONMENTS_DIR must be defined by the build"
+#endif
 
 namespace sl {
 
 namespace fs = std::filesystem;
 
 SceneSearchPaths SceneSearchPaths::defaults() {
-    SceneSearchPaths paths{SHAFTLAB_SCENES_DIR, SHAFTLAB_DATA_DIR};
+    SceneSearchPaths paths{SHAFTLAB_SCENES_DIR, SHAFTLAB_DATA_DIR, SHAFTLAB_ENVIRONMENTS_DIR};
     if (const char* scenes = std::getenv("SHAFTLAB_SCENES"); scenes && *scenes) {
         paths.scenes = scenes;
     }
     if (const char* data = std::getenv("SHAFTLAB_DATA"); data && *data) {
         paths.data = data;
+    }
+    if (const char* environments = std::getenv("SHAFTLAB_ENVIRONMENTS");
+        environments && *environments) {
+        paths.environments = environments;
     }
     return paths;
 }
@@ -125,6 +132,52 @@ Medium read_medium(TableReader r) {
     }
     r.finish();
     return m;
+}
+
+Environment read_environment(TableReader r, const fs::path& base_dir,
+                             const SceneSearchPaths& paths) {
+    Environment e;
+    const std::string file = r.string("file", "");
+    if (file.empty()) {
+        r.error("file", "expected an environment: a studio light's name or an .exr file");
+    }
+    std::error_code ec;
+    if (fs::path(file).extension() == ".exr" || file.find('/') != std::string::npos) {
+        e.file = fs::path(file).is_relative() ? base_dir / file : fs::path(file);
+    } else {
+        e.file = paths.environments / (file + ".exr");
+    }
+    if (!fs::is_regular_file(e.file, ec)) {
+        r.error("file", fmt::format("no environment '{}' ({} does not exist; the studio lights "
+                                    "come with Debian's blender-data)",
+                                    file, e.file.string()));
+    }
+    e.intensity = float(r.number_in("intensity", e.intensity, 0.0, 1e9));
+    e.rotation_degrees = float(r.number_in("rotation", e.rotation_degrees, -360.0, 360.0));
+    e.face_size = r.integer_in("face_size", e.face_size, 1, 4096);
+    if (e.face_size & (e.face_size - 1)) {
+        r.error("face_size", fmt::format("{} is not a power of two", e.face_size));
+    }
+    auto parsed = [&](std::string_view key, auto parse, auto fallback) {
+        if (!r.has(key)) {
+            return fallback;
+        }
+        const std::string value = r.string(key, "");
+        try {
+            return parse(value);
+        } catch (const Error& error) {
+            r.error(key, error.what());
+        }
+    };
+    e.prefilter.method = parsed("prefilter", ibl::parse_prefilter_method, e.prefilter.method);
+    e.prefilter.distribution =
+        parsed("distribution", ibl::parse_distribution, e.prefilter.distribution);
+    e.prefilter.samples = r.integer_in("samples", e.prefilter.samples, 1, 1 << 16);
+    e.prefilter.filtered = r.boolean("filtered", e.prefilter.filtered);
+    e.shading = parsed("shading", ibl::parse_shading, e.shading);
+    e.skybox = r.boolean("skybox", e.skybox);
+    r.finish();
+    return e;
 }
 
 Material read_material(TableReader r, std::string name) {
@@ -372,6 +425,13 @@ toml::table resolve_base(toml::table root, const std::string& origin, const fs::
             }
         }
     }
+    if (toml::table* environment = merged["environment"].as_table()) {
+        const std::optional<std::string> file = (*environment)["file"].value<std::string>();
+        std::error_code ec;
+        if (file && fs::path(*file).is_relative() && fs::is_regular_file(base.dir / *file, ec)) {
+            environment->insert_or_assign("file", fs::absolute(base.dir / *file).string());
+        }
+    }
     scene->erase("base");
     if (toml::table* merged_scene = merged["scene"].as_table()) {
         merged_scene->erase("name");  // the derived scene is named by its own file
@@ -405,6 +465,11 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
     scene.light = read_light(TableReader(section("light"), origin, "[light]"));
     const toml::table* medium = top.table("medium");
     scene.medium = read_medium(TableReader(medium ? *medium : empty_table(), origin, "[medium]"));
+
+    if (const toml::table* environment = top.table("environment")) {
+        scene.environment =
+            read_environment(TableReader(*environment, origin, "[environment]"), base_dir, paths);
+    }
 
     if (const toml::table* bounds = top.table("beamtree")) {
         TableReader r(*bounds, origin, "[beamtree]");

@@ -12,7 +12,12 @@
 //   [medium]    sigma_s, sigma_a ([r, g, b] 1/m), phase, g, model ("simplified" | "physical"),
 //               a0, a1
 //   [beamtree]  max_outer_planes (0 = full convex hulls, else 8..), automatic_inner (bool)
-//   [materials.NAME]  albedo, roughness, f0
+//   [environment]  image-based lighting (ibl/): file (a studio light's name, e.g. "courtyard",
+//               from SceneSearchPaths::environments, or an equirectangular .exr relative to this
+//               file), intensity, rotation (degrees about +y), face_size (power of two),
+//               prefilter ("importance" | "cone"), distribution ("ggx" | "beckmann"), samples,
+//               filtered (bool), shading ("split-sum" | "moschos"), skybox (bool)
+//   [materials.NAME]  albedo, roughness (microfacet α), f0 = [r, g, b]
 //   [[objects]] name, shape ("mesh" | "box" | "sphere" | "cylinder" | "torus" | "plane"),
 //               the shape's parameters, material, translate, rotate (degrees about x, y, z,
 //               applied in that order), scale (number or [x, y, z]),
@@ -27,9 +32,11 @@
 namespace sl {
 
 struct SceneSearchPaths {
-    std::filesystem::path scenes;  // canonical scene files (<name>.toml)
-    std::filesystem::path data;    // extracted meshes (data/meshes/*.off)
-    // Built-in defaults, overridden by the environment variables SHAFTLAB_SCENES, SHAFTLAB_DATA.
+    std::filesystem::path scenes;        // canonical scene files (<name>.toml)
+    std::filesystem::path data;          // extracted meshes (data/meshes/*.off)
+    std::filesystem::path environments;  // HDR environments (<name>.exr), Blender's studio lights
+    // Built-in defaults, overridden by the environment variables SHAFTLAB_SCENES, SHAFTLAB_DATA,
+    // SHAFTLAB_ENVIRONMENTS.
     static SceneSearchPaths defaults();
 };
 

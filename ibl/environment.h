@@ -1,0 +1,35 @@
+#pragma once
+// An HDR environment ready for shading: the equirectangular EXR read and checked, resampled to a
+// cube map, its SH9 irradiance, its prefiltered chain (from the disk cache when it was baked
+// before) and the split-sum DFG table. Everything the GPU needs, computed on the CPU once.
+
+#include <filesystem>
+#include <string>
+
+#include "core/image.h"
+#include "ibl/cube_map.h"
+#include "ibl/microfacet.h"
+#include "ibl/prefilter.h"
+#include "ibl/sh9.h"
+#include "scenes/scene.h"
+
+namespace sl::ibl {
+
+// Reads an equirectangular EXR (2:1) and rejects what would poison every prefiltered texel: a
+// NaN, an infinity or a negative radiance, named with its pixel.
+Image load_equirect(const std::filesystem::path& path);
+
+struct LoadedEnvironment {
+    CubeMap cube;  // level 0, intensity applied
+    Sh9 sh;
+    PrefilteredChain chain;
+    DfgTable dfg;
+    std::string key;          // the cache key of the source (file contents and conversion)
+    double load_seconds = 0;  // reading and converting (the prefilter's time is in chain)
+};
+
+// Content hash of a file (FNV-1a 64), the part of a cache key that follows the file's bytes.
+uint64_t file_hash(const std::filesystem::path& path);
+LoadedEnvironment load_environment(const Environment& environment);
+
+}  // namespace sl::ibl
