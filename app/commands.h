@@ -22,6 +22,7 @@ Command add_compare_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_merge_command(CLI::App& app);
 Command add_view_command(CLI::App& app);
+Command add_ibl_command(CLI::App& app);
 
 using Clock = std::chrono::steady_clock;
 

@@ -25,14 +25,17 @@ Command add_scenes_command(CLI::App& app) {
             return 0;
         }
         const SceneSearchPaths paths = SceneSearchPaths::defaults();
-        for (const std::string& name : canonical_scene_names()) {
+        std::vector<std::string> names = canonical_scene_names();
+        for (const std::string& effect : effect_scene_names())
+            names.push_back(effect);
+        for (const std::string& name : names) {
             if (*names_only) {
                 fmt::print("{}\n", name);
                 continue;
             }
             const Scene scene = load_scene(name, paths);
             fmt::print(
-                "{:<10} {:>3} objects {:>8} triangles  light cone {:.0f} deg  medium {}  "
+                "{:<12} {:>3} objects {:>8} triangles  light cone {:.0f} deg  medium {}  "
                 "{}\n",
                 name, scene.objects.size(), scene.triangle_count(),
                 scene.light.cone_half_angle_degrees, to_string(scene.medium.model),

@@ -44,6 +44,7 @@ namespace sl::gl {
     X(PFNGLISTEXTUREPROC, IsTexture)                                     \
     X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                       \
     X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)                     \
+    X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                     \
     X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                     \
     X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                         \
     X(PFNGLGETTEXTUREIMAGEPROC, GetTextureImage)                         \

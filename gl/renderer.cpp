@@ -20,6 +20,8 @@ namespace {
 constexpr GLint kModelLocation = 0;
 constexpr GLint kNormalMatrixLocation = 1;
 constexpr GLint kAlbedoLocation = 2;
+constexpr GLint kRoughnessLocation = 3;
+constexpr GLint kF0Location = 4;
 
 // Normal offset of shadow lookups, in shadow-map texels at the receiver's distance.
 constexpr float kShadowNormalOffsetTexels = 1.5f;
@@ -187,7 +189,11 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
                                        {GL_FRAGMENT_SHADER, "gl/shaders/surface.frag"}});
     composite_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                          {GL_FRAGMENT_SHADER, "gl/shaders/composite.frag"}});
+    skybox_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                      {GL_FRAGMENT_SHADER, "gl/shaders/skybox.frag"}});
     empty_vertex_array_ = create_vertex_array();
+    environment_ = std::make_unique<EnvironmentTextures>(scene);
+    environment_->set_uniforms(uniforms_);
 
     allocate_shadow(options.shadow);
 
@@ -280,8 +286,10 @@ void SceneRenderer::draw_objects(GLuint program, bool with_normals) {
             const glm::mat4 normal_matrix = glm::inverseTranspose(object.transform);
             GL.ProgramUniformMatrix4fv(program, kNormalMatrixLocation, 1, GL_FALSE,
                                        glm::value_ptr(normal_matrix));
-            const glm::vec3 albedo = scene_.materials[size_t(object.material)].albedo;
-            GL.ProgramUniform3fv(program, kAlbedoLocation, 1, glm::value_ptr(albedo));
+            const Material& material = scene_.materials[size_t(object.material)];
+            GL.ProgramUniform3fv(program, kAlbedoLocation, 1, glm::value_ptr(material.albedo));
+            GL.ProgramUniform1f(program, kRoughnessLocation, material.roughness);
+            GL.ProgramUniform3fv(program, kF0Location, 1, glm::value_ptr(material.f0));
         }
         const GpuMesh& mesh = meshes_.at(object.mesh.get());
         GL.BindVertexArray(mesh.vertex_array.id());
@@ -297,6 +305,7 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         allocate_shadow(wanted);
     }
     uniforms_.shadow = shadow_uniform(shadow_);
+    environment_->set_uniforms(uniforms_);
     GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, uniform_buffer_.id());
     GL.NamedBufferSubData(uniform_buffer_.id(), 0, sizeof(uniforms_), &uniforms_);
     GL.Disable(GL_BLEND);
@@ -350,7 +359,19 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         GL.UseProgram(surface_program_.id());
         GL.BindTextureUnit(SL_SHADOW_MAP_UNIT, shadow_map_.id());
         GL.BindTextureUnit(SL_SHADOW_MOMENTS_UNIT, shadow_moments_.id());
+        GL.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+        environment_->bind();
         draw_objects(surface_program_.id(), true);
+        if (environment_->skybox()) {
+            // Where no surface was drawn (depth 1); the depth buffer stays as the methods expect.
+            GL.DepthFunc(GL_LEQUAL);
+            GL.DepthMask(GL_FALSE);
+            GL.UseProgram(skybox_program_.id());
+            GL.BindVertexArray(empty_vertex_array_.id());
+            GL.DrawArrays(GL_TRIANGLES, 0, 3);
+            GL.DepthMask(GL_TRUE);
+            GL.DepthFunc(GL_LESS);
+        }
     }
     {
         // Timed by the method's timeline sections (queries of one target cannot nest).
@@ -407,6 +428,9 @@ TextureViews SceneRenderer::textures() const {
                           {"frame/display", display_.id()}};
     if (shadow_.filter == ShadowFilter::vsm) {
         views.insert(views.begin() + 1, {"frame/shadow moments", shadow_moments_.id()});
+    }
+    for (const TextureView& view : environment_->textures()) {
+        views.push_back(view);
     }
     return views;
 }

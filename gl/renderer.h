@@ -1,5 +1,6 @@
 #pragma once
-// The GPU frame (DESIGN.md §2): shadow map from the spot light -> surfaces (I_obj·T(Z)) ->
+// The GPU frame (DESIGN.md §2): shadow map from the spot light -> surfaces (I_obj·T(Z), with the
+// environment's light and skybox when the scene has one) ->
 // volumetric method (I_s) -> composite and tone map. Owns the scene's GPU meshes and the frame's
 // render targets; one renderer per scene and size.
 
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "gl/environment_textures.h"
 #include "gl/objects.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/volume_method.h"
@@ -75,6 +77,8 @@ public:
     // The shadow map settings of the last frame drawn (the method's, or the options').
     const ShadowSettings& shadow() const { return shadow_; }
     const shared::FrameUniforms& uniforms() const { return uniforms_; }
+    // The scene's image-based lighting (placeholders when it has no environment).
+    const EnvironmentTextures& environment() const { return *environment_; }
 
 private:
     struct GpuMesh {
@@ -101,6 +105,8 @@ private:
     Program shadow_blur_program_;
     Program surface_program_;
     Program composite_program_;
+    Program skybox_program_;
+    std::unique_ptr<EnvironmentTextures> environment_;
     VertexArray empty_vertex_array_;
 
     ShadowSettings shadow_;

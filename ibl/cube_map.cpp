@@ -17,17 +17,6 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-glm::vec3 bilinear(const Image& image, float px, float py) {
-    const float x = std::clamp(px, 0.0f, float(image.width - 1));
-    const float y = std::clamp(py, 0.0f, float(image.height - 1));
-    const int x0 = int(x), y0 = int(y);
-    const int x1 = std::min(x0 + 1, image.width - 1), y1 = std::min(y0 + 1, image.height - 1);
-    const float fx = x - float(x0), fy = y - float(y0);
-    const glm::vec3 top = image.at(x0, y0) * (1.0f - fx) + image.at(x1, y0) * fx;
-    const glm::vec3 bottom = image.at(x0, y1) * (1.0f - fx) + image.at(x1, y1) * fx;
-    return top * (1.0f - fy) + bottom * fy;
-}
-
 // The area element of the cube face z = 1 integrated from the face centre to (a, b):
 // ∫∫ (1 + a² + b²)^(-3/2) da db = atan2(ab, sqrt(a² + b² + 1)).
 double face_area(double a, double b) {
@@ -51,8 +40,28 @@ glm::vec3 CubeMap::direction(int face, int x, int y) const {
 
 glm::vec3 CubeMap::sample(glm::vec3 d) const {
     const CubeCoordinates c = cube_coordinates(d);
-    return bilinear(faces[size_t(c.face)], c.st.x * float(size) - 0.5f,
-                    c.st.y * float(size) - 0.5f);
+    const float px = c.st.x * float(size) - 0.5f, py = c.st.y * float(size) - 0.5f;
+    const float x_floor = std::floor(px), y_floor = std::floor(py);
+    const int x0 = int(x_floor), y0 = int(y_floor);
+    const float fx = px - x_floor, fy = py - y_floor;
+    if (x0 >= 0 && y0 >= 0 && x0 + 1 < size && y0 + 1 < size) {
+        const Image& face = faces[size_t(c.face)];
+        return (face.at(x0, y0) * (1.0f - fx) + face.at(x0 + 1, y0) * fx) * (1.0f - fy) +
+               (face.at(x0, y0 + 1) * (1.0f - fx) + face.at(x0 + 1, y0 + 1) * fx) * fy;
+    }
+    // Seamless at face edges, as GL_TEXTURE_CUBE_MAP_SEAMLESS: a tap beyond the face is the texel
+    // of the neighbouring face that its (extrapolated) centre direction falls on.
+    auto tap = [&](int x, int y) {
+        if (x >= 0 && y >= 0 && x < size && y < size) {
+            return texel(c.face, x, y);
+        }
+        const CubeCoordinates n = cube_coordinates(cube_direction(
+            c.face, {(float(x) + 0.5f) / float(size), (float(y) + 0.5f) / float(size)}));
+        return texel(n.face, std::clamp(int(n.st.x * float(size)), 0, size - 1),
+                     std::clamp(int(n.st.y * float(size)), 0, size - 1));
+    };
+    return (tap(x0, y0) * (1.0f - fx) + tap(x0 + 1, y0) * fx) * (1.0f - fy) +
+           (tap(x0, y0 + 1) * (1.0f - fx) + tap(x0 + 1, y0 + 1) * fx) * fy;
 }
 
 CubeCoordinates cube_coordinates(glm::vec3 d) {

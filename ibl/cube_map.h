@@ -28,7 +28,7 @@ struct CubeMap {
     void set(int face, int x, int y, glm::vec3 value) { faces[size_t(face)].set(x, y, value); }
     // Unit direction through the centre of texel (x, y) of `face`.
     glm::vec3 direction(int face, int x, int y) const;
-    // Bilinear lookup in direction d (need not be unit); clamped at face edges.
+    // Bilinear lookup in direction d (need not be unit), seamless across face edges.
     glm::vec3 sample(glm::vec3 d) const;
 };
 

@@ -348,7 +348,9 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
         }
         return {generate_multiple_scene(int(count)), name, paths.scenes};
     }
-    const auto names = canonical_scene_names();
+    auto names = canonical_scene_names();
+    const auto effects = effect_scene_names();
+    names.insert(names.end(), effects.begin(), effects.end());
     if (std::find(names.begin(), names.end(), name) != names.end()) {
         const fs::path path = paths.scenes / (name + ".toml");
         return {read_text_file(path), path.string(), paths.scenes};
@@ -362,8 +364,8 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
         return {read_text_file(path), path.string(), path.parent_path()};
     }
     fail(
-        "unknown scene '{}' (canonical: toplight, parallel, multiple, multiple:N; or a .toml "
-        "file)",
+        "unknown scene '{}' (canonical: toplight, parallel, multiple, multiple:N; effects: "
+        "ibl-spheres; or a .toml file)",
         name);
 }
 
@@ -575,6 +577,10 @@ std::string scene_view_toml(const Scene& scene, const std::string& base, const s
 
 std::vector<std::string> canonical_scene_names() {
     return {"toplight", "parallel", "multiple"};
+}
+
+std::vector<std::string> effect_scene_names() {
+    return {"ibl-spheres"};
 }
 
 Scene load_scene(const std::string& name, const SceneSearchPaths& paths) {

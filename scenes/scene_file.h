@@ -52,6 +52,8 @@ std::string scene_view_toml(const Scene& scene, const std::string& base, const s
 
 // The canonical scenes in display order, and the generated `multiple:N` family.
 std::vector<std::string> canonical_scene_names();
+// The effect scenes (IBL, SSS), loadable by name like the canonical ones.
+std::vector<std::string> effect_scene_names();
 // A scene of N objects on a jittered grid under one spot light (DESIGN.md §5), as TOML text,
 // deterministic in N. `multiple` is multiple:kMultipleDefaultCount.
 constexpr int kMultipleDefaultCount = 32;

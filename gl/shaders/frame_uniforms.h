@@ -21,6 +21,10 @@ using vec4 = glm::vec4;
 // others): the depth-compare shadow map and the VSM moments.
 #define SL_SHADOW_MAP_UNIT 4
 #define SL_SHADOW_MOMENTS_UNIT 5
+// The surface pass's image-based lighting: the prefiltered cube map and the split-sum DFG table.
+#define SL_ENVIRONMENT_UNIT 8
+#define SL_DFG_UNIT 9
+#define SL_MAX_ENVIRONMENT_LEVELS 12
 
 SL_UNIFORM_BLOCK(FrameUniforms, SL_FRAME_UNIFORMS_BINDING) {
     mat4 view_projection;  // camera: world -> clip
@@ -40,6 +44,14 @@ SL_UNIFORM_BLOCK(FrameUniforms, SL_FRAME_UNIFORMS_BINDING) {
     vec4 shadow;                 // x = 1 / map size, y = PCF radius in texels (0 = hard),
                                  // z = normal offset in texels, w = 1 for VSM
     vec4 display;                // x = exposure; yz = viewport size in pixels
+    // Image-based lighting (ibl/, gl/shaders/ibl.glsl): x = 1 when on, y = shading (0 Moschos
+    // algorithms 7-8, 1 split-sum), z = prefiltered levels, w = 1 for the cone (figure 3.24)
+    // chain, 0 for the importance-sampled one.
+    vec4 environment;
+    vec4 environment_options;  // x = 1 to draw the skybox, y = distribution (0 Beckmann, 1 GGX)
+    vec4 environment_sh9[9];   // rgb: L_lm in ibl/sh9.h's order and axes
+    // Per cone level: x = roughness (figure 3.24), y = tan² θ, z = tan² θ / α² (D(n)·π tan² θ).
+    vec4 environment_levels[SL_MAX_ENVIRONMENT_LEVELS];
 }
 SL_UNIFORM_BLOCK_END(frame)
 

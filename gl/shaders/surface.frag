@@ -1,11 +1,15 @@
 #version 450 core
 // Surface pass: I_obj·T(Z) of Nilsson eq. 2.7 for Lambertian surfaces lit by the spot light
-// (cone eq. 2.9, falloff eq. 2.8/2.13, shadow-map visibility) plus a constant ambient term.
+// (cone eq. 2.9, falloff eq. 2.8/2.13, shadow-map visibility) plus a constant ambient term; with
+// an environment, the spot light's microfacet specular and the environment's light (ibl.glsl).
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/shadow.glsl"
+#include "gl/shaders/ibl.glsl"
 
 layout(location = 2) uniform vec3 albedo;
+layout(location = 3) uniform float roughness;  // microfacet α
+layout(location = 4) uniform vec3 f0;
 
 in vec3 world_position;
 in vec3 world_normal;
@@ -23,6 +27,8 @@ void main() {
     float cos_theta = dot(n, l);
 
     vec3 irradiance = vec3(0.0);
+    vec3 v = normalize(to_eye);
+    vec3 radiance = albedo * frame.ambient.rgb;
     if (cos_theta > 0.0 && in_light_range(-to_light)) {
         // Normal offset: move the lookup point off the surface by a few shadow texels, measured
         // at this distance from the light, so that surfaces do not shadow themselves.
@@ -30,7 +36,13 @@ void main() {
         vec3 lookup = world_position + n * frame.shadow.z * texel_world;
         irradiance = frame.light_intensity.rgb * cone_factor(-to_light) * light_falloff(r) *
                      cos_theta * light_visibility(lookup);
+        radiance += albedo / PI * irradiance;
+        if (environment_on()) {
+            radiance += irradiance / cos_theta * spot_specular(n, v, l, roughness, f0);
+        }
     }
-    vec3 radiance = albedo / PI * irradiance + albedo * frame.ambient.rgb;
+    if (environment_on()) {
+        radiance += environment_radiance(n, v, albedo, roughness, f0);
+    }
     surface_radiance = vec4(radiance * transmittance(length(to_eye)), 1.0);
 }

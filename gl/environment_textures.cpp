@@ -1,0 +1,102 @@
+#include "gl/environment_textures.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "core/error.h"
+#include "gl/debug.h"
+
+namespace sl::gl {
+
+namespace {
+
+Texture create_cube(int size, int levels) {
+    GLuint id = 0;
+    GL.CreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
+    GL.TextureStorage2D(id, levels, GL_RGBA32F, size, size);
+    GL.TextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    GL.TextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    GL.TextureParameteri(id, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
+        GL.TextureParameteri(id, wrap, GL_CLAMP_TO_EDGE);
+    }
+    return Texture(id);
+}
+
+}  // namespace
+
+EnvironmentTextures::EnvironmentTextures(const Scene& scene) : environment_(scene.environment) {
+    if (!environment_.enabled()) {
+        cube_ = create_cube(1, 1);
+        const float black[3] = {0, 0, 0};
+        for (int face = 0; face < 6; ++face) {
+            GL.TextureSubImage3D(cube_.id(), 0, 0, 0, face, 1, 1, 1, GL_RGB, GL_FLOAT, black);
+        }
+        dfg_ = create_texture_2d(GL_RG32F, 1, 1, GL_NEAREST);
+        return;
+    }
+    loaded_ = std::make_unique<ibl::LoadedEnvironment>(ibl::load_environment(environment_));
+    const ibl::PrefilteredChain& chain = loaded_->chain;
+    if (chain.levels.size() > SL_MAX_ENVIRONMENT_LEVELS) {
+        fail("environment: {} prefiltered levels, at most {} (face_size too large)",
+             chain.levels.size(), SL_MAX_ENVIRONMENT_LEVELS);
+    }
+    cube_ = create_cube(chain.levels[0].size, int(chain.levels.size()));
+    cube_.label("environment (prefiltered)");
+    for (size_t l = 0; l < chain.levels.size(); ++l) {
+        const ibl::CubeMap& level = chain.levels[l];
+        for (int face = 0; face < 6; ++face) {
+            GL.TextureSubImage3D(cube_.id(), GLint(l), 0, 0, face, level.size, level.size, 1,
+                                 GL_RGB, GL_FLOAT, level.faces[size_t(face)].rgb.data());
+        }
+    }
+    const ibl::DfgTable& dfg = loaded_->dfg;
+    dfg_ = create_texture_2d(GL_RG32F, dfg.size, dfg.size, GL_LINEAR);
+    GL.TextureSubImage2D(dfg_.id(), 0, 0, 0, dfg.size, dfg.size, GL_RG, GL_FLOAT, dfg.ab.data());
+    dfg_.label("environment DFG table");
+    check_errors("uploading the environment");
+}
+
+void EnvironmentTextures::set_uniforms(shared::FrameUniforms& u) const {
+    u.environment = glm::vec4(0.0f);
+    u.environment_options = glm::vec4(0.0f);
+    if (!loaded_) {
+        return;
+    }
+    const ibl::PrefilteredChain& chain = loaded_->chain;
+    const bool cone = chain.settings.method == ibl::PrefilterMethod::cone;
+    u.environment = glm::vec4(1.0f, environment_.shading == ibl::Shading::moschos ? 0.0f : 1.0f,
+                              float(chain.levels.size()), cone ? 1.0f : 0.0f);
+    u.environment_options =
+        glm::vec4(environment_.skybox ? 1.0f : 0.0f,
+                  chain.settings.distribution == ibl::Distribution::ggx ? 1.0f : 0.0f, 0.0f, 0.0f);
+    for (size_t i = 0; i < 9; ++i) {
+        u.environment_sh9[i] = glm::vec4(loaded_->sh.coefficients[i], 0.0f);
+    }
+    // Figure 3.24 per level, for the seed's shading: roughness, tan² θ, tan² θ / α².
+    const auto& table = ibl::moschos_cone_levels();
+    for (size_t l = 0; l < SL_MAX_ENVIRONMENT_LEVELS; ++l) {
+        const size_t row = std::min(l, table.size() - 1);
+        const float tan_theta =
+            std::tan(table[row].cone_degrees * std::numbers::pi_v<float> / 180.0f);
+        const float alpha = table[row].roughness;
+        const float roughness = l < chain.roughness.size() ? chain.roughness[l] : alpha;
+        u.environment_levels[l] =
+            glm::vec4(roughness, tan_theta * tan_theta,
+                      alpha > 0.0f ? tan_theta * tan_theta / (alpha * alpha) : 0.0f, 0.0f);
+    }
+}
+
+void EnvironmentTextures::bind() const {
+    GL.BindTextureUnit(SL_ENVIRONMENT_UNIT, cube_.id());
+    GL.BindTextureUnit(SL_DFG_UNIT, dfg_.id());
+}
+
+TextureViews EnvironmentTextures::textures() const {
+    if (!loaded_) {
+        return {};
+    }
+    return {{"environment/DFG table (A, B)", dfg_.id()}};
+}
+
+}  // namespace sl::gl

@@ -1,0 +1,39 @@
+#pragma once
+// The GPU side of image-based lighting: the prefiltered chain as one mipmapped cube map (level l
+// of the chain = mip l), the split-sum DFG table, and the uniforms ibl.glsl reads (SH9, the
+// roughness-to-level mapping). Built from what ibl/ computed on the CPU.
+
+#include <memory>
+
+#include "gl/objects.h"
+#include "gl/shaders/frame_uniforms.h"
+#include "gl/volume_method.h"
+#include "ibl/environment.h"
+#include "scenes/scene.h"
+
+namespace sl::gl {
+
+class EnvironmentTextures {
+public:
+    // Loads (and prefilters, or reads from the cache) the scene's environment; with none, 1x1
+    // placeholders so that the samplers stay complete.
+    explicit EnvironmentTextures(const Scene& scene);
+
+    // Fills the frame's environment members.
+    void set_uniforms(shared::FrameUniforms& uniforms) const;
+    // Binds the cube map and the DFG table to their units (SL_ENVIRONMENT_UNIT, SL_DFG_UNIT).
+    void bind() const;
+    bool enabled() const { return loaded_ != nullptr; }
+    bool skybox() const { return enabled() && environment_.skybox; }
+    // What was loaded (nullptr without an environment).
+    const ibl::LoadedEnvironment* loaded() const { return loaded_.get(); }
+    TextureViews textures() const;
+
+private:
+    Environment environment_;
+    std::unique_ptr<ibl::LoadedEnvironment> loaded_;
+    Texture cube_;
+    Texture dfg_;
+};
+
+}  // namespace sl::gl
