@@ -61,6 +61,9 @@ int run_prefilter(const PrefilterArguments& a) {
     if (a.face_size < 1 || a.face_size > 4096 || (a.face_size & (a.face_size - 1))) {
         fail("--face-size {} must be a power of two in 1..4096", a.face_size);
     }
+    if (a.samples < 1 || a.samples > 1 << 20) {
+        fail("prefilter: samples {} must be in 1..{}", a.samples, 1 << 20);
+    }
     if (a.brute_force_grid < 0 || a.brute_force_grid > 1024) {
         fail("--brute-force {} must be a grid size in 0..1024", a.brute_force_grid);
     }

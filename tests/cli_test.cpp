@@ -2,9 +2,11 @@
 // prints one error line, exits non-zero and leaves no file behind.
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "core/image.h"
@@ -119,7 +121,7 @@ TEST(Cli, MethodParametersAreListedAndSet) {
 TEST(Cli, ScenesListsCanonicalScenes) {
     const CommandResult run = run_shaftlab("scenes --names");
     ASSERT_EQ(run.exit_code, 0) << run.output;
-    EXPECT_EQ(run.output, "toplight\nparallel\nmultiple\n");
+    EXPECT_EQ(run.output, "toplight\nparallel\nmultiple\nibl-spheres\n");
     EXPECT_EQ(run_shaftlab("scenes --help").exit_code, 0);
     EXPECT_EQ(run_shaftlab("render --help").exit_code, 0);
 }
@@ -139,8 +141,20 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
                "[camera]\nposition = [0.0, 1.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n"
                "[light]\nposition = [0.0, 5.0, 0.0]\ntarget = [0.0, 0.0, 0.0]\n"
                "[[objects]]\nshape = \"mesh\"\nfile = \"bad-mesh.off\"\n");
+    const std::string view =
+        "[camera]\nposition = [0.0, 1.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n"
+        "[light]\nposition = [0.0, 5.0, 0.0]\ntarget = [0.0, 0.0, 0.0]\n";
+    write_text(scenes / "no-env.toml", view + "[environment]\nfile = \"atlantis\"\n");
+    write_text(scenes / "env-size.toml",
+               view + "[environment]\nfile = \"courtyard\"\nface_size = 100\n");
+    write_text(scenes / "env-shading.toml",
+               view + "[environment]\nfile = \"courtyard\"\nshading = \"phong\"\n");
     const std::string dir = scenes.path().string();
     const std::pair<std::string, std::string> cases[] = {
+        {"--scene " + dir + "/no-env.toml", "[environment] file: no environment 'atlantis'"},
+        {"--scene " + dir + "/env-size.toml", "[environment] face_size: 100 is not a power of two"},
+        {"--scene " + dir + "/env-shading.toml",
+         "[environment] shading: unknown IBL shading 'phong'"},
         {"--scene toplight --method magic",
          "unknown method 'magic' (known: none, beamtree, planes, hybrid1, hybrid2, march, hybrid3, "
          "reference)"},
@@ -322,6 +336,74 @@ TEST(Cli, RegionsRejectsALightInsideABoundingVolume) {
               std::string::npos)
         << run.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "regions.json"));
+}
+
+std::string read_text(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// `ibl prefilter` writes one EXR and PNG per level and a JSON summary whose levels halve in size
+// and follow the chosen method's roughness; with --brute-force, each resolvable level is scored.
+TEST(Cli, IblPrefilterWritesTheChain) {
+    TempDir out;
+    const CommandResult run =
+        run_shaftlab("ibl prefilter courtyard --face-size 32 --samples 64 --brute-force 64 --out " +
+                     out.path().string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const nlohmann::json summary = nlohmann::json::parse(read_text(out / "prefilter.json"));
+    EXPECT_EQ(summary["method"], "importance");
+    ASSERT_EQ(summary["levels"].size(), 3u);  // 32, 16, 8
+    for (size_t l = 0; l < 3; ++l) {
+        EXPECT_EQ(summary["levels"][l]["face_size"], 32 >> l);
+        const Image strip = read_exr(out / fmt::format("level_{:02}.exr", l));
+        EXPECT_EQ(strip.width, 6 * (32 >> l));
+        EXPECT_TRUE(std::filesystem::exists(out / fmt::format("level_{:02}.png", l)));
+    }
+    const double error = summary["levels"][2]["rel_rmse_vs_brute_force"].get<double>();
+    EXPECT_GT(error, 0.0);
+    EXPECT_LT(error, 0.5);  // 64 samples on a 32² source at α = 1: filtered IS is biased there
+    EXPECT_EQ(summary["sh9"].size(), 9u);
+
+    TempDir cone;
+    const CommandResult seed = run_shaftlab(
+        "ibl prefilter courtyard --method cone --face-size 16 "
+        "--samples 16 --out " +
+        cone.path().string());
+    ASSERT_EQ(seed.exit_code, 0) << seed.output;
+    const nlohmann::json levels =
+        nlohmann::json::parse(read_text(cone / "prefilter.json"))["levels"];
+    ASSERT_EQ(levels.size(), 5u);                                // 16 .. 1
+    EXPECT_FLOAT_EQ(levels[4]["roughness"].get<float>(), 0.2f);  // Moschos figure 3.24, level 4
+}
+
+// `ibl prefilter` rejects an unknown environment, method or size and a NaN image with one line
+// and writes nothing.
+TEST(Cli, IblPrefilterRejectsBadInput) {
+    TempDir inputs;
+    Image nan(8, 4);
+    nan.set(1, 1, glm::vec3(std::nanf("")));
+    write_exr(nan, inputs / "nan.exr");
+    const std::pair<std::string, std::string> cases[] = {
+        {"atlantis", "no environment 'atlantis'"},
+        {"courtyard --method magic", "unknown prefilter 'magic'"},
+        {"courtyard --distribution phong", "unknown distribution 'phong'"},
+        {"courtyard --face-size 48", "--face-size 48 must be a power of two"},
+        {"courtyard --samples 0", "samples 0 must be in"},
+        {(inputs / "nan.exr").string(), "nan.exr: pixel (1, 1) has radiance nan"},
+    };
+    for (const auto& [arguments, expected] : cases) {
+        TempDir out;
+        const std::string size =
+            arguments.find("--face-size") == std::string::npos ? " --face-size 8" : "";
+        const CommandResult run =
+            run_shaftlab("ibl prefilter " + arguments + size + " --out " + out.path().string());
+        EXPECT_NE(run.exit_code, 0) << arguments;
+        EXPECT_NE(run.output.find(expected), std::string::npos)
+            << arguments << "\nexpected: " << expected << "\ngot: " << run.output;
+        EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+        EXPECT_EQ(out.file_count(), 0u) << arguments << " left files behind";
+    }
 }
 
 }  // namespace
