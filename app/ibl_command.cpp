@@ -1,3 +1,5 @@
+// `shaftlab ibl reference --scene S`: the GPU's environment light (spot light and medium off)
+// against reference/environment_light.h, per object, with images and a heat map of the error.
 // `shaftlab ibl prefilter ENV --out DIR`: bakes an environment's roughness chain with either
 // prefilter (ibl/prefilter.h) and writes it as one EXR per level (the six faces side by side, GL
 // order +X -X +Y -Y +Z -Z), PNG previews, and prefilter.json with the settings, per-level
@@ -13,8 +15,12 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/metrics.h"
 #include "core/output_files.h"
+#include "gl/platform.h"
+#include "gl/renderer.h"
 #include "ibl/environment.h"
+#include "reference/environment_light.h"
 #include "scenes/scene_file.h"
 
 namespace sl::app {
@@ -138,6 +144,97 @@ int run_prefilter(const PrefilterArguments& a) {
     return 0;
 }
 
+struct ReferenceArguments {
+    std::string scene;
+    std::string out = "out/ibl-reference";
+    std::string size = "320x180";
+    int samples = 1024;
+    bool occlusion = false;
+};
+
+// The GPU's environment light against the exact reference, overall and per object.
+int run_reference(const ReferenceArguments& a) {
+    int width = 0, height = 0;
+    parse_size(a.size, width, height);
+    if (a.samples < 1 || a.samples > 1 << 20) {
+        fail("--samples {} must be in 1..{}", a.samples, 1 << 20);
+    }
+    const Scene scene =
+        reference::environment_only_scene(load_scene(a.scene, SceneSearchPaths::defaults()));
+    if (!scene.environment.enabled()) {
+        fail("scene '{}' has no [environment]", a.scene);
+    }
+    const auto platform = gl::create_osmesa_platform();
+    gl::SceneRenderer renderer(scene, {.width = width, .height = height});
+    const auto method = methods::create_volume_method("none");
+    method->prepare(scene);
+    renderer.draw(*method);  // warm-up
+    const gl::FrameTimings timings = renderer.draw(*method);
+    const gl::Frame frame = renderer.read_back();
+
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<int> objects;
+    const Image exact = reference::render_environment_reference(
+        scene, *renderer.environment().loaded(), width, height,
+        {.samples = a.samples, .occlusion = a.occlusion}, &objects);
+    const double reference_seconds = ms_since(start) / 1000.0;
+
+    // Relative RMSE over the pixels of each object, and over every surface pixel.
+    std::vector<double> error(scene.objects.size() + 1), norm(scene.objects.size() + 1);
+    for (size_t i = 0; i < objects.size(); ++i) {
+        if (objects[i] < 0)
+            continue;
+        const glm::vec3 g(frame.surface.rgb[3 * i], frame.surface.rgb[3 * i + 1],
+                          frame.surface.rgb[3 * i + 2]);
+        const glm::vec3 r(exact.rgb[3 * i], exact.rgb[3 * i + 1], exact.rgb[3 * i + 2]);
+        for (size_t k : {size_t(objects[i]), scene.objects.size()}) {
+            error[k] += glm::dot(g - r, g - r);
+            norm[k] += glm::dot(r, r);
+        }
+    }
+    nlohmann::json per_object = nlohmann::json::object();
+    for (size_t k = 0; k < scene.objects.size(); ++k) {
+        if (norm[k] > 0.0) {
+            const Material& m = scene.materials[size_t(scene.objects[k].material)];
+            per_object[scene.objects[k].name] = {{"rel_rmse", std::sqrt(error[k] / norm[k])},
+                                                 {"roughness", m.roughness},
+                                                 {"f0", {m.f0.r, m.f0.g, m.f0.b}}};
+        }
+    }
+    const double surface_rel_rmse = norm.back() > 0.0 ? std::sqrt(error.back() / norm.back()) : 0.0;
+    const ErrorMetrics image_metrics = compare_images(frame.surface, exact);
+    const nlohmann::json summary = {{"scene", scene.name},
+                                    {"environment", scene.environment.file.string()},
+                                    {"prefilter", scene.environment.prefilter.describe()},
+                                    {"shading", ibl::to_string(scene.environment.shading)},
+                                    {"size", {width, height}},
+                                    {"samples", a.samples},
+                                    {"occlusion", a.occlusion},
+                                    {"surface_rel_rmse", surface_rel_rmse},
+                                    {"image",
+                                     {{"rel_rmse", image_metrics.rel_rmse},
+                                      {"max_abs", image_metrics.max_abs},
+                                      {"psnr", image_metrics.psnr}}},
+                                    {"objects", per_object},
+                                    {"gpu_ms_surface", timings.gpu.surface_ms},
+                                    {"reference_seconds", reference_seconds}};
+    OutputFiles out(a.out);
+    out.add("gpu.exr", [&](const fs::path& file) { write_exr(frame.surface, file); });
+    out.add("reference.exr", [&](const fs::path& file) { write_exr(exact, file); });
+    out.add("gpu.png", [&](const fs::path& file) { write_png(frame.surface, ToneMap{}, file); });
+    out.add("reference.png", [&](const fs::path& file) { write_png(exact, ToneMap{}, file); });
+    out.add("error.png", [&](const fs::path& file) {
+        write_png(error_heat_map(frame.surface, exact, 0.5), width, height, file);
+    });
+    out.add_text("reference.json", summary.dump(2) + "\n");
+    out.commit();
+    std::printf("%s (%s, %s): surface rel RMSE %.4f vs the %s reference (%d samples, %.1f s)\n",
+                scene.name.c_str(), ibl::to_string(scene.environment.shading),
+                ibl::to_string(scene.environment.prefilter.method), surface_rel_rmse,
+                a.occlusion ? "occluded" : "unoccluded", a.samples, reference_seconds);
+    return 0;
+}
+
 }  // namespace
 
 Command add_ibl_command(CLI::App& app) {
@@ -171,9 +268,22 @@ Command add_ibl_command(CLI::App& app) {
                      "Score each level against the brute-force lobe integral on this grid "
                      "per face (slow; 0: off)")
         ->capture_default_str();
-    return [a, prefilter]() -> int {
+    CLI::App* reference = ibl->add_subcommand(
+        "reference", "Score the GPU's environment light against the exact (Monte Carlo) reference");
+    auto r = std::make_shared<ReferenceArguments>();
+    reference->add_option("--scene", r->scene, "A scene with an [environment]")->required();
+    reference->add_option("--out", r->out, "Output directory")->capture_default_str();
+    reference->add_option("--size", r->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+    reference->add_option("--samples", r->samples, "Samples per pixel (specular and diffuse each)")
+        ->capture_default_str();
+    reference->add_flag("--occlusion", r->occlusion,
+                        "Trace each sample's visibility (no real-time path models it)");
+    return [a, prefilter, r, reference]() -> int {
         if (prefilter->parsed()) {
             return run_prefilter(*a);
+        }
+        if (reference->parsed()) {
+            return run_reference(*r);
         }
         return 1;
     };

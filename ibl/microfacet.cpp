@@ -149,10 +149,11 @@ DfgTable compute_dfg_table(Distribution dist, int size, int samples) {
     }
     DfgTable table{size, dist, std::vector<float>(size_t(size * size) * 2)};
     for (int j = 0; j < size; ++j) {
-        const float root_alpha = (float(j) + 0.5f) / float(size);
+        const float root_alpha = float(j) / float(size - 1);
         for (int i = 0; i < size; ++i) {
-            const glm::vec2 ab = integrate_dfg(dist, (float(i) + 0.5f) / float(size),
-                                               root_alpha * root_alpha, samples);
+            // n·v = 0 is a grazing limit the integral cannot be sampled at: start just above it.
+            const float n_dot_v = std::max(float(i) / float(size - 1), 1e-3f);
+            const glm::vec2 ab = integrate_dfg(dist, n_dot_v, root_alpha * root_alpha, samples);
             table.ab[size_t(j * size + i) * 2] = ab.x;
             table.ab[size_t(j * size + i) * 2 + 1] = ab.y;
         }

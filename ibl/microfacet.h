@@ -40,8 +40,9 @@ glm::vec2 hammersley(uint32_t i, uint32_t n);
 void orthonormal_basis(glm::vec3 n, glm::vec3& tangent, glm::vec3& bitangent);
 
 // The split-sum environment BRDF: ∫ f(v, l)(n·l) dl = F0·A + B with Schlick's F, so
-// A = ∫ (1 − Fc) f/F (n·l), B = ∫ Fc f/F (n·l), Fc = (1 − v·h)⁵. Rows: roughness α = ((j + ½)/n)²
-// … sampled at texel centres in √α; columns: n·v = (i + ½)/n. RG interleaved.
+// A = ∫ (1 − Fc) f/F (n·l), B = ∫ Fc f/F (n·l), Fc = (1 − v·h)⁵. Rows: √α = j/(n − 1); columns:
+// n·v = i/(n − 1) (the first column at 1e-3): texel centres on the range's ends, so that α = 0
+// and 1 and n·v = 1 are looked up exactly. RG interleaved.
 struct DfgTable {
     int size = 0;
     Distribution distribution = Distribution::ggx;
@@ -50,11 +51,11 @@ struct DfgTable {
     glm::vec2 at(int i, int j) const {
         return {ab[size_t(j * size + i) * 2], ab[size_t(j * size + i) * 2 + 1]};
     }
-    // Bilinear lookup, clamped; the same texel-centre convention as the GPU's sampler.
+    // Bilinear lookup, clamped; the GPU samples it at ((value (n − 1) + ½) / n) for the same.
     glm::vec2 lookup(float n_dot_v, float alpha) const;
 };
 // One (A, B) pair by importance sampling `samples` half vectors (Hammersley).
 glm::vec2 integrate_dfg(Distribution distribution, float n_dot_v, float alpha, int samples);
-DfgTable compute_dfg_table(Distribution distribution, int size = 32, int samples = 1024);
+DfgTable compute_dfg_table(Distribution distribution, int size = 64, int samples = 1024);
 
 }  // namespace sl::ibl

@@ -26,6 +26,13 @@ glm::vec2 cone_terms(float lod) {
     return at(l0) * (1.0f - f) + at(l0 + 1) * f;
 }
 
+// How far the split-sum lobe's dominant direction stays at r rather than n (Lagarde & de
+// Rousiers 2014, "Moving Frostbite to PBR", listing 22).
+float dominant_direction_weight(float alpha) {
+    const float smoothness = std::clamp(1.0f - alpha, 0.0f, 1.0f);
+    return smoothness * (std::sqrt(smoothness) + alpha);
+}
+
 float g2(Shading shading, float alpha, float n_dot_v, float n_dot_l) {
     return shading == Shading::moschos ? beckmann_g2(alpha, n_dot_v, n_dot_l)
                                        : ggx_g2(alpha, n_dot_v, n_dot_l);
@@ -46,15 +53,17 @@ glm::vec3 shade_environment(const LoadedEnvironment& e, Shading shading, const S
         const glm::vec3 diffuse = p.albedo * n_dot_v * cone.x;
         return prefiltered * (specular + diffuse);
     }
+    const glm::vec3 dominant = glm::normalize(glm::mix(p.n, r, dominant_direction_weight(p.alpha)));
     const glm::vec2 ab = e.dfg.lookup(n_dot_v, std::clamp(p.alpha, 0.0f, 1.0f));
     const glm::vec3 specular_weight = p.f0 * ab.x + ab.y;
-    return prefiltered * specular_weight + p.albedo / kPi *
-                                               glm::max(e.sh.irradiance(p.n), glm::vec3(0.0f)) *
-                                               (glm::vec3(1.0f) - specular_weight);
+    return sample_lod(e.chain.levels, dominant, lod) * specular_weight +
+           p.albedo / kPi * glm::max(e.sh.irradiance(p.n), glm::vec3(0.0f)) *
+               (glm::vec3(1.0f) - specular_weight);
 }
 
 glm::vec3 reference_environment_radiance(const LoadedEnvironment& e, Shading shading,
-                                         const SurfacePoint& p, int samples) {
+                                         const SurfacePoint& p, int samples,
+                                         const std::function<bool(glm::vec3)>& visible) {
     const Distribution d = shading == Shading::moschos ? Distribution::beckmann : Distribution::ggx;
     const float n_dot_v = std::max(glm::dot(p.n, p.v), 1e-4f);
     glm::vec3 t, b;
@@ -69,7 +78,7 @@ glm::vec3 reference_environment_radiance(const LoadedEnvironment& e, Shading sha
         const float v_dot_h = glm::dot(p.v, h);
         const glm::vec3 l = 2.0f * v_dot_h * h - p.v;
         const float n_dot_l = glm::dot(p.n, l);
-        if (n_dot_l > 0.0f && v_dot_h > 0.0f) {
+        if (n_dot_l > 0.0f && v_dot_h > 0.0f && (!visible || visible(l))) {
             specular += source.sample(l) * fresnel_schlick(p.f0, v_dot_h) *
                         (g2(shading, p.alpha, n_dot_v, n_dot_l) * v_dot_h / (n_dot_v * hl.z));
         }
@@ -77,7 +86,10 @@ glm::vec3 reference_environment_radiance(const LoadedEnvironment& e, Shading sha
         const float radius = std::sqrt(u.x), phi = 2.0f * kPi * u.y;
         const glm::vec3 c(radius * std::cos(phi), radius * std::sin(phi),
                           std::sqrt(std::max(0.0f, 1.0f - u.x)));
-        diffuse += source.sample(c.x * t + c.y * b + c.z * p.n);
+        const glm::vec3 l_diffuse = c.x * t + c.y * b + c.z * p.n;
+        if (!visible || visible(l_diffuse)) {
+            diffuse += source.sample(l_diffuse);
+        }
     }
     specular /= float(samples);
     diffuse *= p.albedo / float(samples);

@@ -3,6 +3,8 @@
 // gl/shaders/ibl.glsl computes them (the GPU's oracle), and the integral they approximate,
 // estimated by Monte Carlo with many samples (their oracle).
 
+#include <functional>
+
 #include <glm/vec3.hpp>
 
 #include "ibl/environment.h"
@@ -25,7 +27,9 @@ glm::vec3 shade_environment(const LoadedEnvironment& environment, Shading shadin
 // Schlick F, the separable eq. 2.12 G and Lambert for `moschos`; GGX, height-correlated Smith,
 // Schlick and Lambert weighted by 1 − (F0 A + B) for `split_sum`. L from the level-0 cube
 // (bilinear). Specular and diffuse parts importance sampled (`samples` each, Hammersley).
+// `visible`, when given, says whether the environment is seen in direction l (occlusion).
 glm::vec3 reference_environment_radiance(const LoadedEnvironment& environment, Shading shading,
-                                         const SurfacePoint& p, int samples);
+                                         const SurfacePoint& p, int samples,
+                                         const std::function<bool(glm::vec3)>& visible = {});
 
 }  // namespace sl::ibl

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
@@ -78,6 +79,31 @@ double ReferenceRenderer::first_hit(const analytic::EyeRay& ray, double far) con
     hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(rtc_scene_, &context, &hit);
     return hit.hit.geomID == RTC_INVALID_GEOMETRY_ID ? far : double(hit.ray.tfar);
+}
+
+std::optional<ReferenceRenderer::SurfaceHit> ReferenceRenderer::first_surface(
+    const analytic::EyeRay& ray, double far) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit hit{};
+    hit.ray = make_ray(ray.origin, ray.direction, 0.0, far);
+    hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(rtc_scene_, &context, &hit);
+    if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        return std::nullopt;
+    }
+    const Object& object = scene_.objects[hit.hit.geomID];
+    const Mesh& mesh = *object.mesh;
+    const glm::uvec3 triangle = mesh.triangles[hit.hit.primID];
+    const float u = hit.hit.u, v = hit.hit.v;
+    const glm::vec3 local = (1.0f - u - v) * mesh.normals[triangle.x] +
+                            u * mesh.normals[triangle.y] + v * mesh.normals[triangle.z];
+    glm::vec3 normal = glm::normalize(glm::mat3(glm::inverseTranspose(object.transform)) * local);
+    const glm::vec3 geometric(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z);
+    if (glm::dot(geometric, glm::vec3(ray.direction)) > 0.0f) {
+        normal = -normal;  // the back of an open surface, seen from the camera's side
+    }
+    return SurfaceHit{double(hit.ray.tfar), int(hit.hit.geomID), normal};
 }
 
 bool ReferenceRenderer::occluded(const dvec3& from, const dvec3& to) const {

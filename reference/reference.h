@@ -7,6 +7,7 @@
 #include <embree3/rtcore.h>
 
 #include <functional>
+#include <optional>
 
 #include "analytic/in_scattering.h"
 #include "core/image.h"
@@ -32,6 +33,15 @@ public:
     // Distance to the first hit on the scene's meshes, or `far` when there is none.
     double first_hit(const analytic::EyeRay& ray, double far) const;
     bool occluded(const analytic::dvec3& from, const analytic::dvec3& to) const;
+    // The first surface the ray hits before `far`: its distance, object (index into
+    // Scene::objects) and the mesh's interpolated normal in world space, turned towards the ray's
+    // origin like the GPU's two-sided shading.
+    struct SurfaceHit {
+        double t = 0;
+        int object = -1;
+        glm::vec3 normal{0.0f};
+    };
+    std::optional<SurfaceHit> first_surface(const analytic::EyeRay& ray, double far) const;
 
     // I_s of every pixel of the scene's camera at the given size (rows top to bottom); `progress`
     // receives the fraction done.

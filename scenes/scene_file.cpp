@@ -176,6 +176,9 @@ Environment read_environment(TableReader r, const fs::path& base_dir,
     e.prefilter.filtered = r.boolean("filtered", e.prefilter.filtered);
     e.shading = parsed("shading", ibl::parse_shading, e.shading);
     e.skybox = r.boolean("skybox", e.skybox);
+    if (!r.boolean("enabled", true)) {
+        e.file.clear();  // a derived scene turning its base's environment off
+    }
     r.finish();
     return e;
 }

@@ -16,7 +16,8 @@
 //               from SceneSearchPaths::environments, or an equirectangular .exr relative to this
 //               file), intensity, rotation (degrees about +y), face_size (power of two),
 //               prefilter ("importance" | "cone"), distribution ("ggx" | "beckmann"), samples,
-//               filtered (bool), shading ("split-sum" | "moschos"), skybox (bool)
+//               filtered (bool), shading ("split-sum" | "moschos"), skybox (bool), enabled
+//               (bool: false turns a base scene's environment off)
 //   [materials.NAME]  albedo, roughness (microfacet α), f0 = [r, g, b]
 //   [[objects]] name, shape ("mesh" | "box" | "sphere" | "cylinder" | "torus" | "plane"),
 //               the shape's parameters, material, translate, rotate (degrees about x, y, z,

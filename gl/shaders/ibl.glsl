@@ -5,8 +5,9 @@
 //     (eq. 2.10), Schlick F (eq. 2.11), Beckmann G (eq. 2.12, separable Smith), Lambert
 //     (eq. 2.13). The bake stores the cone's cosine-weighted mean L̄; algorithm 6's inv_pdf, the
 //     cone's measure π tan² θ, is applied here, so that with h = n, D(n) π tan² θ = tan² θ / α².
-//   Split-sum (Karis 2013): L̄(r, √α (L-1)) · (F0 A + B) with the DFG table, plus Lambert with
-//     SH9 irradiance weighted by 1 - (F0 A + B).
+//   Split-sum (Karis 2013): L̄(d, √α (L-1)) · (F0 A + B) with the DFG table, d the lobe's dominant
+//     direction (Lagarde & de Rousiers 2014), plus Lambert with SH9 irradiance weighted by
+//     1 - (F0 A + B).
 // Requires frame_uniforms.h and lighting.glsl (PI).
 layout(binding = SL_ENVIRONMENT_UNIT) uniform samplerCube environment_map;
 layout(binding = SL_DFG_UNIT) uniform sampler2D dfg_table;
@@ -105,7 +106,15 @@ vec3 environment_radiance(vec3 n, vec3 v, vec3 albedo, float alpha, vec3 f0) {
         vec3 diffuse = albedo * n_dot_v * level.y;  // albedo/π · (n·l) · π tan² θ
         return prefiltered * (specular + diffuse);
     }
-    vec2 ab = texture(dfg_table, vec2(n_dot_v, sqrt(clamp(alpha, 0.0, 1.0)))).rg;
+    // The lobe's dominant direction leans from r towards n as roughness grows (Lagarde & de
+    // Rousiers 2014, "Moving Frostbite to PBR", listing 22).
+    float smoothness = clamp(1.0 - alpha, 0.0, 1.0);
+    vec3 dominant = normalize(mix(n, r, smoothness * (sqrt(smoothness) + alpha)));
+    prefiltered = textureLod(environment_map, dominant, lod).rgb;
+    // The table's texel centres lie on the ends of its ranges (ibl/microfacet.h DfgTable).
+    float texels = float(textureSize(dfg_table, 0).x);
+    vec2 coordinate = vec2(min(n_dot_v, 1.0), sqrt(clamp(alpha, 0.0, 1.0)));
+    vec2 ab = texture(dfg_table, (coordinate * (texels - 1.0) + 0.5) / texels).rg;
     vec3 specular_weight = f0 * ab.x + ab.y;
     return prefiltered * specular_weight + albedo / PI * sh9_irradiance(n) * (1.0 - specular_weight);
 }
