@@ -57,7 +57,7 @@ EnvironmentTextures::EnvironmentTextures(const Scene& scene) : environment_(scen
     check_errors("uploading the environment");
 }
 
-void EnvironmentTextures::set_uniforms(shared::FrameUniforms& u) const {
+void EnvironmentTextures::set_uniforms(shared::FrameUniforms& u, const Environment& current) const {
     u.environment = glm::vec4(0.0f);
     u.environment_options = glm::vec4(0.0f);
     if (!loaded_) {
@@ -65,11 +65,12 @@ void EnvironmentTextures::set_uniforms(shared::FrameUniforms& u) const {
     }
     const ibl::PrefilteredChain& chain = loaded_->chain;
     const bool cone = chain.settings.method == ibl::PrefilterMethod::cone;
-    u.environment = glm::vec4(1.0f, environment_.shading == ibl::Shading::moschos ? 0.0f : 1.0f,
+    u.environment = glm::vec4(1.0f, current.shading == ibl::Shading::moschos ? 0.0f : 1.0f,
                               float(chain.levels.size()), cone ? 1.0f : 0.0f);
     u.environment_options =
-        glm::vec4(environment_.skybox ? 1.0f : 0.0f,
-                  chain.settings.distribution == ibl::Distribution::ggx ? 1.0f : 0.0f, 0.0f, 0.0f);
+        glm::vec4(current.skybox ? 1.0f : 0.0f,
+                  chain.settings.distribution == ibl::Distribution::ggx ? 1.0f : 0.0f,
+                  current.intensity, 0.0f);
     for (size_t i = 0; i < 9; ++i) {
         u.environment_sh9[i] = glm::vec4(loaded_->sh.coefficients[i], 0.0f);
     }

@@ -19,15 +19,17 @@ public:
     // placeholders so that the samplers stay complete.
     explicit EnvironmentTextures(const Scene& scene);
 
-    // Fills the frame's environment members.
-    void set_uniforms(shared::FrameUniforms& uniforms) const;
+    // Fills the frame's environment members; intensity and skybox come from `current` (the scene's
+    // environment now: those two change without a new bake), the rest from what was loaded.
+    void set_uniforms(shared::FrameUniforms& uniforms, const Environment& current) const;
     // Binds the cube map and the DFG table to their units (SL_ENVIRONMENT_UNIT, SL_DFG_UNIT).
     void bind() const;
     bool enabled() const { return loaded_ != nullptr; }
-    bool skybox() const { return enabled() && environment_.skybox; }
     // What was loaded (nullptr without an environment).
     const ibl::LoadedEnvironment* loaded() const { return loaded_.get(); }
     TextureViews textures() const;
+    // What the textures were made from (file, size, prefilter): a change needs new textures.
+    const Environment& source() const { return environment_; }
 
 private:
     Environment environment_;

@@ -193,7 +193,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
                                       {GL_FRAGMENT_SHADER, "gl/shaders/skybox.frag"}});
     empty_vertex_array_ = create_vertex_array();
     environment_ = std::make_unique<EnvironmentTextures>(scene);
-    environment_->set_uniforms(uniforms_);
+    environment_->set_uniforms(uniforms_, scene.environment);
 
     allocate_shadow(options.shadow);
 
@@ -305,7 +305,7 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         allocate_shadow(wanted);
     }
     uniforms_.shadow = shadow_uniform(shadow_);
-    environment_->set_uniforms(uniforms_);
+    environment_->set_uniforms(uniforms_, scene_.environment);
     GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, uniform_buffer_.id());
     GL.NamedBufferSubData(uniform_buffer_.id(), 0, sizeof(uniforms_), &uniforms_);
     GL.Disable(GL_BLEND);
@@ -362,7 +362,7 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         GL.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
         environment_->bind();
         draw_objects(surface_program_.id(), true);
-        if (environment_->skybox()) {
+        if (environment_->enabled() && scene_.environment.skybox) {
             // Where no surface was drawn (depth 1); the depth buffer stays as the methods expect.
             GL.DepthFunc(GL_LEQUAL);
             GL.DepthMask(GL_FALSE);

@@ -62,13 +62,9 @@ LoadedEnvironment load_environment(const Environment& environment) {
     LoadedEnvironment loaded;
     const Image equirect = load_equirect(environment.file);
     loaded.cube = cube_from_equirect(equirect, environment.face_size, environment.rotation_degrees);
-    for (Image& face : loaded.cube.faces) {
-        for (float& v : face.rgb)
-            v *= environment.intensity;
-    }
-    loaded.key =
-        fmt::format("{:016x} face={} rotation={} intensity={}", file_hash(environment.file),
-                    environment.face_size, environment.rotation_degrees, environment.intensity);
+    loaded.intensity = environment.intensity;
+    loaded.key = fmt::format("{:016x} face={} rotation={}", file_hash(environment.file),
+                             environment.face_size, environment.rotation_degrees);
     loaded.sh = project_sh9(loaded.cube);
     loaded.load_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -20,10 +20,11 @@ namespace sl::ibl {
 Image load_equirect(const std::filesystem::path& path);
 
 struct LoadedEnvironment {
-    CubeMap cube;  // level 0, intensity applied
+    CubeMap cube;  // level 0, as in the file (the intensity is applied when shading)
     Sh9 sh;
     PrefilteredChain chain;
     DfgTable dfg;
+    float intensity = 1.0f;   // radiance scale, applied when shading: one cached bake for all
     std::string key;          // the cache key of the source (file contents and conversion)
     double load_seconds = 0;  // reading and converting (the prefilter's time is in chain)
 };

@@ -51,12 +51,12 @@ glm::vec3 shade_environment(const LoadedEnvironment& e, Shading shading, const S
         const float g = beckmann_g1(p.alpha, n_dot_v) * beckmann_g1(p.alpha, n_dot_v);
         const glm::vec3 specular = cone.y * fresnel_schlick(p.f0, n_dot_v) * g / (4.0f * n_dot_v);
         const glm::vec3 diffuse = p.albedo * n_dot_v * cone.x;
-        return prefiltered * (specular + diffuse);
+        return e.intensity * prefiltered * (specular + diffuse);
     }
     const glm::vec3 dominant = glm::normalize(glm::mix(p.n, r, dominant_direction_weight(p.alpha)));
     const glm::vec2 ab = e.dfg.lookup(n_dot_v, std::clamp(p.alpha, 0.0f, 1.0f));
     const glm::vec3 specular_weight = p.f0 * ab.x + ab.y;
-    return sample_lod(e.chain.levels, dominant, lod) * specular_weight +
+    return e.intensity * sample_lod(e.chain.levels, dominant, lod) * specular_weight +
            p.albedo / kPi * glm::max(e.sh.irradiance(p.n), glm::vec3(0.0f)) *
                (glm::vec3(1.0f) - specular_weight);
 }
@@ -97,7 +97,7 @@ glm::vec3 reference_environment_radiance(const LoadedEnvironment& e, Shading sha
         const glm::vec2 ab = e.dfg.lookup(n_dot_v, std::clamp(p.alpha, 0.0f, 1.0f));
         diffuse *= glm::vec3(1.0f) - (p.f0 * ab.x + ab.y);
     }
-    return specular + diffuse;
+    return e.intensity * (specular + diffuse);
 }
 
 }  // namespace sl::ibl

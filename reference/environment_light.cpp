@@ -45,7 +45,9 @@ Image render_environment_reference(const Scene& scene, const ibl::LoadedEnvironm
                 const std::optional<ReferenceRenderer::SurfaceHit> hit =
                     renderer.first_surface({origin, direction}, far);
                 if (!hit) {
-                    image.set(x, y, environment.chain.levels[0].sample(glm::vec3(direction)));
+                    image.set(x, y,
+                              environment.intensity *
+                                  environment.chain.levels[0].sample(glm::vec3(direction)));
                     continue;
                 }
                 if (object_ids) {

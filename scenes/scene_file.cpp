@@ -137,17 +137,19 @@ Medium read_medium(TableReader r) {
 Environment read_environment(TableReader r, const fs::path& base_dir,
                              const SceneSearchPaths& paths) {
     Environment e;
+    // `enabled = false`: a derived scene turning its base's environment off (no file needed).
+    const bool enabled = r.boolean("enabled", true);
     const std::string file = r.string("file", "");
-    if (file.empty()) {
+    if (file.empty() && enabled) {
         r.error("file", "expected an environment: a studio light's name or an .exr file");
     }
     std::error_code ec;
     if (fs::path(file).extension() == ".exr" || file.find('/') != std::string::npos) {
         e.file = fs::path(file).is_relative() ? base_dir / file : fs::path(file);
-    } else {
+    } else if (!file.empty()) {
         e.file = paths.environments / (file + ".exr");
     }
-    if (!fs::is_regular_file(e.file, ec)) {
+    if (enabled && !fs::is_regular_file(e.file, ec)) {
         r.error("file", fmt::format("no environment '{}' ({} does not exist; the studio lights "
                                     "come with Debian's blender-data)",
                                     file, e.file.string()));
@@ -176,8 +178,8 @@ Environment read_environment(TableReader r, const fs::path& base_dir,
     e.prefilter.filtered = r.boolean("filtered", e.prefilter.filtered);
     e.shading = parsed("shading", ibl::parse_shading, e.shading);
     e.skybox = r.boolean("skybox", e.skybox);
-    if (!r.boolean("enabled", true)) {
-        e.file.clear();  // a derived scene turning its base's environment off
+    if (!enabled) {
+        e.file.clear();
     }
     r.finish();
     return e;
@@ -575,6 +577,20 @@ std::string scene_view_toml(const Scene& scene, const std::string& base, const s
         "a1 = {}\n",
         toml_vec3(m.sigma_s), toml_vec3(m.sigma_a), toml_quoted(to_string(m.phase)),
         toml_float(m.g), toml_quoted(to_string(m.model)), toml_float(m.a0), toml_float(m.a1));
+    const Environment& e = scene.environment;
+    if (!e.enabled()) {
+        text += "\n[environment]\nenabled = false\n";
+        return text;
+    }
+    text += fmt::format(
+        "\n[environment]\nfile = {}\nintensity = {}\nrotation = {}\nface_size = {}\n"
+        "prefilter = {}\ndistribution = {}\nsamples = {}\nfiltered = {}\nshading = {}\n"
+        "skybox = {}\n",
+        toml_quoted(fs::absolute(e.file).string()), toml_float(e.intensity),
+        toml_float(e.rotation_degrees), e.face_size,
+        toml_quoted(ibl::to_string(e.prefilter.method)),
+        toml_quoted(ibl::to_string(e.prefilter.distribution)), e.prefilter.samples,
+        e.prefilter.filtered, toml_quoted(ibl::to_string(e.shading)), e.skybox);
     return text;
 }
 

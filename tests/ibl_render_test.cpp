@@ -88,7 +88,7 @@ Comparison compare_with_cpu(const Scene& scene) {
                     environment, scene.environment.shading,
                     {n, v, material.albedo, material.roughness, material.f0});
             } else {
-                expected = environment.chain.levels[0].sample(glm::vec3(d));
+                expected = environment.intensity * environment.chain.levels[0].sample(glm::vec3(d));
             }
             const glm::vec3 got = frame.surface.at(x, y);
             const double e = glm::dot(got - expected, got - expected);

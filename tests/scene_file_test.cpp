@@ -261,6 +261,38 @@ TEST(SceneFile, SavedViewReadsBackExactly) {
     EXPECT_EQ(back.medium.phase, scene.medium.phase);
     EXPECT_EQ(back.medium.g, scene.medium.g);
     EXPECT_EQ(back.triangle_count(), scene.triangle_count());
+    EXPECT_FALSE(back.environment.enabled());
+}
+
+// A saved view keeps the environment as the viewer left it: a studio light with every setting
+// read back exactly, or off on a base scene that had one.
+TEST(SceneFile, SavedViewKeepsTheEnvironment) {
+    Scene scene = load_canonical("ibl-spheres");
+    ASSERT_TRUE(scene.environment.enabled());
+    scene.environment.file = SceneSearchPaths::defaults().environments / "forest.exr";
+    scene.environment.intensity = 0.37f;
+    scene.environment.rotation_degrees = 12.5f;
+    scene.environment.face_size = 128;
+    scene.environment.prefilter.method = ibl::PrefilterMethod::cone;
+    scene.environment.prefilter.samples = 77;
+    scene.environment.shading = ibl::Shading::moschos;
+    scene.environment.skybox = false;
+    TempDir dir;
+    write_text(dir / "saved.toml", scene_view_toml(scene, "ibl-spheres", "saved"));
+    const Environment back =
+        load_scene((dir / "saved.toml").string(), SceneSearchPaths::defaults()).environment;
+    EXPECT_EQ(back.file, scene.environment.file);
+    EXPECT_EQ(back.intensity, 0.37f);
+    EXPECT_EQ(back.rotation_degrees, 12.5f);
+    EXPECT_EQ(back.face_size, 128);
+    EXPECT_EQ(back.prefilter.describe(), scene.environment.prefilter.describe());
+    EXPECT_EQ(back.shading, ibl::Shading::moschos);
+    EXPECT_FALSE(back.skybox);
+
+    scene.environment = Environment{};
+    write_text(dir / "off.toml", scene_view_toml(scene, "ibl-spheres", "off"));
+    EXPECT_FALSE(load_scene((dir / "off.toml").string(), SceneSearchPaths::defaults())
+                     .environment.enabled());
 }
 
 }  // namespace

@@ -48,7 +48,8 @@ SL_UNIFORM_BLOCK(FrameUniforms, SL_FRAME_UNIFORMS_BINDING) {
     // algorithms 7-8, 1 split-sum), z = prefiltered levels, w = 1 for the cone (figure 3.24)
     // chain, 0 for the importance-sampled one.
     vec4 environment;
-    vec4 environment_options;  // x = 1 to draw the skybox, y = distribution (0 Beckmann, 1 GGX)
+    vec4 environment_options;  // x = 1 to draw the skybox, y = distribution (0 Beckmann, 1 GGX),
+                               // z = intensity (radiance scale)
     vec4 environment_sh9[9];   // rgb: L_lm in ibl/sh9.h's order and axes
     // Per cone level: x = roughness (figure 3.24), y = tan² θ, z = tan² θ / α² (D(n)·π tan² θ).
     vec4 environment_levels[SL_MAX_ENVIRONMENT_LEVELS];

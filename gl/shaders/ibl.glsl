@@ -104,7 +104,7 @@ vec3 environment_radiance(vec3 n, vec3 v, vec3 albedo, float alpha, vec3 f0) {
         float g = beckmann_g1(alpha, n_dot_v) * beckmann_g1(alpha, n_dot_v);
         vec3 specular = level.z * fresnel_schlick(f0, n_dot_v) * g / (4.0 * n_dot_v);
         vec3 diffuse = albedo * n_dot_v * level.y;  // albedo/π · (n·l) · π tan² θ
-        return prefiltered * (specular + diffuse);
+        return frame.environment_options.z * prefiltered * (specular + diffuse);
     }
     // The lobe's dominant direction leans from r towards n as roughness grows (Lagarde & de
     // Rousiers 2014, "Moving Frostbite to PBR", listing 22).
@@ -116,5 +116,6 @@ vec3 environment_radiance(vec3 n, vec3 v, vec3 albedo, float alpha, vec3 f0) {
     vec2 coordinate = vec2(min(n_dot_v, 1.0), sqrt(clamp(alpha, 0.0, 1.0)));
     vec2 ab = texture(dfg_table, (coordinate * (texels - 1.0) + 0.5) / texels).rg;
     vec3 specular_weight = f0 * ab.x + ab.y;
-    return prefiltered * specular_weight + albedo / PI * sh9_irradiance(n) * (1.0 - specular_weight);
+    return frame.environment_options.z *
+           (prefiltered * specular_weight + albedo / PI * sh9_irradiance(n) * (1.0 - specular_weight));
 }

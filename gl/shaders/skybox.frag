@@ -14,7 +14,7 @@ void main() {
     vec4 far_point = frame.inverse_view_projection * vec4(ndc, 1.0, 1.0);
     vec3 to_far = far_point.xyz / far_point.w - frame.camera_position.xyz;
     vec3 direction = normalize(far_point.xyz / far_point.w - near_point.xyz / near_point.w);
-    vec3 radiance = textureLod(environment_map, direction, 0.0).rgb;
+    vec3 radiance = frame.environment_options.z * textureLod(environment_map, direction, 0.0).rgb;
     surface_radiance = vec4(radiance * transmittance(length(to_far)), 1.0);
     gl_FragDepth = 1.0;  // drawn with GL_LEQUAL: only where no surface was
 }
