@@ -3,7 +3,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -386,15 +385,8 @@ PrefilteredChain cached_prefilter(const CubeMap& source, const std::string& sour
         return std::move(*cached);
     }
     PrefilteredChain chain = prefilter(source, settings);
-    std::error_code ec;
-    std::filesystem::create_directories(file.parent_path(), ec);
-    const std::filesystem::path temporary = file.string() + fmt::format(".{}.tmp", getpid());
-    try {
-        write_chain(chain, temporary);
-        std::filesystem::rename(temporary, file, ec);
-    } catch (const Error&) {
-    }
-    std::filesystem::remove(temporary, ec);
+    write_cache_file(
+        file, [&](const std::filesystem::path& temporary) { write_chain(chain, temporary); });
     return chain;
 }
 

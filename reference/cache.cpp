@@ -1,7 +1,6 @@
 #include "reference/cache.h"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include "core/cache.h"
 #include "core/error.h"
@@ -31,16 +30,8 @@ Image cached_reference(const Scene& scene, int width, int height, const Referenc
     }
     const ReferenceRenderer renderer(scene);
     Image image = renderer.render(width, height, options, progress);
-    const std::filesystem::path file = cache_file(scene, width, height, options);
-    std::error_code ec;
-    std::filesystem::create_directories(file.parent_path(), ec);
-    const std::filesystem::path temporary = file.string() + fmt::format(".{}.tmp", getpid());
-    try {
-        write_exr(image, temporary);
-        std::filesystem::rename(temporary, file, ec);
-    } catch (const Error&) {
-    }
-    std::filesystem::remove(temporary, ec);
+    write_cache_file(cache_file(scene, width, height, options),
+                     [&](const std::filesystem::path& temporary) { write_exr(image, temporary); });
     return image;
 }
 

@@ -71,24 +71,24 @@ RTCRay make_ray(const dvec3& origin, const dvec3& direction, double t_near, doub
 
 }  // namespace
 
-double ReferenceRenderer::first_hit(const analytic::EyeRay& ray, double far) const {
+RTCRayHit ReferenceRenderer::intersect(const analytic::EyeRay& ray, double far) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit hit{};
     hit.ray = make_ray(ray.origin, ray.direction, 0.0, far);
     hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(rtc_scene_, &context, &hit);
+    return hit;
+}
+
+double ReferenceRenderer::first_hit(const analytic::EyeRay& ray, double far) const {
+    const RTCRayHit hit = intersect(ray, far);
     return hit.hit.geomID == RTC_INVALID_GEOMETRY_ID ? far : double(hit.ray.tfar);
 }
 
 std::optional<ReferenceRenderer::SurfaceHit> ReferenceRenderer::first_surface(
     const analytic::EyeRay& ray, double far) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit hit{};
-    hit.ray = make_ray(ray.origin, ray.direction, 0.0, far);
-    hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(rtc_scene_, &context, &hit);
+    const RTCRayHit hit = intersect(ray, far);
     if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         return std::nullopt;
     }

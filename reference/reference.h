@@ -49,6 +49,8 @@ public:
                  const std::function<void(double)>& progress = {}) const;
 
 private:
+    RTCRayHit intersect(const analytic::EyeRay& ray, double far) const;
+
     const Scene& scene_;
     RTCDevice device_ = nullptr;
     RTCScene rtc_scene_ = nullptr;
