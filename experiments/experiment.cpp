@@ -199,9 +199,8 @@ std::string Cell::settings_text() const {
 std::string Cell::id() const {
     // A scene file is named by its file name: ids (and image names) do not depend on where the
     // experiment was run.
-    const std::string label = scene.find('/') != std::string::npos
-                                  ? std::filesystem::path(scene).stem().string()
-                                  : scene;
+    const std::string label =
+        scene.find('/') != std::string::npos ? std::filesystem::path(scene).stem().string() : scene;
     std::string id = fmt::format("{}.{}.{}", label, method, size());
     for (const Setting& s : settings) {
         id += "." + s.name + "=" + s.value;
