@@ -16,7 +16,7 @@ namespace sl::gl {
 class EnvironmentTextures {
 public:
     // Loads (and prefilters, or reads from the cache) the scene's environment; with none, 1x1
-    // placeholders so that the samplers stay complete.
+    // stand-in textures so that the samplers stay complete.
     explicit EnvironmentTextures(const Scene& scene);
 
     // Fills the frame's environment members; intensity and skybox come from `current` (the scene's

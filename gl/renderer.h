@@ -77,7 +77,7 @@ public:
     // The shadow map settings of the last frame drawn (the method's, or the options').
     const ShadowSettings& shadow() const { return shadow_; }
     const shared::FrameUniforms& uniforms() const { return uniforms_; }
-    // The scene's image-based lighting (placeholders when it has no environment).
+    // The scene's image-based lighting (1x1 stand-ins when it has no environment).
     const EnvironmentTextures& environment() const { return *environment_; }
 
 private:
