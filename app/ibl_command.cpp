@@ -43,17 +43,14 @@ struct PrefilterArguments {
     int brute_force_grid = 0;
 };
 
-// A studio light's name (Blender's, e.g. "courtyard") or an .exr path.
+// A studio light's name (Blender's, e.g. "courtyard") or an .exr path, as scene files name them.
 fs::path resolve_environment(const std::string& name) {
+    const fs::path file = environment_file(name, {}, SceneSearchPaths::defaults());
     std::error_code ec;
-    if (fs::is_regular_file(name, ec)) {
-        return name;
+    if (!fs::is_regular_file(file, ec)) {
+        fail("no environment '{}' ({} does not exist)", name, file.string());
     }
-    const fs::path studio = SceneSearchPaths::defaults().environments / (name + ".exr");
-    if (fs::is_regular_file(studio, ec)) {
-        return studio;
-    }
-    fail("no environment '{}' (neither a file nor {})", name, studio.string());
+    return file;
 }
 
 int run_prefilter(const PrefilterArguments& a) {

@@ -77,14 +77,10 @@ void EnvironmentTextures::set_uniforms(shared::FrameUniforms& u, const Environme
     // Figure 3.24 per level, for the seed's shading: roughness, tan² θ, tan² θ / α².
     const auto& table = ibl::moschos_cone_levels();
     for (size_t l = 0; l < SL_MAX_ENVIRONMENT_LEVELS; ++l) {
-        const size_t row = std::min(l, table.size() - 1);
-        const float tan_theta =
-            std::tan(table[row].cone_degrees * std::numbers::pi_v<float> / 180.0f);
-        const float alpha = table[row].roughness;
-        const float roughness = l < chain.roughness.size() ? chain.roughness[l] : alpha;
-        u.environment_levels[l] =
-            glm::vec4(roughness, tan_theta * tan_theta,
-                      alpha > 0.0f ? tan_theta * tan_theta / (alpha * alpha) : 0.0f, 0.0f);
+        const float roughness = l < chain.roughness.size()
+                                    ? chain.roughness[l]
+                                    : table[std::min(l, table.size() - 1)].roughness;
+        u.environment_levels[l] = glm::vec4(roughness, ibl::moschos_cone_measure(l), 0.0f);
     }
 }
 

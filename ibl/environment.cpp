@@ -4,10 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <mutex>
+#include <optional>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/hash.h"
 
 namespace sl::ibl {
 
@@ -47,17 +51,31 @@ uint64_t file_hash(const std::filesystem::path& path) {
     if (!in) {
         fail("{}: cannot read", path.string());
     }
-    uint64_t hash = 0xCBF29CE484222325ull;
+    uint64_t hash = kFnv1aOffset;
     char buffer[1 << 16];
     while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) {
-        for (std::streamsize i = 0; i < in.gcount(); ++i) {
-            hash = (hash ^ uint8_t(buffer[i])) * 0x100000001B3ull;
-        }
+        hash = fnv1a(std::string_view(buffer, size_t(in.gcount())), hash);
     }
     return hash;
 }
 
+bool same_bake(const Environment& a, const Environment& b) {
+    return a.file == b.file && a.face_size == b.face_size &&
+           a.rotation_degrees == b.rotation_degrees &&
+           a.prefilter.describe() == b.prefilter.describe();
+}
+
 LoadedEnvironment load_environment(const Environment& environment) {
+    static std::mutex mutex;
+    static std::optional<std::pair<Environment, LoadedEnvironment>> last;
+    const std::lock_guard lock(mutex);
+    if (last && same_bake(last->first, environment)) {
+        LoadedEnvironment copy = last->second;
+        copy.intensity = environment.intensity;
+        copy.load_seconds = 0.0;
+        copy.chain.seconds = 0.0;
+        return copy;
+    }
     const auto start = std::chrono::steady_clock::now();
     LoadedEnvironment loaded;
     const Image equirect = load_equirect(environment.file);
@@ -70,6 +88,7 @@ LoadedEnvironment load_environment(const Environment& environment) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     loaded.chain = cached_prefilter(loaded.cube, loaded.key, environment.prefilter);
     loaded.dfg = compute_dfg_table(environment.prefilter.distribution);
+    last.emplace(environment, loaded);
     return loaded;
 }
 

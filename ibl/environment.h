@@ -31,6 +31,12 @@ struct LoadedEnvironment {
 
 // Content hash of a file (FNV-1a 64), the part of a cache key that follows the file's bytes.
 uint64_t file_hash(const std::filesystem::path& path);
+// Whether two settings bake the same cube, SH9 and chain (file, face size, rotation, prefilter):
+// intensity, skybox and shading are applied when shading.
+bool same_bake(const Environment& a, const Environment& b);
+// The environment loaded and baked (the chain from the disk cache when it is there). The last
+// bake is kept in memory, so renderers of the same environment one after another (the harness's
+// cells, the viewer's resizes) read and convert the file once.
 LoadedEnvironment load_environment(const Environment& environment);
 
 }  // namespace sl::ibl

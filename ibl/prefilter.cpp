@@ -19,6 +19,8 @@
 
 #include "core/cache.h"
 #include "core/error.h"
+#include "core/hash.h"
+#include "core/metrics.h"
 
 namespace sl::ibl {
 
@@ -120,6 +122,13 @@ const std::vector<ConeLevel>& moschos_cone_levels() {
         {0.0f, 0.0f},  {0.01f, 1.0f}, {0.05f, 6.0f}, {0.1f, 12.0f}, {0.2f, 23.0f}, {0.3f, 32.0f},
         {0.4f, 40.0f}, {0.5f, 47.0f}, {0.6f, 52.0f}, {0.7f, 56.0f}, {1.0f, 65.0f}};
     return levels;
+}
+
+glm::vec2 moschos_cone_measure(size_t level) {
+    const auto& table = moschos_cone_levels();
+    const ConeLevel row = table[std::min(level, table.size() - 1)];
+    const float t = std::tan(row.cone_degrees * kPi / 180.0f);
+    return {t * t, row.roughness > 0.0f ? t * t / (row.roughness * row.roughness) : 0.0f};
 }
 
 float importance_roughness(int level, int levels) {
@@ -285,16 +294,7 @@ double relative_rmse(const CubeMap& estimate, const CubeMap& truth) {
     if (estimate.size != truth.size) {
         fail("relative_rmse: face sizes {} and {} differ", estimate.size, truth.size);
     }
-    double error = 0.0, norm = 0.0;
-    for (int f = 0; f < 6; ++f) {
-        const std::vector<float>& e = estimate.faces[size_t(f)].rgb;
-        const std::vector<float>& t = truth.faces[size_t(f)].rgb;
-        for (size_t i = 0; i < e.size(); ++i) {
-            error += double(e[i] - t[i]) * double(e[i] - t[i]);
-            norm += double(t[i]) * double(t[i]);
-        }
-    }
-    return norm > 0.0 ? std::sqrt(error / norm) : std::sqrt(error);
+    return compare_images(faces_to_strip(estimate), faces_to_strip(truth)).rel_rmse;
 }
 
 // ---- the disk cache -------------------------------------------------------------------------
@@ -302,14 +302,6 @@ double relative_rmse(const CubeMap& estimate, const CubeMap& truth) {
 namespace {
 
 constexpr char kMagic[8] = {'S', 'L', 'I', 'B', 'L', 'C', '0', '1'};
-
-uint64_t fnv1a(const std::string& text) {
-    uint64_t hash = 0xCBF29CE484222325ull;
-    for (unsigned char c : text) {
-        hash = (hash ^ c) * 0x100000001B3ull;
-    }
-    return hash;
-}
 
 std::optional<PrefilteredChain> read_chain(const std::filesystem::path& file,
                                            const PrefilterSettings& settings) {

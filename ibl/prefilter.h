@@ -34,6 +34,10 @@ struct ConeLevel {
     float cone_degrees;
 };
 const std::vector<ConeLevel>& moschos_cone_levels();
+// What the seed's shading (Moschos algorithms 7-8) multiplies by at figure 3.24 row `level`
+// (clamped to the table): the cone's measure over π, tan² θ, and Beckmann's D(n) = 1/(π α²)
+// times the measure π tan² θ, i.e. tan² θ / α² (0 on row 0, which has no cone).
+glm::vec2 moschos_cone_measure(size_t level);
 
 struct PrefilteredChain {
     PrefilterSettings settings;

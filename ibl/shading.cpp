@@ -14,16 +14,9 @@ constexpr float kPi = std::numbers::pi_v<float>;
 
 // Figure 3.24 per level: tan² θ and tan² θ / α² (gl/environment_textures.cpp, the same values).
 glm::vec2 cone_terms(float lod) {
-    const auto& table = moschos_cone_levels();
-    auto at = [&](size_t l) {
-        const ConeLevel row = table[std::min(l, table.size() - 1)];
-        const float t = std::tan(row.cone_degrees * kPi / 180.0f);
-        return glm::vec2(t * t,
-                         row.roughness > 0.0f ? t * t / (row.roughness * row.roughness) : 0.0f);
-    };
     const size_t l0 = size_t(lod);
     const float f = lod - float(l0);
-    return at(l0) * (1.0f - f) + at(l0 + 1) * f;
+    return moschos_cone_measure(l0) * (1.0f - f) + moschos_cone_measure(l0 + 1) * f;
 }
 
 // How far the split-sum lobe's dominant direction stays at r rather than n (Lagarde & de

@@ -144,10 +144,8 @@ Environment read_environment(TableReader r, const fs::path& base_dir,
         r.error("file", "expected an environment: a studio light's name or an .exr file");
     }
     std::error_code ec;
-    if (fs::path(file).extension() == ".exr" || file.find('/') != std::string::npos) {
-        e.file = fs::path(file).is_relative() ? base_dir / file : fs::path(file);
-    } else if (!file.empty()) {
-        e.file = paths.environments / (file + ".exr");
+    if (!file.empty()) {
+        e.file = environment_file(file, base_dir, paths);
     }
     if (enabled && !fs::is_regular_file(e.file, ec)) {
         r.error("file", fmt::format("no environment '{}' ({} does not exist; the studio lights "
@@ -529,6 +527,14 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
     }
     top.finish();
     return scene;
+}
+
+fs::path environment_file(const std::string& name, const fs::path& dir,
+                          const SceneSearchPaths& paths) {
+    if (fs::path(name).extension() == ".exr" || name.find('/') != std::string::npos) {
+        return fs::path(name).is_relative() ? dir / name : fs::path(name);
+    }
+    return paths.environments / (name + ".exr");
 }
 
 Scene load_scene_file(const fs::path& path, const SceneSearchPaths& paths) {

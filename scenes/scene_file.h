@@ -42,6 +42,10 @@ struct SceneSearchPaths {
 };
 
 Scene load_scene_file(const std::filesystem::path& path, const SceneSearchPaths& paths);
+// An environment as a scene file or the command line names it: an .exr (or any path with a '/')
+// relative to `dir`, else a studio light's name in paths.environments. Existence is not checked.
+std::filesystem::path environment_file(const std::string& name, const std::filesystem::path& dir,
+                                       const SceneSearchPaths& paths);
 // `origin` names the text in error messages (a path or "multiple:40").
 Scene parse_scene(const std::string& text, const std::string& origin,
                   const std::filesystem::path& base_dir, const SceneSearchPaths& paths);

@@ -424,12 +424,8 @@ void Viewer::draw_frame() {
     }
     // An environment edited in the panel (file, size, rotation, prefilter) needs its chain baked
     // (or read from the cache) again; intensity, skybox and shading are uniforms.
-    const Environment* baked = renderer_ ? &renderer_->environment().source() : nullptr;
-    const Environment& wanted = scene_.environment;
     const bool rebake =
-        baked && (baked->file != wanted.file || baked->face_size != wanted.face_size ||
-                  baked->rotation_degrees != wanted.rotation_degrees ||
-                  baked->prefilter.describe() != wanted.prefilter.describe());
+        renderer_ && !ibl::same_bake(renderer_->environment().source(), scene_.environment);
     if (!renderer_ || rebake || w != width_ || h != height_) {
         renderer_.reset();
         renderer_ = std::make_unique<gl::SceneRenderer>(
