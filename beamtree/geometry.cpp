@@ -129,7 +129,10 @@ Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut
 }
 
 Polygon convex_polygon_on_plane(std::vector<dvec3> points, const Plane& plane, double epsilon) {
-    // Andrew's monotone chain in the plane's basis; interior and repeated points drop out.
+    // Graham scan around the centroid. The angular order needs no primary axis: a monotone chain
+    // sorted along one axis misorders the points of an edge parallel to the other axis as soon as
+    // their coordinates differ in the last bit (cut points of a clipped cell do), and then drops
+    // corners. Interior, repeated and collinear points (within epsilon) drop out.
     if (points.size() < 3) {
         return Polygon();
     }
@@ -137,28 +140,44 @@ Polygon convex_polygon_on_plane(std::vector<dvec3> points, const Plane& plane, d
     const dvec3 u = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, dvec3(1, 0, 0))
                                                        : glm::cross(n, dvec3(0, 1, 0)));
     const dvec3 v = glm::cross(n, u);
-    std::sort(points.begin(), points.end(), [&](const dvec3& a, const dvec3& b) {
-        const double au = glm::dot(a, u), bu = glm::dot(b, u);
-        return au < bu || (au == bu && glm::dot(a, v) < glm::dot(b, v));
+    dvec3 center(0.0);
+    for (const dvec3& p : points) {
+        center += p;
+    }
+    center /= double(points.size());
+    struct Polar {
+        double angle, radius;
+        dvec3 point;
+    };
+    std::vector<Polar> polar;
+    polar.reserve(points.size());
+    for (const dvec3& p : points) {
+        const dvec3 d = p - center;
+        polar.push_back({std::atan2(glm::dot(d, v), glm::dot(d, u)), glm::length(d), p});
+    }
+    // Counter-clockwise around n, starting at the point farthest from the centroid: a hull vertex.
+    std::sort(polar.begin(), polar.end(), [](const Polar& a, const Polar& b) {
+        return a.angle < b.angle || (a.angle == b.angle && a.radius < b.radius);
     });
+    const auto first =
+        std::max_element(polar.begin(), polar.end(),
+                         [](const Polar& a, const Polar& b) { return a.radius < b.radius; });
+    std::rotate(polar.begin(), first, polar.end());
     // A left turn by more than epsilon (as a distance from the chord) keeps the middle point.
     auto left_turn = [&](const dvec3& o, const dvec3& a, const dvec3& b) {
         const double chord = glm::length(b - o);
         return glm::dot(glm::cross(a - o, b - o), n) > epsilon * chord;
     };
-    std::vector<dvec3> hull(2 * points.size());
-    size_t k = 0;
-    for (size_t i = 0; i < points.size(); ++i) {
-        while (k >= 2 && !left_turn(hull[k - 2], hull[k - 1], points[i]))
-            --k;
-        hull[k++] = points[i];
+    std::vector<dvec3> hull;
+    hull.reserve(polar.size() + 1);
+    for (size_t i = 0; i <= polar.size(); ++i) {
+        const dvec3& p = polar[i % polar.size()].point;  // closes on the first point
+        while (hull.size() >= 2 && !left_turn(hull[hull.size() - 2], hull.back(), p)) {
+            hull.pop_back();
+        }
+        hull.push_back(p);
     }
-    for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-        while (k >= lower && !left_turn(hull[k - 2], hull[k - 1], points[i]))
-            --k;
-        hull[k++] = points[i];
-    }
-    hull.resize(k > 0 ? k - 1 : 0);
+    hull.pop_back();  // the first point again
     if (hull.size() < 3) {
         return Polygon();
     }

@@ -81,6 +81,55 @@ TEST(Geometry, SplitConservesArea) {
     EXPECT_TRUE(on.front.empty() && on.back.empty());
 }
 
+// The convex polygon of points on a plane keeps exactly the corners and the area of its hull when
+// the points also lie along its edges, repeat with last-bit differences, or fill its inside, and
+// when its edges run along the plane's basis axes (cut points of clipped cells do all of this).
+TEST(Geometry, ConvexPolygonOnPlaneIsRobustToRoundOff) {
+    std::mt19937 rng(3);
+    auto ulps = [&](double x) {
+        const int k = int(rng() % 7) - 3;
+        for (int i = 0; i < std::abs(k); ++i)
+            x = std::nextafter(x, k > 0 ? INFINITY : -INFINITY);
+        return x;
+    };
+    const double epsilon = 2.4e-8;
+    for (int i = 0; i < 3000; ++i) {
+        // A rectangle (often a sliver), in an axis plane or a random one, centred far from the
+        // origin, so that every coordinate carries round-off.
+        const bool axis_plane = i % 2 == 0;
+        const dvec3 normal = axis_plane ? dvec3(0, 1, 0) : random_unit(rng);
+        const bt::Plane plane{normal, 0.0};
+        const dvec3 a = glm::normalize(
+            axis_plane
+                ? dvec3(1, 0, 0)
+                : glm::cross(normal, std::abs(normal.x) < 0.9 ? dvec3(1, 0, 0) : dvec3(0, 1, 0)));
+        const dvec3 b = glm::cross(normal, a);
+        const double w = uniform(rng, 0.1, 2.0), h = w * std::pow(10.0, uniform(rng, -4.0, 0.0));
+        const dvec3 origin = glm::dot(dvec3(uniform(rng, -20, 20)), a) * a +
+                             glm::dot(dvec3(uniform(rng, -20, 20)), b) * b;
+        const dvec3 corners[4] = {origin, origin + w * a, origin + w * a + h * b, origin + h * b};
+        std::vector<dvec3> points;
+        for (int c = 0; c < 4; ++c) {
+            const dvec3& p = corners[c];
+            const dvec3& q = corners[(c + 1) % 4];
+            for (int k = int(rng() % 3); k >= 0; --k)  // the corner, repeated
+                points.emplace_back(ulps(p.x), ulps(p.y), ulps(p.z));
+            for (int k = int(rng() % 3); k > 0; --k) {  // on the edge
+                const dvec3 e = p + uniform(rng, 0.05, 0.95) * (q - p);
+                points.emplace_back(ulps(e.x), ulps(e.y), ulps(e.z));
+            }
+        }
+        for (int k = int(rng() % 4); k > 0; --k)  // inside
+            points.push_back(origin + uniform(rng, 0.1, 0.9) * w * a +
+                             uniform(rng, 0.1, 0.9) * h * b);
+        std::shuffle(points.begin(), points.end(), rng);
+        const bt::Polygon polygon = bt::convex_polygon_on_plane(points, plane, epsilon);
+        ASSERT_EQ(polygon.size(), 4u) << "case " << i << ": " << w << " x " << h;
+        EXPECT_NEAR(bt::area(polygon), w * h, 1e-9 * w * h) << "case " << i;
+        EXPECT_GT(glm::dot(bt::area_vector(polygon), normal), 0.0) << "counter-clockwise";
+    }
+}
+
 // Clipping a convex polyhedron by a plane and by its flip conserves the volume.
 TEST(Geometry, ClipConservesVolume) {
     std::mt19937 rng(2);
