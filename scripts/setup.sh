@@ -10,7 +10,7 @@ packages=(
     libgl-dev libosmesa6-dev libglfw3-dev libglm-dev
     libcgal-dev libcgal-demo libembree-dev libtbb-dev
     libimgui-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
-    libstb-dev libopenexr-dev libtinyobjloader-dev
+    libstb-dev libopenexr-dev libtinyobjloader-dev libfftw3-dev
     libgtest-dev libbenchmark-dev xvfb python3 python3-matplotlib blender-data
 )
 
