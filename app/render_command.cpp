@@ -118,6 +118,7 @@ int run_render(const RenderArguments& args) {
             {"surface", frame.gpu.surface_ms},
             {"volume", frame.gpu.volume_ms},
             {"composite", frame.gpu.composite_ms},
+            {"subsurface", frame.gpu.subsurface_ms},
             {"total", frame_gpu_ms},
             {"volume_sections",
              [&] {

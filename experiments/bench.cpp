@@ -140,6 +140,7 @@ Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path
         {"gpu_ms_surface", m.gpu.surface_ms},
         {"gpu_ms_volume", m.gpu.volume_ms},
         {"gpu_ms_composite", m.gpu.composite_ms},
+        {"gpu_ms_subsurface", m.gpu.subsurface_ms},
     };
     for (const auto& [section, ms] : m.gpu.volume_sections) {
         row["gpu_ms_volume_" + section] = ms;

@@ -91,7 +91,7 @@ FrameMeasurement measure_frames(gl::SceneRenderer& renderer, gl::VolumeMethod& m
         renderer.draw(method);
     }
     FrameMeasurement m;
-    std::vector<double> passes[4], totals;
+    std::vector<double> passes[5], totals;
     std::vector<std::pair<std::string, std::vector<double>>> sections, statistics;
     for (int i = 0; i < frames; ++i) {
         const gl::FrameTimings timings = renderer.draw(method);
@@ -100,12 +100,13 @@ FrameMeasurement measure_frames(gl::SceneRenderer& renderer, gl::VolumeMethod& m
         passes[1].push_back(timings.gpu.surface_ms);
         passes[2].push_back(timings.gpu.volume_ms);
         passes[3].push_back(timings.gpu.composite_ms);
+        passes[4].push_back(timings.gpu.subsurface_ms);
         totals.push_back(timings.gpu.total_ms());
         collect(sections, timings.gpu.volume_sections);
         collect(statistics, method.statistics());
     }
-    m.gpu = {median(passes[0]), median(passes[1]), median(passes[2]), median(passes[3]),
-             medians(sections)};
+    m.gpu = {median(passes[0]), median(passes[1]), median(passes[2]),
+             median(passes[3]), medians(sections), median(passes[4])};
     m.gpu_total_ms = median(totals);
     m.statistics = medians(statistics);
     return m;

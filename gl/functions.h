@@ -20,6 +20,7 @@ namespace sl::gl {
     X(PFNGLVIEWPORTPROC, Viewport)                                       \
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                                     \
     X(PFNGLDEPTHMASKPROC, DepthMask)                                     \
+    X(PFNGLCULLFACEPROC, CullFace)                                       \
     X(PFNGLBLENDFUNCPROC, BlendFunc)                                     \
     X(PFNGLBLENDEQUATIONPROC, BlendEquation)                             \
     X(PFNGLBLENDEQUATIONIPROC, BlendEquationi)                           \
@@ -43,6 +44,7 @@ namespace sl::gl {
     X(PFNGLDELETETEXTURESPROC, DeleteTextures)                           \
     X(PFNGLISTEXTUREPROC, IsTexture)                                     \
     X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                       \
+    X(PFNGLTEXTURESTORAGE3DPROC, TextureStorage3D)                       \
     X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)                     \
     X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                     \
     X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                     \
@@ -79,6 +81,7 @@ namespace sl::gl {
     X(PFNGLUSEPROGRAMPROC, UseProgram)                                   \
     X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                       \
     X(PFNGLPROGRAMUNIFORM2IPROC, ProgramUniform2i)                       \
+    X(PFNGLPROGRAMUNIFORM4IPROC, ProgramUniform4i)                       \
     X(PFNGLPROGRAMUNIFORM1FPROC, ProgramUniform1f)                       \
     X(PFNGLPROGRAMUNIFORM3FVPROC, ProgramUniform3fv)                     \
     X(PFNGLPROGRAMUNIFORM4FVPROC, ProgramUniform4fv)                     \

@@ -22,6 +22,7 @@ constexpr GLint kNormalMatrixLocation = 1;
 constexpr GLint kAlbedoLocation = 2;
 constexpr GLint kRoughnessLocation = 3;
 constexpr GLint kF0Location = 4;
+constexpr GLint kTranslucentLocation = 5;
 
 // Normal offset of shadow lookups, in shadow-map texels at the receiver's distance.
 constexpr float kShadowNormalOffsetTexels = 1.5f;
@@ -194,6 +195,9 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     empty_vertex_array_ = create_vertex_array();
     environment_ = std::make_unique<EnvironmentTextures>(scene);
     environment_->set_uniforms(uniforms_, scene.environment);
+    if (scene.has_translucent_objects()) {
+        subsurface_ = std::make_unique<SubsurfacePass>(scene, options.width, options.height);
+    }
 
     allocate_shadow(options.shadow);
 
@@ -279,22 +283,45 @@ void SceneRenderer::allocate_shadow(const ShadowSettings& settings) {
 }
 
 void SceneRenderer::draw_objects(GLuint program, bool with_normals) {
-    for (const Object& object : scene_.objects) {
-        GL.ProgramUniformMatrix4fv(program, kModelLocation, 1, GL_FALSE,
-                                   glm::value_ptr(object.transform));
-        if (with_normals) {
-            const glm::mat4 normal_matrix = glm::inverseTranspose(object.transform);
-            GL.ProgramUniformMatrix4fv(program, kNormalMatrixLocation, 1, GL_FALSE,
-                                       glm::value_ptr(normal_matrix));
-            const Material& material = scene_.materials[size_t(object.material)];
-            GL.ProgramUniform3fv(program, kAlbedoLocation, 1, glm::value_ptr(material.albedo));
-            GL.ProgramUniform1f(program, kRoughnessLocation, material.roughness);
-            GL.ProgramUniform3fv(program, kF0Location, 1, glm::value_ptr(material.f0));
-        }
-        const GpuMesh& mesh = meshes_.at(object.mesh.get());
-        GL.BindVertexArray(mesh.vertex_array.id());
-        GL.DrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+    for (size_t i = 0; i < scene_.objects.size(); ++i) {
+        draw_object(i, program, with_normals);
     }
+}
+
+void SceneRenderer::draw_object(size_t index, GLuint program, bool with_normals) {
+    const Object& object = scene_.objects[index];
+    GL.ProgramUniformMatrix4fv(program, kModelLocation, 1, GL_FALSE,
+                               glm::value_ptr(object.transform));
+    if (with_normals) {
+        const glm::mat4 normal_matrix = glm::inverseTranspose(object.transform);
+        GL.ProgramUniformMatrix4fv(program, kNormalMatrixLocation, 1, GL_FALSE,
+                                   glm::value_ptr(normal_matrix));
+    }
+    if (program == surface_program_.id()) {
+        const Material& material = scene_.materials[size_t(object.material)];
+        GL.ProgramUniform1f(program, kRoughnessLocation, material.roughness);
+        const SubsurfaceMaterial* translucent =
+            subsurface_ ? subsurface_->material_of(object.material) : nullptr;
+        if (translucent) {
+            // Subsurface scattering replaces the diffuse term (gl/subsurface_pass.h); the
+            // surface keeps a dielectric specular with F0 from η and, under the ambient light,
+            // the profile's total reflectance as its albedo.
+            const double eta = material.translucency->medium.eta;
+            const float f0 = float((eta - 1.0) * (eta - 1.0) / ((eta + 1.0) * (eta + 1.0)));
+            const glm::vec3 black(0.0f), f0s(f0);
+            GL.ProgramUniform3fv(program, kAlbedoLocation, 1, glm::value_ptr(black));
+            GL.ProgramUniform3fv(program, kF0Location, 1, glm::value_ptr(f0s));
+            GL.ProgramUniform4fv(program, kTranslucentLocation, 1,
+                                 glm::value_ptr(glm::vec4(1.0f, translucent->total_reflectance)));
+        } else {
+            GL.ProgramUniform3fv(program, kAlbedoLocation, 1, glm::value_ptr(material.albedo));
+            GL.ProgramUniform3fv(program, kF0Location, 1, glm::value_ptr(material.f0));
+            GL.ProgramUniform4fv(program, kTranslucentLocation, 1, glm::value_ptr(glm::vec4(0.0f)));
+        }
+    }
+    const GpuMesh& mesh = meshes_.at(object.mesh.get());
+    GL.BindVertexArray(mesh.vertex_array.id());
+    GL.DrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
 }
 
 FrameTimings SceneRenderer::draw(VolumeMethod& method) {
@@ -373,6 +400,13 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
             GL.DepthFunc(GL_LESS);
         }
     }
+    if (subsurface_) {
+        PassTimer timer(timers_[4], "subsurface");
+        subsurface_->render(
+            [this](size_t index, GLuint program) { draw_object(index, program, true); },
+            uniforms_.view_projection, surface_depth_.id(), surface_framebuffer_.id(),
+            frame_index_++);
+    }
     {
         // Timed by the method's timeline sections (queries of one target cannot nest).
         GL.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "volume");
@@ -408,6 +442,11 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         GLuint64 ns = 0;
         GL.GetQueryObjectui64v(timers_[i].id(), GL_QUERY_RESULT, &ns);
         *pass_ms[i] = double(ns) * 1e-6;
+    }
+    if (subsurface_) {
+        GLuint64 ns = 0;
+        GL.GetQueryObjectui64v(timers_[4].id(), GL_QUERY_RESULT, &ns);
+        timings.gpu.subsurface_ms = double(ns) * 1e-6;
     }
     timings.gpu.volume_sections = timeline_->results();
     for (const auto& [name, ms] : timings.gpu.volume_sections) {

@@ -14,6 +14,7 @@
 #include "gl/environment_textures.h"
 #include "gl/objects.h"
 #include "gl/shaders/frame_uniforms.h"
+#include "gl/subsurface_pass.h"
 #include "gl/volume_method.h"
 #include "scenes/scene.h"
 
@@ -33,7 +34,10 @@ struct PassTimings {
     double composite_ms = 0;
     // The volume pass split by the method's timeline sections (they sum to volume_ms).
     std::vector<std::pair<std::string, double>> volume_sections;
-    double total_ms() const { return shadow_ms + surface_ms + volume_ms + composite_ms; }
+    double subsurface_ms = 0;  // translucent objects (gl/subsurface_pass.h), 0 without any
+    double total_ms() const {
+        return shadow_ms + surface_ms + subsurface_ms + volume_ms + composite_ms;
+    }
 };
 
 struct FrameTimings {
@@ -66,6 +70,8 @@ public:
     Frame read_back() const;
     // I_s of the last frame drawn, read back alone (the error view's per-frame need).
     Image read_in_scattering() const { return read_rgb(in_scattering_.id()); }
+    // Any RGBA float texture of the frame's size, rows top to bottom.
+    Image read_rgb(GLuint texture) const;
     // draw() then read_back().
     Frame render(VolumeMethod& method);
 
@@ -79,6 +85,8 @@ public:
     const shared::FrameUniforms& uniforms() const { return uniforms_; }
     // The scene's image-based lighting (1x1 stand-ins when it has no environment).
     const EnvironmentTextures& environment() const { return *environment_; }
+    // The translucent objects' pass; null when the scene has none.
+    const SubsurfacePass* subsurface() const { return subsurface_.get(); }
 
 private:
     struct GpuMesh {
@@ -91,8 +99,8 @@ private:
     class Timeline;
 
     void draw_objects(GLuint program, bool with_normals);
+    void draw_object(size_t index, GLuint program, bool with_normals);
     void allocate_shadow(const ShadowSettings& settings);
-    Image read_rgb(GLuint texture) const;
 
     const Scene& scene_;
     RenderOptions options_;
@@ -123,7 +131,9 @@ private:
     Texture hdr_;
     Texture display_;
     Framebuffer composite_framebuffer_;
-    Query timers_[4];
+    std::unique_ptr<SubsurfacePass> subsurface_;
+    uint32_t frame_index_ = 0;
+    Query timers_[5];
     std::unique_ptr<Timeline> timeline_;
 };
 

@@ -86,6 +86,15 @@ size_t Scene::triangle_count() const {
     return count;
 }
 
+bool Scene::has_translucent_objects() const {
+    for (const Object& object : objects) {
+        if (materials[size_t(object.material)].translucency) {
+            return true;
+        }
+    }
+    return false;
+}
+
 const char* to_string(PhaseFunction phase) {
     switch (phase) {
         case PhaseFunction::isotropic:
@@ -108,6 +117,14 @@ const char* to_string(PhaseFunction phase) {
 
 const char* to_string(MediumModel model) {
     return model == MediumModel::simplified ? "simplified" : "physical";
+}
+
+const char* to_string(DiffusionModel model) {
+    return model == DiffusionModel::dipole ? "dipole" : "multipole";
+}
+
+const char* to_string(SplatWeighting weighting) {
+    return weighting == SplatWeighting::jacobian ? "jacobian" : "seed";
 }
 
 }  // namespace sl

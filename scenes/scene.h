@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,14 +15,27 @@
 
 #include "ibl/settings.h"
 #include "scenes/mesh.h"
+#include "sss/layers.h"
+#include "sss/material.h"
 
 namespace sl {
+
+enum class DiffusionModel { dipole, multipole };
+
+// A translucent material (sss/, Rohat chapters 4-5): its diffuse term is replaced by subsurface
+// scattering splatted from the lights (and the environment); the specular term stays.
+struct Translucency {
+    sss::ScatteringMaterial medium;  // the base material (coefficients in 1/mm)
+    DiffusionModel model = DiffusionModel::dipole;
+    std::vector<sss::Layer> coats;  // layers above the base, top first (Rohat §5.1.2)
+};
 
 struct Material {
     std::string name;
     glm::vec3 albedo{0.8f};  // diffuse reflectance in [0, 1]
     float roughness = 0.5f;  // microfacet α (Beckmann's m, GGX's α); used when IBL is on
     glm::vec3 f0{0.04f};     // normal-incidence specular reflectance, likewise
+    std::optional<Translucency> translucency{};
 };
 
 // An axis-aligned box in an object's local frame.
@@ -135,6 +149,30 @@ struct Environment {
     bool enabled() const { return !file.empty(); }
 };
 
+// How translucent objects are rendered ([sss] in scene files; Rohat §5.1, §5.3).
+enum class SplatWeighting {
+    jacobian,  // each sample carries the flux on its own patch: I·ω_texel·cone (exact eq. 4.4)
+    seed       // the seed's A_vis/N_s with E(x_s) (eq. 4.6), A_vis summed over the samples
+};
+struct Subsurface {
+    float mm_per_unit = 10.0f;  // the scene's scale for the profiles, millimetres per unit
+    int grid_x = 64;            // N x M samples over the light map's region of interest
+    int grid_y = 64;
+    bool jitter = true;     // a random offset inside each grid cell, new every frame
+    int map_size = 512;     // the light-view position/normal maps
+    float epsilon = 0.01f;  // r_max: the profile's tail left out (eq. 4.3)
+    // r_max's tail measured on R_d(r) 2πr dr, the reflected flux (true), or on the seed's
+    // R_d(r) dr (false), which cuts marble at 6 mm where 1% of the flux is only reached at 20.
+    bool flux_radius = true;
+    SplatWeighting weighting = SplatWeighting::jacobian;
+    int profile_texels = 512;
+    // Environment light on translucent objects (§5.3): uniform surface samples with SH9
+    // irradiance, splatted like the lights' samples; 0 turns it off.
+    int environment_samples = 4096;
+    // Fill lights for translucent objects only (§5.1.3), besides the scene's spot light.
+    std::vector<SpotLight> lights;
+};
+
 struct Scene {
     std::string name;
     std::filesystem::path source;  // the file it was read from, empty for generated scenes
@@ -145,13 +183,17 @@ struct Scene {
     glm::vec3 ambient{0.0f};
     BoundsSettings bounds;
     Environment environment;
+    Subsurface subsurface;
     std::vector<Material> materials;
     std::vector<Object> objects;
 
     size_t triangle_count() const;
+    bool has_translucent_objects() const;
 };
 
 const char* to_string(PhaseFunction phase);
 const char* to_string(MediumModel model);
+const char* to_string(DiffusionModel model);
+const char* to_string(SplatWeighting weighting);
 
 }  // namespace sl

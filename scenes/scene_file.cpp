@@ -192,8 +192,103 @@ Material read_material(TableReader r, std::string name) {
     }
     m.roughness = float(r.number_in("roughness", m.roughness, 0.0, 1.0));
     m.f0 = r.non_negative_vec3("f0", m.f0);
+    // Translucent: a preset's name (sss/material.h) with optional overrides, or coefficients.
+    if (r.has("translucent")) {
+        Translucency t;
+        const std::string preset = r.string("translucent", "");
+        try {
+            t.medium = preset == "custom"
+                           ? sss::ScatteringMaterial{.name = "custom", .source = "scene file"}
+                           : sss::material_preset(preset);
+        } catch (const Error& e) {
+            r.error("translucent", e.what());
+        }
+        t.medium.sigma_s_reduced =
+            glm::dvec3(r.non_negative_vec3("sigma_s_reduced", glm::vec3(t.medium.sigma_s_reduced)));
+        t.medium.sigma_a = glm::dvec3(r.non_negative_vec3("sigma_a", glm::vec3(t.medium.sigma_a)));
+        t.medium.eta = r.number_in("eta", t.medium.eta, 0.0, 10.0, true);
+        try {
+            sss::validate(t.medium);
+        } catch (const Error& e) {
+            r.error("translucent", e.what());
+        }
+        const std::string model = r.string("model", "dipole");
+        if (model != "dipole" && model != "multipole") {
+            r.error("model",
+                    fmt::format("unknown diffusion model '{}' (dipole, multipole)", model));
+        }
+        t.model = model == "dipole" ? DiffusionModel::dipole : DiffusionModel::multipole;
+        if (const toml::array* coats = r.array("coats")) {
+            for (size_t i = 0; i < coats->size(); ++i) {
+                const toml::table* table = (*coats)[i].as_table();
+                if (!table) {
+                    r.error("coats", "expected an array of {material = ..., thickness = ...}");
+                }
+                TableReader c(*table, r.origin(), fmt::format("{} coats #{}", r.context(), i + 1));
+                sss::Layer layer;
+                try {
+                    layer.material = sss::material_preset(c.string("material", ""));
+                } catch (const Error& e) {
+                    c.error("material", e.what());
+                }
+                layer.thickness_mm = c.number_in("thickness", 1.0, 0.0, 1000.0, true);
+                c.finish();
+                t.coats.push_back(layer);
+            }
+        }
+        m.translucency = std::move(t);
+    } else {
+        for (const char* key : {"sigma_s_reduced", "sigma_a", "eta", "model", "coats"}) {
+            if (r.has(key)) {
+                r.error(key, "only for translucent materials (set `translucent`)");
+            }
+        }
+    }
     r.finish();
     return m;
+}
+
+Subsurface read_subsurface(TableReader r) {
+    Subsurface s;
+    s.mm_per_unit = float(r.number_in("mm_per_unit", s.mm_per_unit, 0.0, 1e6, true));
+    if (r.has("grid")) {
+        const toml::array* grid = r.array("grid");
+        if (!grid || grid->size() != 2 || !(*grid)[0].is_integer() || !(*grid)[1].is_integer()) {
+            r.error("grid", "expected [N, M], two integers");
+        }
+        s.grid_x = int(*(*grid)[0].value<int64_t>());
+        s.grid_y = int(*(*grid)[1].value<int64_t>());
+        if (s.grid_x < 1 || s.grid_y < 1 || s.grid_x > 1024 || s.grid_y > 1024) {
+            r.error("grid", "N and M must be in 1..1024");
+        }
+    }
+    s.jitter = r.boolean("jitter", s.jitter);
+    s.map_size = r.integer_in("map_size", s.map_size, 16, 8192);
+    s.epsilon = float(r.number_in("epsilon", s.epsilon, 0.0, 1.0, true, true));
+    const std::string radius = r.string("radius", "flux");
+    if (radius != "flux" && radius != "profile") {
+        r.error("radius", fmt::format("unknown r_max criterion '{}' (flux, profile)", radius));
+    }
+    s.flux_radius = radius == "flux";
+    const std::string weighting = r.string("weighting", to_string(s.weighting));
+    if (weighting != "jacobian" && weighting != "seed") {
+        r.error("weighting", fmt::format("unknown weighting '{}' (jacobian, seed)", weighting));
+    }
+    s.weighting = weighting == "seed" ? SplatWeighting::seed : SplatWeighting::jacobian;
+    s.profile_texels = r.integer_in("profile_texels", s.profile_texels, 4, 8192);
+    s.environment_samples = r.integer_in("environment_samples", s.environment_samples, 0, 1 << 20);
+    if (const toml::array* lights = r.array("lights")) {
+        for (size_t i = 0; i < lights->size(); ++i) {
+            const toml::table* table = (*lights)[i].as_table();
+            if (!table) {
+                r.error("lights", "expected an array of light tables");
+            }
+            s.lights.push_back(read_light(
+                TableReader(*table, r.origin(), fmt::format("[sss] lights #{}", i + 1))));
+        }
+    }
+    r.finish();
+    return s;
 }
 
 glm::mat4 read_transform(TableReader& r) {
@@ -476,6 +571,10 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
             read_environment(TableReader(*environment, origin, "[environment]"), base_dir, paths);
     }
 
+    if (const toml::table* subsurface = top.table("sss")) {
+        scene.subsurface = read_subsurface(TableReader(*subsurface, origin, "[sss]"));
+    }
+
     if (const toml::table* bounds = top.table("beamtree")) {
         TableReader r(*bounds, origin, "[beamtree]");
         scene.bounds.max_outer_planes = r.integer_in("max_outer_planes", 0, 0, 100000);
@@ -605,7 +704,7 @@ std::vector<std::string> canonical_scene_names() {
 }
 
 std::vector<std::string> effect_scene_names() {
-    return {"ibl-spheres"};
+    return {"ibl-spheres", "sss-bunny", "sss-dragon", "sss-shaft"};
 }
 
 Scene load_scene(const std::string& name, const SceneSearchPaths& paths) {

@@ -37,6 +37,8 @@ public:
         : table_(table), origin_(std::move(origin)), context_(std::move(context)) {}
 
     bool has(std::string_view key) const { return table_.contains(key); }
+    const std::string& origin() const { return origin_; }
+    const std::string& context() const { return context_; }
 
     [[noreturn]] void error(std::string_view key, const std::string& reason) const {
         const toml::node* node = table_.get(key);

@@ -10,6 +10,9 @@
 layout(location = 2) uniform vec3 albedo;
 layout(location = 3) uniform float roughness;  // microfacet α
 layout(location = 4) uniform vec3 f0;
+// x > 0.5: translucent (gl/subsurface_pass.h adds the scattered light; here only the specular
+// term, always, and the ambient light reflected with the profile's total reflectance in yzw).
+layout(location = 5) uniform vec4 translucent;
 
 in vec3 world_position;
 in vec3 world_normal;
@@ -28,7 +31,8 @@ void main() {
 
     vec3 irradiance = vec3(0.0);
     vec3 v = normalize(to_eye);
-    vec3 radiance = albedo * frame.ambient.rgb;
+    bool is_translucent = translucent.x > 0.5;
+    vec3 radiance = (is_translucent ? translucent.yzw : albedo) * frame.ambient.rgb;
     if (cos_theta > 0.0 && in_light_range(-to_light)) {
         // Normal offset: move the lookup point off the surface by a few shadow texels, measured
         // at this distance from the light, so that surfaces do not shadow themselves.
@@ -37,7 +41,7 @@ void main() {
         irradiance = frame.light_intensity.rgb * cone_factor(-to_light) * light_falloff(r) *
                      cos_theta * light_visibility(lookup);
         radiance += albedo / PI * irradiance;
-        if (environment_on()) {
+        if (environment_on() || is_translucent) {
             radiance += irradiance / cos_theta * spot_specular(n, v, l, roughness, f0);
         }
     }

@@ -1,0 +1,42 @@
+// Shared by the splatting shaders: the per-draw light and material (gl/subsurface_pass.cpp sets
+// them), Fresnel transmittance and the profile lookups (Rohat §5.1.1-5.1.2).
+
+layout(location = 10) uniform vec4 roi;              // light-map region: uv min, uv size
+layout(location = 11) uniform ivec4 grid;            // N, M, frame seed, jitter on
+layout(location = 12) uniform vec4 light_position;   // xyz, tan of the cone's half angle
+layout(location = 13) uniform vec4 light_direction;  // unit axis, cone half angle (radians)
+layout(location = 14) uniform vec4 light_intensity;  // rgb, falloff width (radians)
+layout(location = 15) uniform vec4 light_range;      // near, far along the axis
+layout(location = 16) uniform vec4 material;         // r_max (units), mm per unit, η, multipole
+layout(location = 17) uniform vec4 slab;  // d_min, d_max (mm), profile layer, weights:
+                                          // 0 jacobian, 1 seed, 2 ΔA alone (area pass)
+layout(location = 18) uniform float object_id;       // index + 1
+
+layout(binding = 0) uniform sampler2D light_positions;   // xyz, id + 1
+layout(binding = 1) uniform sampler2D light_normals;
+layout(binding = 2) uniform sampler2D light_back_positions;  // thickness pass
+layout(binding = 3) uniform sampler2D eye_positions;
+layout(binding = 4) uniform sampler2D eye_normals;
+layout(binding = 5) uniform sampler2DArray profile_R;  // (r, d) per material layer
+layout(binding = 6) uniform sampler2DArray profile_T;
+layout(binding = 7) uniform sampler2D visible_area;    // 1x1: Σ ΔA, N_s (seed weighting)
+
+const float SSS_PI = 3.14159265358979;
+
+// Fresnel transmittance 1 − F (Schlick, F0 from η), the F_t of eq. 3.4.
+float fresnel_transmittance(float eta, float cos_theta) {
+    float f0 = (eta - 1.0) / (eta + 1.0);
+    f0 *= f0;
+    float c = clamp(1.0 - cos_theta, 0.0, 1.0);
+    return 1.0 - (f0 + (1.0 - f0) * c * c * c * c * c);
+}
+
+// Texture coordinates whose texel centres lie on the ends of [0, r_max] and [d_min, d_max], the
+// way sss/diffusion.h tabulates: the last column is zero, so r ≥ r_max reads zero (§5.2.2).
+vec3 profile_coordinates(float r_mm, float d_mm) {
+    vec2 size = vec2(textureSize(profile_R, 0).xy);
+    float r_max_mm = material.x * material.y;
+    float u = clamp(r_mm / r_max_mm, 0.0, 1.0);
+    float v = clamp((d_mm - slab.x) / max(slab.y - slab.x, 1e-6), 0.0, 1.0);
+    return vec3((vec2(u, v) * (size - 1.0) + 0.5) / size, slab.z);
+}
