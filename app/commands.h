@@ -23,6 +23,7 @@ Command add_bench_command(CLI::App& app);
 Command add_merge_command(CLI::App& app);
 Command add_view_command(CLI::App& app);
 Command add_ibl_command(CLI::App& app);
+Command add_sss_command(CLI::App& app);
 
 using Clock = std::chrono::steady_clock;
 

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     add(sl::app::add_merge_command);
     add(sl::app::add_view_command);
     add(sl::app::add_ibl_command);
+    add(sl::app::add_sss_command);
     add(sl::app::add_gl_info_command);
     try {
         app.parse(argc, argv);

@@ -32,6 +32,7 @@ constexpr GLint kMaterialLocation = 16;
 constexpr GLint kSlabLocation = 17;
 constexpr GLint kObjectLocation = 18;
 constexpr GLint kAreaPerSampleLocation = 19;
+constexpr GLint kFootprintLocation = 20;
 
 // Texture units of sss/shaders/subsurface.glsl.
 enum Unit : GLuint {
@@ -46,6 +47,7 @@ enum Unit : GLuint {
 };
 
 constexpr int kThicknessRows = 64;
+constexpr int kFootprintLevels = 8;
 
 Texture create_profile_array(int width, int height, int layers) {
     GLuint id = 0;
@@ -154,11 +156,51 @@ SubsurfacePass::SubsurfacePass(const Scene& scene, int width, int height)
     if (materials_.empty()) {
         fail("subsurface pass: the scene has no translucent object");
     }
-    profile_R_ = create_profile_array(texels, kThicknessRows, int(materials_.size()));
-    profile_T_ = create_profile_array(texels, kThicknessRows, int(materials_.size()));
+    // Footprint levels (sss::FootprintLevels): each material's rows averaged over disks of
+    // growing radius, layer = material layer x levels + level.
+    const int levels = settings.footprint ? kFootprintLevels : 1;
+    profile_R_ = create_profile_array(texels, kThicknessRows, int(materials_.size()) * levels);
+    profile_T_ = create_profile_array(texels, kThicknessRows, int(materials_.size()) * levels);
     for (size_t i = 0; i < materials_.size(); ++i) {
-        upload_layer(profile_R_, texels, kThicknessRows, int(i), R_layers[i]);
-        upload_layer(profile_T_, texels, kThicknessRows, int(i), T_layers[i]);
+        const SubsurfaceMaterial& sm = materials_[i];
+        const sss::FootprintLevels footprint{levels, sm.r_max_mm / 4.0};
+        for (int k = 0; k < levels; ++k) {
+            const double rho = footprint.radius(k);
+            std::vector<glm::vec3> R = R_layers[i], T = T_layers[i];
+            if (rho > 0.0) {
+                const bool rows_differ = sm.multipole;
+                for (int row = 0; row < (rows_differ ? kThicknessRows : 1); ++row) {
+                    // The tabulated row, linearly interpolated and zero beyond r_max.
+                    auto row_profile = [&](const std::vector<glm::vec3>& table) {
+                        return [&sm, texels, row, values = table.data()](double r) {
+                            const double x = r / sm.r_max_mm * (texels - 1);
+                            if (x >= texels - 1) {
+                                return glm::vec3(0.0f);
+                            }
+                            const int j = int(x);
+                            const float f = float(x - j);
+                            const glm::vec3* v = values + size_t(row * texels);
+                            return v[j] * (1.0f - f) + v[j + 1] * f;
+                        };
+                    };
+                    const std::vector<glm::vec3> r_row =
+                        sss::disk_average(row_profile(R_layers[i]), sm.r_max_mm, texels, rho);
+                    std::copy(r_row.begin(), r_row.end(), R.begin() + row * texels);
+                    if (rows_differ) {
+                        const std::vector<glm::vec3> t_row =
+                            sss::disk_average(row_profile(T_layers[i]), sm.r_max_mm, texels, rho);
+                        std::copy(t_row.begin(), t_row.end(), T.begin() + row * texels);
+                    }
+                }
+                if (!rows_differ) {
+                    for (int row = 1; row < kThicknessRows; ++row) {
+                        std::copy(R.begin(), R.begin() + texels, R.begin() + row * texels);
+                    }
+                }
+            }
+            upload_layer(profile_R_, texels, kThicknessRows, int(i) * levels + k, R);
+            upload_layer(profile_T_, texels, kThicknessRows, int(i) * levels + k, T);
+        }
     }
     profile_R_.label("subsurface R profiles");
     profile_T_.label("subsurface T profiles");
@@ -300,9 +342,13 @@ void SubsurfacePass::set_material(GLuint program, size_t object) const {
                          glm::value_ptr(glm::vec4(float(m.r_max_mm) / mm, mm, float(t.medium.eta),
                                                   m.multipole ? 1.0f : 0.0f)));
     const float weighting = scene_.subsurface.weighting == SplatWeighting::seed ? 1.0f : 0.0f;
+    const int levels = scene_.subsurface.footprint ? kFootprintLevels : 1;
+    GL.ProgramUniform4fv(program, kSlabLocation, 1,
+                         glm::value_ptr(glm::vec4(float(m.d_min_mm), float(m.d_max_mm),
+                                                  float(m.layer * levels), weighting)));
     GL.ProgramUniform4fv(
-        program, kSlabLocation, 1,
-        glm::value_ptr(glm::vec4(float(m.d_min_mm), float(m.d_max_mm), float(m.layer), weighting)));
+        program, kFootprintLocation, 1,
+        glm::value_ptr(glm::vec4(float(m.r_max_mm / 4.0), float(levels), 0.0f, 0.0f)));
     GL.ProgramUniform1f(program, kObjectLocation, float(object + 1));
 }
 

@@ -164,6 +164,9 @@ struct Subsurface {
     // r_max's tail measured on R_d(r) 2πr dr, the reflected flux (true), or on the seed's
     // R_d(r) dr (false), which cuts marble at 6 mm where 1% of the flux is only reached at 20.
     bool flux_radius = true;
+    // Each sample's profile averaged over its own patch (sss::disk_average); off: the seed's
+    // point samples.
+    bool footprint = true;
     SplatWeighting weighting = SplatWeighting::jacobian;
     int profile_texels = 512;
     // Environment light on translucent objects (§5.3): uniform surface samples with SH9

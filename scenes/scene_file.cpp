@@ -270,6 +270,7 @@ Subsurface read_subsurface(TableReader r) {
         r.error("radius", fmt::format("unknown r_max criterion '{}' (flux, profile)", radius));
     }
     s.flux_radius = radius == "flux";
+    s.footprint = r.boolean("footprint", s.footprint);
     const std::string weighting = r.string("weighting", to_string(s.weighting));
     if (weighting != "jacobian" && weighting != "seed") {
         r.error("weighting", fmt::format("unknown weighting '{}' (jacobian, seed)", weighting));

@@ -207,4 +207,38 @@ SlabProfiles tabulate_multipole(const RgbDiffusion& d, double r_max, double d_mi
     return p;
 }
 
+std::vector<glm::vec3> disk_average(const std::function<glm::vec3(double)>& profile, double r_max,
+                                    int texels, double rho) {
+    std::vector<glm::vec3> out(size_t(texels), glm::vec3(0.0f));
+    // Midpoint rule in polar coordinates around the source, area-weighted (s ds dφ), over the
+    // half disk (the profile is symmetric about the line to x).
+    constexpr int radial = 12, angular = 16;
+    for (int i = 0; i + 1 < texels; ++i) {
+        const double r = r_max * i / (texels - 1);
+        glm::dvec3 sum(0.0);
+        double weight = 0.0;
+        for (int a = 0; a < radial; ++a) {
+            const double s = rho * (a + 0.5) / radial;
+            for (int b = 0; b < angular; ++b) {
+                const double phi = pi * (b + 0.5) / angular;
+                const double distance =
+                    std::sqrt(std::max(0.0, r * r + s * s - 2.0 * r * s * std::cos(phi)));
+                sum += glm::dvec3(profile(distance)) * s;
+                weight += s;
+            }
+        }
+        out[size_t(i)] = glm::vec3(sum / weight);
+    }
+    return out;
+}
+
+double FootprintLevels::radius(int k) const {
+    const double t = double(k) / (levels - 1);
+    return rho_max * t * t;
+}
+
+double FootprintLevels::coordinate(double rho) const {
+    return std::sqrt(std::clamp(rho / rho_max, 0.0, 1.0)) * (levels - 1);
+}
+
 }  // namespace sl::sss

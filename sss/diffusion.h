@@ -87,4 +87,21 @@ struct SlabProfiles {
 SlabProfiles tabulate_multipole(const RgbDiffusion& d, double r_max, double d_min, double d_max,
                                 int width = 256, int height = 64, int pairs = 10);
 
+// A radial profile averaged over a disk of radius rho (mm) around the source: what a sample that
+// stands for a patch of that radius delivers at distance r, with its integral over the plane
+// unchanged. Point samples ~1 mm apart alias the dipole's peak (width ~ z_r, 0.4 mm in marble)
+// into bright dots; the seed has no such filter. `profile` is evaluated at r in [0, r_max + rho];
+// the result has `texels` values at r = i r_max/(texels − 1), the last one zero.
+std::vector<glm::vec3> disk_average(const std::function<glm::vec3(double)>& profile, double r_max,
+                                    int texels, double rho);
+
+// The footprint radii tabulated per material: level k holds rho_k = rho_max (k/(levels − 1))²,
+// level 0 the plain profile; a sample reads between the two levels around its own rho.
+struct FootprintLevels {
+    int levels = 8;
+    double rho_max = 1.0;  // mm
+    double radius(int k) const;
+    double coordinate(double rho) const;  // in [0, levels − 1]
+};
+
 }  // namespace sl::sss

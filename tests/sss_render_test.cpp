@@ -21,8 +21,10 @@ using SssRender = GlTest;
 
 constexpr float kHalfThickness = 0.05f;  // slab: 2 x 0.1 x 2 units, top face at y = 0.05
 
-Scene slab_scene(const std::string& model, const std::string& weighting) {
-    const std::string text = fmt::format(R"(
+Scene slab_scene(const std::string& model, const std::string& weighting, bool footprint = false,
+                 int grid = 48) {
+    const std::string text =
+        fmt::format(R"(
 [camera]
 position = [0.0, 2.6, 0.0]
 target = [0.0, 0.0, 0.0]
@@ -39,7 +41,8 @@ intensity = [2.0, 1.6, 1.2]
 model = "physical"
 [sss]
 mm_per_unit = 20.0
-grid = [48, 40]
+grid = [{}, {}]
+footprint = {}
 jitter = false
 map_size = 256
 profile_texels = 512
@@ -53,7 +56,7 @@ shape = "box"
 size = [2.0, {}, 2.0]
 material = "marble"
 )",
-                                         weighting, model, 2.0f * kHalfThickness);
+                    grid, grid * 5 / 6, footprint, weighting, model, 2.0f * kHalfThickness);
     return parse_scene(text, "sss-slab", {}, SceneSearchPaths::defaults());
 }
 
@@ -197,6 +200,36 @@ TEST_F(SssRender, SlabSplatsMatchTheCpuSumOfEquation46) {
         EXPECT_LT(rel_rmse, 0.02) << model << " / " << weighting;
         RecordProperty(fmt::format("{}_{}_rel_rmse", model, weighting), std::to_string(rel_rmse));
     }
+}
+
+// Averaging each sample's profile over its own patch keeps the light it spreads (the image's sum)
+// and removes the dots of a coarse grid (the mean difference between neighbouring pixels).
+TEST_F(SssRender, FootprintFilterKeepsTheEnergyAndRemovesTheDots) {
+    const int w = 96, h = 96;
+    auto render = [&](bool footprint) {
+        const Scene scene = slab_scene("dipole", "jacobian", footprint, 24);
+        gl::SceneRenderer renderer(scene, {.width = w, .height = h});
+        const auto method = methods::create_volume_method("none");
+        method->prepare(scene);
+        renderer.render(*method);
+        return renderer.read_rgb(renderer.subsurface()->scatter());
+    };
+    const Image points = render(false), patches = render(true);
+    auto sum_and_roughness = [&](const Image& image) {
+        double sum = 0, roughness = 0;
+        for (int y = 10; y < h - 10; ++y)
+            for (int x = 10; x < w - 10; ++x) {
+                sum += image.at(x, y).g;
+                roughness += std::abs(image.at(x + 1, y).g - image.at(x, y).g);
+            }
+        return std::pair{sum, roughness / sum};
+    };
+    const auto [sum_points, rough_points] = sum_and_roughness(points);
+    const auto [sum_patches, rough_patches] = sum_and_roughness(patches);
+    EXPECT_NEAR(sum_patches, sum_points, 0.02 * sum_points);
+    EXPECT_LT(rough_patches, 0.5 * rough_points);
+    RecordProperty("roughness_points", std::to_string(rough_points));
+    RecordProperty("roughness_patches", std::to_string(rough_patches));
 }
 
 }  // namespace

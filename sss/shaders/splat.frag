@@ -9,6 +9,7 @@ flat in vec3 splat_position;
 flat in vec3 splat_normal;
 flat in vec3 splat_weight;
 flat in float splat_thickness_mm;
+flat in float splat_level;
 layout(location = 0) out vec4 scattered;
 
 void main() {
@@ -19,11 +20,12 @@ void main() {
     }
     vec3 n_o = texelFetch(eye_normals, pixel, 0).xyz;
     float r_mm = distance(p.xyz, splat_position) * material.y;
-    vec3 coordinates = profile_coordinates(r_mm, splat_thickness_mm);
-    vec3 profile = texture(profile_R, coordinates).rgb;
+    vec2 coordinates = profile_coordinates(r_mm, splat_thickness_mm);
+    vec3 profile = profile_at(profile_R, coordinates, splat_level);
     if (material.w > 0.5) {
         float c = dot(n_o, splat_normal);
-        profile = 0.5 * (c + 1.0) * profile + 0.5 * (1.0 - c) * texture(profile_T, coordinates).rgb;
+        profile = 0.5 * (c + 1.0) * profile +
+                  0.5 * (1.0 - c) * profile_at(profile_T, coordinates, splat_level);
     }
     vec3 v = normalize(frame.camera_position.xyz - p.xyz);
     float t_o = fresnel_transmittance(material.z, max(dot(n_o, v), 0.0));

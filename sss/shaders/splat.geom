@@ -13,6 +13,7 @@ in SampleData {
     vec3 normal;
     vec3 weight;
     float thickness_mm;
+    float footprint_mm;  // radius of the patch the sample stands for
     float valid;
 } sample_in[];
 
@@ -20,6 +21,7 @@ flat out vec3 splat_position;
 flat out vec3 splat_normal;
 flat out vec3 splat_weight;
 flat out float splat_thickness_mm;
+flat out float splat_level;  // footprint level
 
 void main() {
     if (sample_in[0].valid < 0.5 || all(equal(sample_in[0].weight, vec3(0.0)))) {
@@ -55,6 +57,7 @@ void main() {
         splat_normal = sample_in[0].normal;
         splat_weight = sample_in[0].weight;
         splat_thickness_mm = sample_in[0].thickness_mm;
+        splat_level = footprint_level(sample_in[0].footprint_mm);
         gl_Position = vec4(corners[k], 0.0, 1.0);
         EmitVertex();
     }

@@ -11,6 +11,7 @@ out SampleData {
     vec3 normal;
     vec3 weight;
     float thickness_mm;
+    float footprint_mm;  // radius of the patch the sample stands for
     float valid;
 } sample_out;
 
@@ -36,6 +37,7 @@ void main() {
     sample_out.valid = 0.0;
     sample_out.weight = vec3(0.0);
     sample_out.thickness_mm = 0.0;
+    sample_out.footprint_mm = 0.0;
     gl_Position = vec4(0.0);
     if (abs(p.w - object_id) > 0.5) {
         return;  // not this object: another object, or nothing written (§5.1)
@@ -72,6 +74,7 @@ void main() {
         area = sums.y > 0.0 ? sums.x / sums.y : 0.0;
     }
     sample_out.weight = irradiance * area * mm2 * fresnel_transmittance(material.z, cos_i);
+    sample_out.footprint_mm = sqrt(area * mm2 / SSS_PI);
     if (material.w > 0.5) {
         vec4 back = texelFetch(light_back_positions, texel, 0);
         sample_out.thickness_mm =

@@ -16,6 +16,7 @@ out SampleData {
     vec3 normal;
     vec3 weight;
     float thickness_mm;
+    float footprint_mm;  // radius of the patch the sample stands for
     float valid;
 } sample_out;
 
@@ -29,6 +30,7 @@ void main() {
     sample_out.normal = n;
     sample_out.weight = irradiance * area_per_sample * material.y * material.y * transmitted;
     sample_out.thickness_mm = slab.x;  // no light direction to measure along: the thinnest slab
+    sample_out.footprint_mm = sqrt(area_per_sample / SSS_PI) * material.y;
     sample_out.valid = 1.0;
     gl_Position = vec4(0.0);
 }

@@ -11,6 +11,7 @@ layout(location = 16) uniform vec4 material;         // r_max (units), mm per un
 layout(location = 17) uniform vec4 slab;  // d_min, d_max (mm), profile layer, weights:
                                           // 0 jacobian, 1 seed, 2 ΔA alone (area pass)
 layout(location = 18) uniform float object_id;       // index + 1
+layout(location = 20) uniform vec4 footprint;        // ρ_max (mm), levels (1: off)
 
 layout(binding = 0) uniform sampler2D light_positions;   // xyz, id + 1
 layout(binding = 1) uniform sampler2D light_normals;
@@ -33,10 +34,24 @@ float fresnel_transmittance(float eta, float cos_theta) {
 
 // Texture coordinates whose texel centres lie on the ends of [0, r_max] and [d_min, d_max], the
 // way sss/diffusion.h tabulates: the last column is zero, so r ≥ r_max reads zero (§5.2.2).
-vec3 profile_coordinates(float r_mm, float d_mm) {
+vec2 profile_coordinates(float r_mm, float d_mm) {
     vec2 size = vec2(textureSize(profile_R, 0).xy);
     float r_max_mm = material.x * material.y;
     float u = clamp(r_mm / r_max_mm, 0.0, 1.0);
     float v = clamp((d_mm - slab.x) / max(slab.y - slab.x, 1e-6), 0.0, 1.0);
-    return vec3((vec2(u, v) * (size - 1.0) + 0.5) / size, slab.z);
+    return (vec2(u, v) * (size - 1.0) + 0.5) / size;
+}
+
+// The footprint level of a sample of radius ρ (sss::FootprintLevels::coordinate).
+float footprint_level(float rho_mm) {
+    return sqrt(clamp(rho_mm / footprint.x, 0.0, 1.0)) * (footprint.y - 1.0);
+}
+
+// R (or T) at (r, d) for footprint level t: between the two tabulated levels around it.
+vec3 profile_at(sampler2DArray profile, vec2 coordinates, float level) {
+    float k = floor(level);
+    float next = min(k + 1.0, footprint.y - 1.0);
+    vec3 a = texture(profile, vec3(coordinates, slab.z + k)).rgb;
+    vec3 b = texture(profile, vec3(coordinates, slab.z + next)).rgb;
+    return mix(a, b, level - k);
 }

@@ -7,6 +7,7 @@ in SampleData {
     vec3 normal;
     vec3 weight;
     float thickness_mm;
+    float footprint_mm;  // radius of the patch the sample stands for
     float valid;
 } sample_in[];
 out SampleArea {
