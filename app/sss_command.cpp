@@ -95,7 +95,7 @@ int run_bench(const BenchArguments& a) {
     std::string table = fmt::format(
         "Scene `{}`, {}x{}, r_max criterion `{}`, footprint filter {}; frames per second "
         "(1000 / median GPU frame ms) and, in parentheses, the subsurface pass's ms.\n\n",
-        a.scene, width, height, a.radius, a.footprint ? "on" : "off");
+        base.name, width, height, a.radius, a.footprint ? "on" : "off");
     table += "| model | distance |";
     for (const auto& [n, m] : grids) {
         table += fmt::format(" {}×{} |", n, m);
@@ -153,7 +153,7 @@ int run_bench(const BenchArguments& a) {
                 if (n == grids[grids.size() / 2].first && m == grids[grids.size() / 2].second) {
                     const gl::Frame frame = renderer.read_back();
                     const std::string name =
-                        fmt::format("{}.{}.{}x{}.d{}.png", a.scene, model, n, m, distance);
+                        fmt::format("{}.{}.{}x{}.d{}.png", base.name, model, n, m, distance);
                     files.add(name, [&](const fs::path& path) {
                         write_png(frame.display_srgb8, width, height, path);
                     });
@@ -162,7 +162,7 @@ int run_bench(const BenchArguments& a) {
             table += "\n";
         }
     }
-    nlohmann::ordered_json report = {{"scene", a.scene},
+    nlohmann::ordered_json report = {{"scene", base.name},
                                      {"size", a.size},
                                      {"radius", a.radius},
                                      {"footprint", a.footprint},

@@ -121,7 +121,8 @@ TEST(Cli, MethodParametersAreListedAndSet) {
 TEST(Cli, ScenesListsCanonicalScenes) {
     const CommandResult run = run_shaftlab("scenes --names");
     ASSERT_EQ(run.exit_code, 0) << run.output;
-    EXPECT_EQ(run.output, "toplight\nparallel\nmultiple\nibl-spheres\n");
+    EXPECT_EQ(run.output,
+              "toplight\nparallel\nmultiple\nibl-spheres\nsss-bunny\nsss-dragon\nsss-shaft\n");
     EXPECT_EQ(run_shaftlab("scenes --help").exit_code, 0);
     EXPECT_EQ(run_shaftlab("render --help").exit_code, 0);
 }
