@@ -161,7 +161,7 @@ int run_reference(const ReferenceArguments& a) {
     if (!scene.environment.enabled()) {
         fail("scene '{}' has no [environment]", a.scene);
     }
-    const auto platform = gl::create_osmesa_platform();
+    const auto platform = gl::create_headless_platform();
     gl::SceneRenderer renderer(scene, {.width = width, .height = height});
     const auto method = methods::create_volume_method("none");
     method->prepare(scene);

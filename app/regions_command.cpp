@@ -155,7 +155,7 @@ int run_regions(const RegionsArguments& args) {
     const bt::Regions regions = bt::extract_regions(tree);
     const double extract_ms = ms_since(start);
 
-    const auto platform = gl::create_osmesa_platform();
+    const auto platform = gl::create_headless_platform();
     gl::SceneRenderer renderer(scene, {.width = width, .height = height});
     const auto method = methods::create_volume_method("none");
     const gl::Frame frame = renderer.render(*method);

@@ -54,7 +54,7 @@ int run_render(const RenderArguments& args) {
     const double load_ms = ms_since(start);
 
     start = Clock::now();
-    const auto platform = gl::create_osmesa_platform();
+    const auto platform = gl::create_headless_platform();
     const gl::ContextInfo context = platform->info();
     gl::SceneRenderer renderer(scene, options);
     const double setup_ms = ms_since(start);

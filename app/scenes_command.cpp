@@ -72,10 +72,10 @@ Command add_methods_command(CLI::App& app) {
 
 Command add_gl_info_command(CLI::App& app) {
     CLI::App* command =
-        app.add_subcommand("gl-info", "Print the headless OpenGL context (OSMesa) shaftlab uses");
+        app.add_subcommand("gl-info", "Print the headless OpenGL context shaftlab uses (SHAFTLAB_GL=osmesa|egl picks the backend)");
     (void)command;
     return [] {
-        const auto platform = gl::create_osmesa_platform();
+        const auto platform = gl::create_headless_platform();
         const gl::ContextInfo info = platform->info();
         fmt::print("backend  {}\nvendor   {}\nrenderer {}\nversion  {}\nprofile  {}\n",
                    platform->backend(), info.vendor, info.renderer, info.version,

@@ -89,7 +89,7 @@ int run_bench(const BenchArguments& a) {
         fail("sss bench needs at least one grid, model and distance");
     }
 
-    const auto platform = gl::create_osmesa_platform();
+    const auto platform = gl::create_headless_platform();
     nlohmann::ordered_json rows = nlohmann::json::array();
     OutputFiles files(a.out);
     std::string table = fmt::format(

@@ -1,5 +1,8 @@
 #include "gl/platform.h"
 
+#include <cstdlib>
+#include <string>
+
 #include "core/error.h"
 #include "gl/debug.h"
 #include "gl/functions.h"
@@ -32,6 +35,24 @@ void initialize_loaded_context(void* (*resolve)(const char*)) {
         fail("OpenGL 4.5 core is required, the context is {}.{}", major, minor);
     }
     install_debug_callback();
+}
+
+std::unique_ptr<Platform> create_headless_platform() {
+    const char* variable = std::getenv("SHAFTLAB_GL");
+    const std::string choice =
+        variable && *variable ? variable : (SHAFTLAB_HAVE_OSMESA ? "osmesa" : "egl");
+    if (choice == "egl")
+        return create_egl_platform();
+    if (choice == "osmesa") {
+#if SHAFTLAB_HAVE_OSMESA
+        return create_osmesa_platform();
+#else
+        fail(
+            "SHAFTLAB_GL=osmesa, but this build has no OSMesa (configured with "
+            "-DSHAFTLAB_WITH_OSMESA=OFF); use SHAFTLAB_GL=egl");
+#endif
+    }
+    fail("SHAFTLAB_GL='{}': expected 'osmesa' or 'egl'", choice);
 }
 
 }  // namespace sl::gl

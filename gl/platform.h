@@ -1,6 +1,7 @@
 #pragma once
 // One interface over the ways shaftlab gets an OpenGL 4.5 core context: headless through OSMesa
-// (platform_osmesa.cpp) and windowed through GLFW (platform_glfw.cpp). Creating a platform makes
+// (platform_osmesa.cpp) or EGL without a surface (platform_egl.cpp: a GPU's driver, or Mesa), and
+// windowed through GLFW (platform_glfw.cpp). Creating a platform makes
 // its context current, fills the GL function table and installs the KHR_debug callback.
 
 #include <memory>
@@ -25,8 +26,18 @@ public:
     ContextInfo info() const;
 };
 
-// Headless OSMesa (Mesa llvmpipe). Throws sl::Error when no 4.5 core context can be made.
+// Headless OSMesa (Mesa llvmpipe). Throws sl::Error when no 4.5 core context can be made. Only in
+// builds configured with SHAFTLAB_WITH_OSMESA (the default).
 std::unique_ptr<Platform> create_osmesa_platform();
+
+// Headless EGL, surfaceless, on the first EGL device that makes a 4.5 core context (an NVIDIA GPU
+// through its driver; Mesa's software device otherwise). Throws sl::Error when none does.
+std::unique_ptr<Platform> create_egl_platform();
+
+// The headless backend every command and test uses: the environment variable SHAFTLAB_GL picks
+// `osmesa` or `egl`; unset, OSMesa where the build has it, else EGL. Throws sl::Error for any other
+// value or when the backend cannot make a context.
+std::unique_ptr<Platform> create_headless_platform();
 
 class WindowPlatform : public Platform {
 public:

@@ -7,7 +7,7 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 packages=(
     build-essential cmake ninja-build pkg-config clang-format
-    libgl-dev libosmesa6-dev libglfw3-dev libglm-dev
+    libgl-dev libegl-dev libosmesa6-dev libglfw3-dev libglm-dev
     libcgal-dev libcgal-demo libembree-dev libtbb-dev
     libimgui-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
     libstb-dev libopenexr-dev libtinyobjloader-dev libfftw3-dev

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image.h"
+#include "core/metrics.h"
 
 #include "tests/support.h"
 
@@ -115,6 +116,32 @@ TEST(Cli, MethodParametersAreListedAndSet) {
         EXPECT_NE(run.output.find(expected), std::string::npos) << arguments << ": " << run.output;
         EXPECT_EQ(nothing.file_count(), 0u);
     }
+}
+
+// The two headless backends (OSMesa, and EGL on Mesa's software device here) render the same frame;
+// SHAFTLAB_GL names them and nothing else.
+TEST(Cli, EglAndOsmesaBackendsRenderTheSameFrame) {
+    TempDir osmesa, egl;
+    const std::string arguments = "render --scene multiple:2 --method hybrid3 --size 64x48 --out ";
+    const CommandResult a =
+        run_shaftlab_with("SHAFTLAB_GL=osmesa ", arguments + osmesa.path().string());
+    ASSERT_EQ(a.exit_code, 0) << a.output;
+    const CommandResult b = run_shaftlab_with("SHAFTLAB_GL=egl ", arguments + egl.path().string());
+    ASSERT_EQ(b.exit_code, 0) << b.output;
+    const CommandResult info = run_shaftlab_with("SHAFTLAB_GL=egl ", "gl-info");
+    EXPECT_NE(info.output.find("backend  egl"), std::string::npos) << info.output;
+    const std::string name = "multiple-2.hybrid3.inscatter.exr";
+    const ErrorMetrics error = compare_images(read_exr(egl / name), read_exr(osmesa / name));
+    EXPECT_LT(error.rel_rmse, 1e-3);
+
+    TempDir nothing;
+    const CommandResult bad =
+        run_shaftlab_with("SHAFTLAB_GL=vulkan ", arguments + nothing.path().string());
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.output.find("SHAFTLAB_GL='vulkan': expected 'osmesa' or 'egl'"),
+              std::string::npos)
+        << bad.output;
+    EXPECT_EQ(nothing.file_count(), 0u);
 }
 
 // `scenes` lists the canonical scenes; `--generate` prints a scene that renders.

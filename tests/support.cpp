@@ -22,7 +22,7 @@ namespace sl::test {
 namespace fs = std::filesystem;
 
 gl::Platform& headless_gl() {
-    static std::unique_ptr<gl::Platform> platform = gl::create_osmesa_platform();
+    static std::unique_ptr<gl::Platform> platform = gl::create_headless_platform();
     platform->make_current();
     return *platform;
 }
