@@ -110,8 +110,16 @@ Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut
             add(result.back, a, (!a_back && b_front) ? cut_on_split_plane : edge_flag);
         }
         if ((a_front && b_back) || (a_back && b_front)) {
-            const double t = d[i] / (d[i] - d[j]);
-            const dvec3 p = a + t * (b - a);
+            // From the back end of the edge whichever way the polygon walks it: the two faces of
+            // a polyhedron that share this edge walk it in opposite directions and must get the
+            // same point to the last bit, or the region meshes crack (pixels that see a front
+            // face but not the back face behind it integrate G(z) alone).
+            const bool from_a = a_back;
+            const dvec3& origin = from_a ? a : b;
+            const dvec3& target = from_a ? b : a;
+            const double d_origin = from_a ? d[i] : d[j], d_target = from_a ? d[j] : d[i];
+            const double t = d_origin / (d_origin - d_target);
+            const dvec3 p = origin + t * (target - origin);
             // Leaving the front side, the front polygon continues from p along the cut; entering
             // it, the rest of the original edge follows. Likewise for the back polygon.
             add(result.front, p, a_front ? cut_on_split_plane : edge_flag);

@@ -76,7 +76,7 @@ Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path
         create_configured_method(cell.method, options.shadow, settings);
 
     start = Clock::now();
-    const auto platform = gl::create_osmesa_platform();
+    const auto platform = gl::create_headless_platform();
     const gl::ContextInfo context = platform->info();
     gl::SceneRenderer renderer(scene, options);
     const double setup_ms = ms_since(start);

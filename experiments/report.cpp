@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <map>
@@ -636,8 +637,12 @@ void write_summary(const Experiment& x, const fs::path& out) {
     }
     files.commit();
     if (x.plots && !rows.empty()) {
-        // Debian's interpreter has Debian's matplotlib (python3-matplotlib), whatever is on PATH.
-        const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+        // Debian's interpreter has Debian's matplotlib (python3-matplotlib), whatever is on PATH;
+        // SHAFTLAB_PYTHON names another (a machine whose matplotlib lives elsewhere).
+        const char* chosen = std::getenv("SHAFTLAB_PYTHON");
+        const std::string python = chosen && *chosen                ? chosen
+                                   : fs::exists("/usr/bin/python3") ? "/usr/bin/python3"
+                                                                    : "python3";
         const int code = spawn_and_wait(
             {python, std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/plots.py", out.string()});
         if (code != 0) {

@@ -406,6 +406,9 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
             [this](size_t index, GLuint program) { draw_object(index, program, true); },
             uniforms_.view_projection, surface_depth_.id(), surface_framebuffer_.id(),
             frame_index_++);
+        // Its maps took texture units the methods share: give them back the shadow maps.
+        GL.BindTextureUnit(SL_SHADOW_MAP_UNIT, shadow_map_.id());
+        GL.BindTextureUnit(SL_SHADOW_MOMENTS_UNIT, shadow_moments_.id());
     }
     {
         // Timed by the method's timeline sections (queries of one target cannot nest).

@@ -5,6 +5,13 @@
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
+# A machine that cannot install packages (a GPU box without network) runs the scripts against a
+# build made elsewhere: SHAFTLAB_PREBUILT names its build directory and set-up is skipped.
+if [ -n "${SHAFTLAB_PREBUILT:-}" ]; then
+    build_dir=$SHAFTLAB_PREBUILT
+    return 0
+fi
+
 packages=(
     build-essential cmake ninja-build pkg-config clang-format
     libgl-dev libegl-dev libosmesa6-dev libglfw3-dev libglm-dev

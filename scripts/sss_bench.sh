@@ -3,11 +3,11 @@
 # and 6.7 (bunny at three distances) re-run with `shaftlab sss bench` at 512x512 with the seed's
 # r_max (eq. 4.3), table 6.3 again with the flux criterion, the sample-elimination time for 10k
 # points (table 5.4), the materials' profiles, and the harness on experiments/sss.toml. Writes
-# results/sss/.
+# results/sss/ (or the directory given as the first argument).
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 source "$repo/scripts/setup.sh"
-out="$repo/results/sss"
+out=${1:-$repo/results/sss}
 mkdir -p "$out"
 shaftlab="$build_dir/shaftlab"
 

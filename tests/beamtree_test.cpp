@@ -2,7 +2,9 @@
 // hulls against their meshes, inner boxes against ray parity, and classification against Embree
 // ray casts through the bounding volumes and the true meshes on random scenes.
 
+#include <array>
 #include <cmath>
+#include <map>
 #include <random>
 
 #include <glm/geometric.hpp>
@@ -79,6 +81,40 @@ TEST(Geometry, SplitConservesArea) {
     const bt::Split on = bt::split(square, {{0, 0, 1}, 0.0}, 1e-9);
     EXPECT_TRUE(on.coplanar);
     EXPECT_TRUE(on.front.empty() && on.back.empty());
+}
+
+// Clipping keeps a polyhedron watertight to the last bit: every edge of every face is the reverse
+// of an edge of another face with bitwise-equal endpoints (the two faces cut a shared edge at the
+// same point), so the rasterized region meshes have no cracks.
+TEST(Geometry, ClippedPolyhedraShareTheirEdgesExactly) {
+    std::mt19937 rng(11);
+    int checked = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        std::vector<bt::Plane> planes;
+        for (int k = 0; k < 8; ++k) {
+            planes.push_back({random_unit(rng), -uniform(rng, 0.5, 1.5)});
+        }
+        const bt::Polyhedron cell = bt::polyhedron_from_planes(planes, 4.0, 1e-9);
+        if (cell.empty())
+            continue;
+        std::map<std::pair<std::array<double, 3>, std::array<double, 3>>, int> edges;
+        auto key = [](const dvec3& v) { return std::array<double, 3>{v.x, v.y, v.z}; };
+        for (const bt::Polygon& face : cell.faces) {
+            for (size_t i = 0; i < face.size(); ++i) {
+                const dvec3& a = face.vertices[i];
+                const dvec3& b = face.vertices[(i + 1) % face.size()];
+                ++edges[{key(a), key(b)}];
+            }
+        }
+        size_t unmatched = 0;
+        for (const auto& [edge, count] : edges) {
+            const auto reverse = edges.find({edge.second, edge.first});
+            unmatched += reverse == edges.end() || reverse->second != count;
+        }
+        EXPECT_EQ(unmatched, 0u) << "trial " << trial;
+        ++checked;
+    }
+    EXPECT_GT(checked, 100);
 }
 
 // The convex polygon of points on a plane keeps exactly the corners and the area of its hull when
