@@ -71,8 +71,9 @@ Command add_methods_command(CLI::App& app) {
 }
 
 Command add_gl_info_command(CLI::App& app) {
-    CLI::App* command =
-        app.add_subcommand("gl-info", "Print the headless OpenGL context shaftlab uses (SHAFTLAB_GL=osmesa|egl picks the backend)");
+    CLI::App* command = app.add_subcommand("gl-info",
+                                           "Print the headless OpenGL context shaftlab uses "
+                                           "(SHAFTLAB_GL=osmesa|egl picks the backend)");
     (void)command;
     return [] {
         const auto platform = gl::create_headless_platform();

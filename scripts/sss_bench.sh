@@ -10,14 +10,16 @@ source "$repo/scripts/setup.sh"
 out=${1:-$repo/results/sss}
 mkdir -p "$out"
 shaftlab="$build_dir/shaftlab"
+# Frames per configuration (median of `frames` after `warmup`); a GPU wants more than llvmpipe.
+frames=(--frames "${SHAFTLAB_SSS_FRAMES:-5}" --warmup "${SHAFTLAB_SSS_WARMUP:-2}")
 
-"$shaftlab" sss bench --scene "$repo/experiments/sss-dragon-marble.scene.toml" \
+"$shaftlab" sss bench "${frames[@]}" --scene "$repo/experiments/sss-dragon-marble.scene.toml" \
     --grids 55x38,65x45,75x52,85x60,95x67 --out "$out/table61"
-"$shaftlab" sss bench --scene sss-bunny --grids 30x29,35x34,40x39,45x44,50x49,55x54 \
+"$shaftlab" sss bench "${frames[@]}" --scene sss-bunny --grids 30x29,35x34,40x39,45x44,50x49,55x54 \
     --out "$out/table63"
-"$shaftlab" sss bench --scene sss-bunny --grids 30x29,35x34,40x39,45x44,50x49,55x54 \
+"$shaftlab" sss bench "${frames[@]}" --scene sss-bunny --grids 30x29,35x34,40x39,45x44,50x49,55x54 \
     --radius flux --out "$out/table63-flux"
-"$shaftlab" sss bench --scene sss-bunny --models multipole --grids 50x49,60x59,70x69,80x79 \
+"$shaftlab" sss bench "${frames[@]}" --scene sss-bunny --models multipole --grids 50x49,60x59,70x69,80x79 \
     --distances 0.55,1,2.2 --out "$out/table67"
 "$shaftlab" sss uniformity --mesh ChineseDragon-10kv.off --points 10000 --out "$out/uniformity-dragon"
 "$shaftlab" sss uniformity --mesh bunny00.off --points 10000 --out "$out/uniformity-bunny"

@@ -1,7 +1,10 @@
 #version 450 core
 // Volume-based integration over the lit regions (Nilsson §3.2.2): each back face adds G(z), each
-// front face subtracts it, into a float target with additive blending; faces behind the scene's
-// surfaces are dropped (the lit regions never cross geometry, so in/out pairs go together).
+// front face subtracts it, into a float target with additive blending. z is clamped to the first
+// surface: a region's two faces behind it both give G(surface) and cancel, a front face before it
+// and a back face behind it give the part in front. No tolerance decides whether a face lying on a
+// surface (lit regions end on them) is in front: a grazing view made such decisions differ
+// between rasterizers and dropped one face of a pair.
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/in_scattering.glsl"
@@ -17,13 +20,10 @@ layout(location = 0) out vec4 in_scattered;
 
 void main() {
     vec3 origin = frame.camera_position.xyz;
-    vec3 to_face = world_position - origin;
-    float z = length(to_face);
-    vec3 direction = to_face / z;
-    // Faces behind the first surface do not count. Lit regions end exactly on surfaces, so
-    // compare distances along the ray with a relative tolerance rather than depths.
-    float surface = surface_distance(surface_depth, gl_FragCoord.xy);
-    if (z > surface * (1.0 + 1e-4) + 1e-4) discard;
+    // Every face of a pixel on the pixel's own eye ray, so that G depends on z alone and the
+    // faces of a pair hidden behind a surface cancel exactly.
+    vec3 direction = eye_ray_direction(gl_FragCoord.xy);
+    float z = min(length(world_position - origin), surface_distance(surface_depth, gl_FragCoord.xy));
     // The ray's cone interval, up to the surface it hits (any z beyond it is clamped anyway).
     vec2 span = light_interval(origin, direction, 1e30);
     vec3 g = in_scattering_antiderivative(origin, direction, span, z);
