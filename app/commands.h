@@ -31,6 +31,7 @@ using Clock = std::chrono::steady_clock;
 using experiments::ms_since;
 
 // "WxH" with both positive; throws sl::Error otherwise.
-void parse_size(const std::string& text, int& width, int& height);
+// Parses WIDTHxHEIGHT; errors name `option`.
+void parse_size(const std::string& text, int& width, int& height, const char* option = "--size");
 
 }  // namespace sl::app

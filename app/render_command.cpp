@@ -169,16 +169,16 @@ int run_render(const RenderArguments& args) {
 
 }  // namespace
 
-void parse_size(const std::string& text, int& width, int& height) {
+void parse_size(const std::string& text, int& width, int& height, const char* option) {
     static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
     std::smatch match;
     if (!std::regex_match(text, match, pattern)) {
-        fail("--size '{}': expected WIDTHxHEIGHT with positive integers, e.g. 640x360", text);
+        fail("{} '{}': expected WIDTHxHEIGHT with positive integers, e.g. 640x360", option, text);
     }
     width = std::stoi(match[1]);
     height = std::stoi(match[2]);
     if (width < 1 || height < 1 || width > 16384 || height > 16384) {
-        fail("--size '{}': width and height must be in 1..16384", text);
+        fail("{} '{}': width and height must be in 1..16384", option, text);
     }
 }
 

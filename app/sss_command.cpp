@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -55,6 +56,10 @@ struct BenchArguments {
 int run_bench(const BenchArguments& a) {
     int width = 0, height = 0;
     parse_size(a.size, width, height);
+    if (a.frames < 1 || a.warmup < 0) {
+        fail("--frames must be at least 1 and --warmup at least 0, got {} and {}", a.frames,
+             a.warmup);
+    }
     const Scene base = load_scene(a.scene, SceneSearchPaths::defaults());
     if (!base.has_translucent_objects()) {
         fail("scene '{}' has no translucent object", a.scene);
@@ -65,7 +70,7 @@ int run_bench(const BenchArguments& a) {
     std::vector<std::pair<int, int>> grids;
     for (const std::string& g : split(a.grids, ',')) {
         int n = 0, m = 0;
-        parse_size(g, n, m);
+        parse_size(g, n, m, "--grids");
         grids.emplace_back(n, m);
     }
     const std::vector<std::string> models = split(a.models, ',');
@@ -252,8 +257,14 @@ struct ProfileArguments {
 int run_profile(const ProfileArguments& a) {
     const sss::ScatteringMaterial& m = sss::material_preset(a.material);
     const sss::RgbDiffusion d = sss::RgbDiffusion::of(m);
-    if (a.samples < 2 || !(a.thickness >= 0.0)) {
-        fail("--samples must be at least 2 and --thickness ≥ 0");
+    if (a.samples < 2) {
+        fail("--samples must be at least 2, got {}", a.samples);
+    }
+    if (!(a.thickness >= 0.0) || !std::isfinite(a.thickness)) {
+        fail("--thickness must be a finite number of mm >= 0, got {}", a.thickness);
+    }
+    if (!(a.epsilon > 0.0 && a.epsilon < 1.0)) {
+        fail("--epsilon must lie in (0, 1), got {}", a.epsilon);
     }
     const double r_profile = sss::splat_radius(d, a.epsilon, false);
     const double r_flux = sss::splat_radius(d, a.epsilon, true);

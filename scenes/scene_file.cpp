@@ -462,10 +462,14 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
         }
         return {read_text_file(path), path.string(), path.parent_path()};
     }
+    std::string effect_list;
+    for (const std::string& effect : effects) {
+        effect_list += (effect_list.empty() ? "" : ", ") + effect;
+    }
     fail(
-        "unknown scene '{}' (canonical: toplight, parallel, multiple, multiple:N; effects: "
-        "ibl-spheres; or a .toml file)",
-        name);
+        "unknown scene '{}' (canonical: toplight, parallel, multiple, multiple:N; effects: {}; "
+        "or a .toml file)",
+        name, effect_list);
 }
 
 toml::table parse_toml(const std::string& text, const std::string& origin) {

@@ -1,6 +1,7 @@
 // The shaftlab executable end to end: a good render writes its three files; every bad input
 // prints one error line, exits non-zero and leaves no file behind.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +17,11 @@
 
 namespace sl::test {
 namespace {
+
+std::string read_text(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 // `render` writes <scene>.<method>.{png,exr,json}; the JSON records the renderer and timings.
 TEST(Cli, RenderWritesPngExrAndJson) {
@@ -145,6 +151,51 @@ TEST(Cli, EglAndOsmesaBackendsRenderTheSameFrame) {
               std::string::npos)
         << bad.output;
     EXPECT_EQ(nothing.file_count(), 0u);
+}
+
+// `sss` tools: a profile and a uniformity run write their files with the numbers of the seed's
+// set-up; every bad input is one error line, a non-zero exit and no file.
+TEST(Cli, SssToolsWriteTheirFilesAndRejectBadInputs) {
+    TempDir profile, uniformity;
+    const CommandResult p =
+        run_shaftlab("sss profile --material marble --out " + profile.path().string());
+    ASSERT_EQ(p.exit_code, 0) << p.output;
+    const auto json = nlohmann::json::parse(read_text(profile / "marble.profile.json"));
+    EXPECT_NEAR(json["A"].get<double>(), 3.9595, 1e-4);  // Fdr(1.5), Jensen's polynomial
+    EXPECT_GT(json["r_max_mm_flux"].get<double>(), json["r_max_mm_profile"].get<double>());
+    const CommandResult u = run_shaftlab("sss uniformity --mesh bunny00.off --points 400 --out " +
+                                         uniformity.path().string());
+    ASSERT_EQ(u.exit_code, 0) << u.output;
+    const auto report = nlohmann::json::parse(read_text(uniformity / "uniformity.json"));
+    EXPECT_GT(report["eliminated"]["relative_radius"].get<double>(),
+              report["random"]["relative_radius"].get<double>())
+        << report.dump();
+
+    const std::pair<const char*, const char*> bad[] = {
+        {"bench --scene nope", "unknown scene 'nope'"},
+        {"bench --scene toplight", "scene 'toplight' has no translucent object"},
+        {"bench --scene sss-bunny --grids 0x5", "--grids '0x5'"},
+        {"bench --scene sss-bunny --grids abc", "--grids 'abc'"},
+        {"bench --scene sss-bunny --models foo", "unknown diffusion model 'foo'"},
+        {"bench --scene sss-bunny --radius bar", "--radius must be profile"},
+        {"bench --scene sss-bunny --distances -1", "--distances: -1 must be > 0"},
+        {"bench --scene sss-bunny --frames 0", "--frames must be at least 1"},
+        {"uniformity --mesh bunny00.off --points 1", "--points must be at least 2"},
+        {"uniformity --mesh missing.off", "cannot open mesh file"},
+        {"profile --material unobtainium", "unknown translucent material 'unobtainium'"},
+        {"profile --material marble --thickness -1", "--thickness must be"},
+        {"profile --material marble --thickness nan", "--thickness must be"},
+        {"profile --material marble --epsilon 2", "--epsilon must lie in (0, 1)"},
+    };
+    for (const auto& [arguments, expected] : bad) {
+        TempDir nothing;
+        const CommandResult run =
+            run_shaftlab(std::string("sss ") + arguments + " --out " + nothing.path().string());
+        EXPECT_NE(run.exit_code, 0) << arguments;
+        EXPECT_NE(run.output.find(expected), std::string::npos) << arguments << ": " << run.output;
+        EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+        EXPECT_EQ(nothing.file_count(), 0u) << arguments;
+    }
 }
 
 // `scenes` lists the canonical scenes; `--generate` prints a scene that renders.
@@ -367,11 +418,6 @@ TEST(Cli, RegionsRejectsALightInsideABoundingVolume) {
               std::string::npos)
         << run.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "regions.json"));
-}
-
-std::string read_text(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // `ibl prefilter` writes one EXR and PNG per level and a JSON summary whose levels halve in size
