@@ -18,7 +18,14 @@
 //               prefilter ("importance" | "cone"), distribution ("ggx" | "beckmann"), samples,
 //               filtered (bool), shading ("split-sum" | "moschos"), skybox (bool), enabled
 //               (bool: false turns a base scene's environment off)
-//   [materials.NAME]  albedo, roughness (microfacet α), f0 = [r, g, b]
+//   [materials.NAME]  albedo, roughness (microfacet α), f0 = [r, g, b]; translucent (sss/): a
+//               preset name (sss::material_preset) or "custom" with sigma_s_reduced, sigma_a
+//               ([r, g, b] 1/mm) and eta; model ("dipole" | "multipole"); coats = [{ material =
+//               a preset, thickness = mm }, ...] (layers above the material, top first)
+//   [sss]       subsurface splatting: mm_per_unit, grid = [N, M], jitter (bool), map_size,
+//               epsilon, radius ("flux" | "profile"), footprint (bool), weighting ("jacobian" |
+//               "seed"), profile_texels, environment_samples; [[sss.lights]] fill lights for the
+//               translucent objects, each with the keys of [light]
 //   [[objects]] name, shape ("mesh" | "box" | "sphere" | "cylinder" | "torus" | "plane"),
 //               the shape's parameters, material, translate, rotate (degrees about x, y, z,
 //               applied in that order), scale (number or [x, y, z]),
