@@ -1,5 +1,7 @@
 #include "beamtree/regions.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
 #include <fmt/os.h>
 
@@ -15,9 +17,28 @@ size_t Regions::face_count(Region region) const {
     return count;
 }
 
+bool Regions::drawn(Region region, const RegionPiece& piece) const {
+    // Lit slivers — pieces thinner than 1e-5 of the influence volume's size (twice the volume
+    // over the area) — stay out of the mesh: a ray crossing one integrates next to nothing, but
+    // their faces are nearly edge-on to some pixel rays, where a rasterizer's interpolated depth
+    // is off by far more than the sliver is thick and one face of the analytic pass's pair gives
+    // ±G alone. (The other regions only bound intervals and keep every piece.)
+    if (region != Region::lit) {
+        return true;
+    }
+    double surface = 0.0;
+    for (const Polygon& face : piece.polyhedron.faces) {
+        surface += area(face);
+    }
+    return 2.0 * bt::volume(piece.polyhedron) >= 1e-5 * std::cbrt(influence_volume) * surface;
+}
+
 RegionMesh Regions::mesh(Region region) const {
     RegionMesh mesh;
     for (const RegionPiece& piece : pieces[size_t(region)]) {
+        if (!drawn(region, piece)) {
+            continue;
+        }
         for (const Polygon& face : piece.polyhedron.faces) {
             const auto base = uint32_t(mesh.positions.size());
             for (const dvec3& v : face.vertices) {

@@ -35,7 +35,11 @@ struct Regions {
     double influence_volume = 0.0;
 
     size_t face_count(Region region) const;
+    // The GPU mesh of one region type: the faces of every piece drawn().
     RegionMesh mesh(Region region) const;
+    // False for lit slivers (thinner than 1e-5 of the influence volume's size), which the GPU
+    // mesh leaves out (regions.cpp says why); true for every other piece.
+    bool drawn(Region region, const RegionPiece& piece) const;
 };
 
 Regions extract_regions(const BeamTree& tree);
