@@ -71,6 +71,9 @@ void AnalyticRegionPass::require_closed_form(const Scene& scene, const std::stri
 void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>& positions,
                                 const std::vector<glm::uvec3>& triangles) {
     index_count_ = GLsizei(triangles.size() * 3);
+    if (index_count_ == 0) {
+        return;  // no lit region (or only slivers): draw() adds nothing
+    }
     vertices_ = create_buffer(positions.data(), positions.size() * sizeof(glm::vec3));
     indices_ = create_buffer(triangles.data(), triangles.size() * sizeof(glm::uvec3));
     vertex_array_ = create_vertex_array();
