@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -147,16 +148,33 @@ ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
     CGAL::Surface_mesh<Point> hull;
     CGAL::convex_hull_3(cgal_points.begin(), cgal_points.end(), hull);
 
-    // One plane per hull facet, coplanar facets merged; remember each plane's total area and
-    // the corners of its facets.
-    std::vector<std::pair<Plane, double>> planes;
-    std::vector<std::vector<dvec3>> plane_corners;
+    // The facets in a canonical order: CGAL lists them (and starts each at a vertex) in an order
+    // that follows heap addresses, so the same mesh gave differently rounded planes, merged in a
+    // different order, from one build to the next within a process. Each facet starts at its
+    // lexicographically smallest corner (keeping its winding) and the facets are sorted.
+    const auto less = [](const dvec3& a, const dvec3& b) {
+        return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+    };
+    std::vector<std::vector<dvec3>> facets;
+    facets.reserve(hull.number_of_faces());
     for (const auto face : hull.faces()) {
-        std::vector<dvec3> corners;
+        std::vector<dvec3>& corners = facets.emplace_back();
         for (const auto vertex : CGAL::vertices_around_face(hull.halfedge(face), hull)) {
             const Point& p = hull.point(vertex);
             corners.emplace_back(p.x(), p.y(), p.z());
         }
+        std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end(), less),
+                    corners.end());
+    }
+    std::sort(facets.begin(), facets.end(), [&](const auto& a, const auto& b) {
+        return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), less);
+    });
+
+    // One plane per hull facet, coplanar facets merged; remember each plane's total area and
+    // the corners of its facets.
+    std::vector<std::pair<Plane, double>> planes;
+    std::vector<std::vector<dvec3>> plane_corners;
+    for (const std::vector<dvec3>& corners : facets) {
         Plane plane;
         if (corners.size() < 3 || !Plane::through(corners[0], corners[1], corners[2], plane)) {
             continue;
