@@ -194,6 +194,55 @@ ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
             plane_corners.push_back(corners);
         }
     }
+    // Each merged plane and its area from its set of corners alone, and the planes in an order of
+    // those sets: CGAL triangulates a coplanar region (a box side, a flat cap) one way or another
+    // from build to build, so the first facet's plane, the summed facet areas and the order of
+    // first appearance were not functions of the mesh. The plane passes through the smallest
+    // corner, the corner farthest from it and the corner farthest from their line.
+    std::vector<size_t> order(planes.size());
+    for (size_t i = 0; i < planes.size(); ++i) {
+        order[i] = i;
+        std::vector<dvec3>& corners = plane_corners[i];
+        std::sort(corners.begin(), corners.end(), less);
+        corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+        const dvec3 p0 = corners[0];
+        dvec3 p1 = p0, p2 = p0;
+        for (const dvec3& c : corners) {
+            if (glm::distance(c, p0) > glm::distance(p1, p0)) {
+                p1 = c;
+            }
+        }
+        const dvec3 axis = glm::normalize(p1 - p0);
+        const auto off_line = [&](const dvec3& c) { return glm::length(glm::cross(c - p0, axis)); };
+        for (const dvec3& c : corners) {
+            if (off_line(c) > off_line(p2)) {
+                p2 = c;
+            }
+        }
+        Plane canonical;
+        if (Plane::through(p0, p1, p2, canonical)) {
+            if (glm::dot(canonical.normal, planes[i].first.normal) < 0.0) {
+                canonical = canonical.flipped();
+            }
+            planes[i].first = canonical;
+        }
+        planes[i].second = area(convex_polygon_on_plane(corners, planes[i].first, tolerance));
+    }
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return std::lexicographical_compare(plane_corners[a].begin(), plane_corners[a].end(),
+                                            plane_corners[b].begin(), plane_corners[b].end(), less);
+    });
+    {
+        std::vector<std::pair<Plane, double>> sorted_planes;
+        std::vector<std::vector<dvec3>> sorted_corners;
+        for (const size_t i : order) {
+            sorted_planes.push_back(planes[i]);
+            sorted_corners.push_back(std::move(plane_corners[i]));
+        }
+        planes = std::move(sorted_planes);
+        plane_corners = std::move(sorted_corners);
+    }
+
     if (max_planes <= 0 || int(planes.size()) <= max_planes) {
         // The full hull: each face is the convex polygon of its facets' corners.
         for (size_t i = 0; i < planes.size(); ++i) {
@@ -210,8 +259,8 @@ ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
     const dvec3 lo(bounds.min), hi(bounds.max);
     std::vector<Plane> chosen = {{{1, 0, 0}, -hi.x}, {{-1, 0, 0}, lo.x}, {{0, 1, 0}, -hi.y},
                                  {{0, -1, 0}, lo.y}, {{0, 0, 1}, -hi.z}, {{0, 0, -1}, lo.z}};
-    std::sort(planes.begin(), planes.end(),
-              [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::stable_sort(planes.begin(), planes.end(),
+                     [](const auto& a, const auto& b) { return a.second > b.second; });
     for (const auto& [plane, a] : planes) {
         if (int(chosen.size()) >= max_planes) {
             break;
