@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/os.h>
 
+#include "beamtree/conforming.h"
 #include "core/error.h"
 
 namespace sl::bt {
@@ -34,21 +35,37 @@ bool Regions::drawn(Region region, const RegionPiece& piece) const {
 }
 
 RegionMesh Regions::mesh(Region region) const {
-    RegionMesh mesh;
+    std::vector<Polygon> faces;
+    std::vector<uint32_t> beams;
     for (const RegionPiece& piece : pieces[size_t(region)]) {
-        if (!drawn(region, piece)) {
-            continue;
+        if (drawn(region, piece)) {
+            faces.insert(faces.end(), piece.polyhedron.faces.begin(), piece.polyhedron.faces.end());
+            beams.resize(faces.size(), piece.beam);
         }
-        for (const Polygon& face : piece.polyhedron.faces) {
-            const auto base = uint32_t(mesh.positions.size());
-            for (const dvec3& v : face.vertices) {
-                mesh.positions.emplace_back(v);
-            }
-            for (uint32_t i = 1; i + 1 < face.size(); ++i) {
-                mesh.triangles.emplace_back(base, base + i, base + i + 1);
-                mesh.beams.push_back(piece.beam);
-            }
+    }
+    // Conforming across pieces (a face of one cell meets several of its neighbour's where the
+    // tree split only that side), so that each pixel crosses every shared face exactly once.
+    std::vector<Polygon*> pointers;
+    for (Polygon& face : faces) {
+        pointers.push_back(&face);
+    }
+    insert_t_junction_vertices(pointers, kConformingTolerance * std::cbrt(influence_volume));
+
+    RegionMesh mesh;
+    for (size_t f = 0; f < faces.size(); ++f) {
+        const std::vector<dvec3>& vertices = faces[f].vertices;
+        if (vertices.size() < 3) {
+            continue;  // welded flat
         }
+        const auto base = uint32_t(mesh.positions.size());
+        for (const dvec3& v : vertices) {
+            mesh.positions.emplace_back(v);
+        }
+        mesh.positions.emplace_back(centroid(faces[f]));
+        centroid_fan(uint32_t(vertices.size()), [&](uint32_t a, uint32_t b, uint32_t c) {
+            mesh.triangles.emplace_back(base + a, base + b, base + c);
+            mesh.beams.push_back(beams[f]);
+        });
     }
     return mesh;
 }

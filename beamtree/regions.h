@@ -21,7 +21,9 @@ struct RegionPiece {
 };
 
 // One region type as a triangle mesh for the GPU: float positions, outward-wound triangles and
-// the beam each triangle bounds.
+// the beam each triangle bounds. The faces are conforming (beamtree/conforming.h: no vertex of
+// one in the middle of another's edge) and fanned around their centroids, so a rasterizer covers
+// each pixel centre with exactly one of the faces on either side of a shared edge.
 struct RegionMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::uvec3> triangles;
@@ -29,13 +31,17 @@ struct RegionMesh {
 };
 
 struct Regions {
+    // Vertices within this fraction of the influence volume's size of each other are welded, and
+    // of another face's edge are T-junctions of the GPU mesh (bt::insert_t_junction_vertices).
+    static constexpr double kConformingTolerance = 1e-7;
+
     size_t beam_count = 0;
     std::array<std::vector<RegionPiece>, 3> pieces;  // indexed by Region
     std::array<double, 3> volume{};
     double influence_volume = 0.0;
 
     size_t face_count(Region region) const;
-    // The GPU mesh of one region type: the faces of every piece drawn().
+    // The GPU mesh of one region type: the faces of every piece drawn(), made conforming.
     RegionMesh mesh(Region region) const;
     // False for lit slivers (thinner than 1e-5 of the influence volume's size), which the GPU
     // mesh leaves out (regions.cpp says why); true for every other piece.

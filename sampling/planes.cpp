@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include "beamtree/beam_tree.h"
+#include "beamtree/conforming.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
 #include "gl/analytic_pass.h"
@@ -37,13 +38,19 @@ struct PlaneVertex {
     float depth;
 };
 
-// Appends a convex polygon as a triangle fan.
+// Appends a convex polygon as triangles fanned around its centroid: conforming pieces have
+// collinear vertices (bt::centroid_fan). Pieces welded flat have none.
 void append_fan(const bt::Polygon& polygon, double depth, std::vector<PlaneVertex>& out) {
-    for (size_t i = 1; i + 1 < polygon.size(); ++i) {
-        for (size_t j : {size_t(0), i, i + 1}) {
-            out.push_back({glm::vec3(polygon.vertices[j]), float(depth)});
-        }
+    if (polygon.size() < 3) {
+        return;
     }
+    const glm::vec3 center(bt::centroid(polygon));
+    bt::centroid_fan(uint32_t(polygon.size()), [&](uint32_t a, uint32_t b, uint32_t c) {
+        for (const uint32_t j : {a, b, c}) {
+            out.push_back(
+                {j == polygon.size() ? center : glm::vec3(polygon.vertices[j]), float(depth)});
+        }
+    });
 }
 
 class PlanesMethod final : public gl::VolumeMethod {
@@ -135,7 +142,7 @@ public:
                     for (bt::Polygon& piece : parts.lit)
                         drawn.push_back(&piece);
                 }
-                remove_t_junctions(drawn, tolerance);
+                bt::insert_t_junction_vertices(drawn, tolerance);
                 for (const bt::Polygon& piece : parts.uncertain)
                     append_fan(piece, slice.depth, vertices);
                 if (variant_ == PlanesVariant::hybrid1) {

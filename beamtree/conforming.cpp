@@ -1,0 +1,211 @@
+#include "beamtree/conforming.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+namespace sl::bt {
+
+namespace {
+
+// A bounding-volume hierarchy over points (median splits on the widest axis), queried with a
+// segment: a point within `tolerance` of the segment lies in a node whose box, grown by
+// `tolerance`, the segment crosses. Adaptive, so the clusters of vertices where beams meet (the
+// tree splits densest near the light and the silhouettes) cost a lookup no more than open space.
+class PointTree {
+public:
+    explicit PointTree(std::vector<dvec3> points) : points_(std::move(points)) {
+        nodes_.reserve(2 * points_.size() / kLeafSize + 1);
+        build(0, uint32_t(points_.size()));
+    }
+
+    // Calls visit(p) for every point p in a node the segment [a, b] grown by `tolerance` meets.
+    template <class Visit>
+    void query(const dvec3& a, const dvec3& b, double tolerance, Visit&& visit) const {
+        const dvec3 d = b - a;
+        std::array<uint32_t, 64> stack;
+        size_t top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const Node& node = nodes_[stack[--top]];
+            if (!crosses(node, a, d, tolerance)) {
+                continue;
+            }
+            if (node.right == 0) {
+                for (uint32_t i = node.begin; i < node.end; ++i) {
+                    visit(points_[i]);
+                }
+                continue;
+            }
+            stack[top++] = uint32_t(&node - nodes_.data()) + 1;
+            stack[top++] = node.right;
+        }
+    }
+
+private:
+    static constexpr uint32_t kLeafSize = 8;
+
+    struct Node {
+        dvec3 lo, hi;
+        uint32_t begin, end;
+        uint32_t right;  // 0 for a leaf; the left child follows its parent
+    };
+
+    // Depth first, so that a node's left child is the next node (depth ≤ log2(n / kLeafSize)).
+    void build(uint32_t begin, uint32_t end) {
+        const auto index = uint32_t(nodes_.size());
+        Node node{dvec3(std::numeric_limits<double>::infinity()),
+                  dvec3(-std::numeric_limits<double>::infinity()), begin, end, 0};
+        for (uint32_t i = begin; i < end; ++i) {
+            node.lo = glm::min(node.lo, points_[i]);
+            node.hi = glm::max(node.hi, points_[i]);
+        }
+        nodes_.push_back(node);
+        if (end - begin <= kLeafSize) {
+            return;
+        }
+        const dvec3 extent = node.hi - node.lo;
+        const int axis =
+            extent.x >= extent.y ? (extent.x >= extent.z ? 0 : 2) : (extent.y >= extent.z ? 1 : 2);
+        const uint32_t middle = begin + (end - begin) / 2;
+        std::nth_element(points_.begin() + begin, points_.begin() + middle, points_.begin() + end,
+                         [axis](const dvec3& p, const dvec3& q) { return p[axis] < q[axis]; });
+        build(begin, middle);
+        nodes_[index].right = uint32_t(nodes_.size());
+        build(middle, end);
+    }
+
+    // Slab test of the segment a + t d, t in [0, 1], against the node's box grown by `grow`.
+    static bool crosses(const Node& node, const dvec3& a, const dvec3& d, double grow) {
+        double t0 = 0.0, t1 = 1.0;
+        for (int axis = 0; axis < 3; ++axis) {
+            const double lo = node.lo[axis] - grow, hi = node.hi[axis] + grow;
+            if (d[axis] == 0.0) {
+                if (a[axis] < lo || a[axis] > hi) {
+                    return false;
+                }
+                continue;
+            }
+            const double inverse = 1.0 / d[axis];
+            double near = (lo - a[axis]) * inverse, far = (hi - a[axis]) * inverse;
+            if (near > far) {
+                std::swap(near, far);
+            }
+            t0 = std::max(t0, near);
+            t1 = std::min(t1, far);
+            if (t0 > t1) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    std::vector<dvec3> points_;
+    std::vector<Node> nodes_;
+};
+
+}  // namespace
+
+void insert_t_junction_vertices(const std::vector<Polygon*>& polygons, double tolerance) {
+    // The distinct vertex positions (faces of neighbouring cells share most of theirs).
+    std::vector<dvec3> positions;
+    for (const Polygon* polygon : polygons) {
+        positions.insert(positions.end(), polygon->vertices.begin(), polygon->vertices.end());
+    }
+    const auto lexicographic = [](const dvec3& p, const dvec3& q) {
+        return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+    };
+    std::sort(positions.begin(), positions.end(), lexicographic);
+    positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
+    if (positions.size() < 3) {
+        return;
+    }
+
+    // Welding: the tree computes a corner shared by several cells once per cell, and the copies
+    // differ by round-off, which float can round apart. Every cluster of positions chained within
+    // `tolerance` becomes its lexicographically smallest member (union-find, smaller index wins).
+    std::vector<uint32_t> parent(positions.size());
+    for (uint32_t i = 0; i < parent.size(); ++i) {
+        parent[i] = i;
+    }
+    const auto root = [&parent](uint32_t i) {
+        while (parent[i] != i) {
+            i = parent[i] = parent[parent[i]];
+        }
+        return i;
+    };
+    const auto index_of = [&](const dvec3& p) {
+        return uint32_t(std::lower_bound(positions.begin(), positions.end(), p, lexicographic) -
+                        positions.begin());
+    };
+    {
+        const PointTree near(positions);
+        const double tolerance2 = tolerance * tolerance;
+        for (uint32_t i = 0; i < positions.size(); ++i) {
+            near.query(positions[i], positions[i], tolerance, [&](const dvec3& q) {
+                const dvec3 gap = q - positions[i];
+                if (glm::dot(gap, gap) <= tolerance2) {
+                    const uint32_t a = root(i), b = root(index_of(q));
+                    parent[std::max(a, b)] = std::min(a, b);
+                }
+            });
+        }
+    }
+    std::vector<dvec3> welded;
+    for (uint32_t i = 0; i < positions.size(); ++i) {
+        if (root(i) == i) {
+            welded.push_back(positions[i]);
+        }
+    }
+    for (Polygon* polygon : polygons) {
+        std::vector<dvec3>& v = polygon->vertices;
+        for (dvec3& p : v) {
+            p = positions[root(index_of(p))];
+        }
+        v.erase(std::unique(v.begin(), v.end()), v.end());
+        while (v.size() > 1 && v.front() == v.back()) {
+            v.pop_back();
+        }
+    }
+    const PointTree tree(std::move(welded));
+
+    // A vertex of a convex polygon is never inside one of its own edges, so every point found
+    // within `tolerance` of an edge's interior (and farther than that from its ends) is a
+    // T-vertex, whichever polygon it belongs to.
+    const double tolerance2 = tolerance * tolerance;
+    std::vector<std::pair<double, dvec3>> on_edge;
+    std::vector<dvec3> conforming;
+    for (Polygon* polygon : polygons) {
+        const std::vector<dvec3>& original = polygon->vertices;
+        conforming.clear();
+        for (size_t e = 0; e < original.size() && original.size() >= 2; ++e) {
+            const dvec3 a = original[e], b = original[(e + 1) % original.size()];
+            conforming.push_back(a);
+            const dvec3 d = b - a;
+            const double length2 = glm::dot(d, d);
+            const double length = std::sqrt(length2);
+            on_edge.clear();
+            tree.query(a, b, tolerance, [&](const dvec3& p) {
+                const double t = glm::dot(p - a, d) / length2;
+                const dvec3 off = p - a - t * d;
+                if (t * length > tolerance && t * length < length - tolerance &&
+                    glm::dot(off, off) <= tolerance2) {
+                    on_edge.emplace_back(t, p);
+                }
+            });
+            std::sort(on_edge.begin(), on_edge.end(),
+                      [](const auto& x, const auto& y) { return x.first < y.first; });
+            for (const auto& [t, p] : on_edge) {
+                conforming.push_back(p);
+            }
+        }
+        polygon->vertices = conforming;
+        polygon->on_split_plane = 0;
+    }
+}
+
+}  // namespace sl::bt

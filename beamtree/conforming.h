@@ -1,0 +1,37 @@
+#pragma once
+// Conforming polygon sets for rasterization. The beam tree's splits cut one side of an edge and
+// not the other, leaving T-junctions: a vertex of one polygon in the middle of another's edge.
+// Rasterized, the two sides of such an edge are different float segments, so a pixel centre near
+// it can be covered twice or not at all; the analytic pass then counts a face of an entry/exit
+// pair without the other, and the sampling planes a sample twice. Inserting the T-vertices makes
+// both sides the same sequence of segments (no cracks, no double hits), provided each polygon is
+// then triangulated without (near-)zero-area triangles — a fan from a corner has one for every
+// collinear vertex on that corner's edges, and its interpolated depth is ill-conditioned.
+
+#include <cstdint>
+#include <vector>
+
+#include "beamtree/geometry.h"
+
+namespace sl::bt {
+
+// Makes a set of convex polygons conforming. First welds: positions chained within `tolerance`
+// of each other become one (the tree computes a corner shared by several cells once per cell,
+// and float can round the copies apart); welded-away edges and vertices go. Then inserts, into
+// every edge, the vertices that lie within `tolerance` of its interior, in order along it. The
+// polygons may lie on any planes (the faces of region pieces, or the pieces of one sampling
+// plane). A point hierarchy over the distinct positions finds those near each edge.
+// Edge flags (`on_split_plane`) are cleared: they no longer line up with the edges.
+void insert_t_junction_vertices(const std::vector<Polygon*>& polygons, double tolerance);
+
+// The triangles of a convex polygon with `n` vertices, fanned around its centroid (index n):
+// every triangle has an edge of the polygon as its base and a positive area, collinear vertices
+// included. Calls emit(a, b, c) with the polygon's winding.
+template <class Emit>
+void centroid_fan(uint32_t n, Emit&& emit) {
+    for (uint32_t i = 0; i < n; ++i) {
+        emit(n, i, (i + 1) % n);
+    }
+}
+
+}  // namespace sl::bt
