@@ -110,6 +110,18 @@ private:
 
 }  // namespace
 
+bool has_collinear_vertex(const Polygon& polygon) {
+    const std::vector<dvec3>& v = polygon.vertices;
+    for (size_t i = 0; i < v.size(); ++i) {
+        const dvec3 in = v[i] - v[(i + v.size() - 1) % v.size()];
+        const dvec3 out = v[(i + 1) % v.size()] - v[i];
+        if (glm::length(glm::cross(in, out)) <= 1e-4 * glm::length(in) * glm::length(out)) {
+            return true;
+        }
+    }
+    return false;
+}
+
 void insert_t_junction_vertices(const std::vector<Polygon*>& polygons, double tolerance) {
     // The distinct vertex positions (faces of neighbouring cells share most of theirs).
     std::vector<dvec3> positions;

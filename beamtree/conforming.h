@@ -5,8 +5,9 @@
 // it can be covered twice or not at all; the analytic pass then counts a face of an entry/exit
 // pair without the other, and the sampling planes a sample twice. Inserting the T-vertices makes
 // both sides the same sequence of segments (no cracks, no double hits), provided each polygon is
-// then triangulated without (near-)zero-area triangles — a fan from a corner has one for every
-// collinear vertex on that corner's edges, and its interpolated depth is ill-conditioned.
+// then triangulated without (near-)zero-area triangles (fan_triangles) — a fan from a corner has
+// one for every collinear vertex on that corner's edges, and its interpolated depth is
+// ill-conditioned.
 
 #include <cstdint>
 #include <vector>
@@ -24,14 +25,27 @@ namespace sl::bt {
 // Edge flags (`on_split_plane`) are cleared: they no longer line up with the edges.
 void insert_t_junction_vertices(const std::vector<Polygon*>& polygons, double tolerance);
 
-// The triangles of a convex polygon with `n` vertices, fanned around its centroid (index n):
-// every triangle has an edge of the polygon as its base and a positive area, collinear vertices
-// included. Calls emit(a, b, c) with the polygon's winding.
+// True when some vertex of the polygon lies (within a sine of 1e-4) on the line through its
+// neighbours, as inserted T-vertices do.
+bool has_collinear_vertex(const Polygon& polygon);
+
+// The triangles of a convex polygon for rasterization, calling emit(a, b, c) with its winding.
+// A fan from the first corner (n - 2 triangles) when no vertex is collinear with its neighbours;
+// otherwise a fan around the centroid, vertex index n (n triangles, each on an edge of the
+// polygon, so none of zero area). Returns whether index n was used.
 template <class Emit>
-void centroid_fan(uint32_t n, Emit&& emit) {
+bool fan_triangles(const Polygon& polygon, Emit&& emit) {
+    const auto n = uint32_t(polygon.size());
+    if (!has_collinear_vertex(polygon)) {
+        for (uint32_t i = 1; i + 1 < n; ++i) {
+            emit(0, i, i + 1);
+        }
+        return false;
+    }
     for (uint32_t i = 0; i < n; ++i) {
         emit(n, i, (i + 1) % n);
     }
+    return true;
 }
 
 }  // namespace sl::bt

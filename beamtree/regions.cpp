@@ -61,11 +61,12 @@ RegionMesh Regions::mesh(Region region) const {
         for (const dvec3& v : vertices) {
             mesh.positions.emplace_back(v);
         }
-        mesh.positions.emplace_back(centroid(faces[f]));
-        centroid_fan(uint32_t(vertices.size()), [&](uint32_t a, uint32_t b, uint32_t c) {
-            mesh.triangles.emplace_back(base + a, base + b, base + c);
-            mesh.beams.push_back(beams[f]);
-        });
+        if (fan_triangles(faces[f], [&](uint32_t a, uint32_t b, uint32_t c) {
+                mesh.triangles.emplace_back(base + a, base + b, base + c);
+                mesh.beams.push_back(beams[f]);
+            })) {
+            mesh.positions.emplace_back(centroid(faces[f]));
+        }
     }
     return mesh;
 }

@@ -38,14 +38,14 @@ struct PlaneVertex {
     float depth;
 };
 
-// Appends a convex polygon as triangles fanned around its centroid: conforming pieces have
-// collinear vertices (bt::centroid_fan). Pieces welded flat have none.
+// Appends a convex polygon as triangles (bt::fan_triangles: conforming pieces have collinear
+// vertices). Pieces welded flat have none.
 void append_fan(const bt::Polygon& polygon, double depth, std::vector<PlaneVertex>& out) {
     if (polygon.size() < 3) {
         return;
     }
     const glm::vec3 center(bt::centroid(polygon));
-    bt::centroid_fan(uint32_t(polygon.size()), [&](uint32_t a, uint32_t b, uint32_t c) {
+    bt::fan_triangles(polygon, [&](uint32_t a, uint32_t b, uint32_t c) {
         for (const uint32_t j : {a, b, c}) {
             out.push_back(
                 {j == polygon.size() ? center : glm::vec3(polygon.vertices[j]), float(depth)});
