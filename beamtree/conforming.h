@@ -3,11 +3,10 @@
 // not the other, leaving T-junctions: a vertex of one polygon in the middle of another's edge.
 // Rasterized, the two sides of such an edge are different float segments, so a pixel centre near
 // it can be covered twice or not at all; the analytic pass then counts a face of an entry/exit
-// pair without the other, and the sampling planes a sample twice. Inserting the T-vertices makes
-// both sides the same sequence of segments (no cracks, no double hits), provided each polygon is
-// then triangulated without (near-)zero-area triangles (fan_triangles) — a fan from a corner has
-// one for every collinear vertex on that corner's edges, and its interpolated depth is
-// ill-conditioned.
+// pair without the other. Inserting the T-vertices makes both sides the same sequence of
+// segments (no cracks, no double hits), provided each polygon is then triangulated without
+// (near-)zero-area triangles (fan_triangles): a fan from a corner has one for every collinear
+// vertex on that corner's edges, and its interpolated depth is ill-conditioned.
 
 #include <cstdint>
 #include <vector>
@@ -20,9 +19,10 @@ namespace sl::bt {
 // of each other become one (the tree computes a corner shared by several cells once per cell,
 // and float can round the copies apart); welded-away edges and vertices go. Then inserts, into
 // every edge, the vertices that lie within `tolerance` of its interior, in order along it. The
-// polygons may lie on any planes (the faces of region pieces, or the pieces of one sampling
-// plane). A point hierarchy over the distinct positions finds those near each edge.
-// Edge flags (`on_split_plane`) are cleared: they no longer line up with the edges.
+// polygons may lie on any planes (here the faces of region pieces; the sampling planes' pieces,
+// all on one plane, use the cheaper 2D sampling::remove_t_junctions). A point hierarchy over the
+// distinct positions finds those near each edge. Edge flags (`on_split_plane`) are cleared:
+// they no longer line up with the edges.
 void insert_t_junction_vertices(const std::vector<Polygon*>& polygons, double tolerance);
 
 // True when some vertex of the polygon lies (within a sine of 1e-4) on the line through its

@@ -7,7 +7,6 @@
 #include <glm/vec3.hpp>
 
 #include "beamtree/beam_tree.h"
-#include "beamtree/conforming.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
 #include "gl/analytic_pass.h"
@@ -38,19 +37,13 @@ struct PlaneVertex {
     float depth;
 };
 
-// Appends a convex polygon as triangles (bt::fan_triangles: conforming pieces have collinear
-// vertices). Pieces welded flat have none.
+// Appends a convex polygon as a triangle fan.
 void append_fan(const bt::Polygon& polygon, double depth, std::vector<PlaneVertex>& out) {
-    if (polygon.size() < 3) {
-        return;
-    }
-    const glm::vec3 center(bt::centroid(polygon));
-    bt::fan_triangles(polygon, [&](uint32_t a, uint32_t b, uint32_t c) {
-        for (const uint32_t j : {a, b, c}) {
-            out.push_back(
-                {j == polygon.size() ? center : glm::vec3(polygon.vertices[j]), float(depth)});
+    for (size_t i = 1; i + 1 < polygon.size(); ++i) {
+        for (size_t j : {size_t(0), i, i + 1}) {
+            out.push_back({glm::vec3(polygon.vertices[j]), float(depth)});
         }
-    });
+    }
 }
 
 class PlanesMethod final : public gl::VolumeMethod {
@@ -142,7 +135,7 @@ public:
                     for (bt::Polygon& piece : parts.lit)
                         drawn.push_back(&piece);
                 }
-                bt::insert_t_junction_vertices(drawn, tolerance);
+                remove_t_junctions(drawn, tolerance);
                 for (const bt::Polygon& piece : parts.uncertain)
                     append_fan(piece, slice.depth, vertices);
                 if (variant_ == PlanesVariant::hybrid1) {

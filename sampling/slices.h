@@ -23,6 +23,12 @@ struct Slice {
 std::vector<Slice> influence_slices(const Camera& camera, const SpotLight& light, double dz,
                                     size_t max_slices = 100000);
 
+// Makes a set of convex polygons that tile part of one plane conforming: every vertex of one that
+// lies on an edge of another (a T-junction, left by the beam tree's splits) is inserted into that
+// edge. Rasterized with the same vertices on both sides of every edge, the pieces then cover each
+// pixel exactly once (no cracks, no double hits).
+void remove_t_junctions(const std::vector<bt::Polygon*>& pieces, double tolerance);
+
 // The eye-depth range [near, far] the influence pyramid spans (near may be negative when the
 // pyramid reaches behind the camera).
 std::pair<double, double> influence_depth_range(const Camera& camera, const SpotLight& light);

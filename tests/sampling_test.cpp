@@ -9,7 +9,6 @@
 
 #include "analytic/in_scattering.h"
 #include "beamtree/beam_tree.h"
-#include "beamtree/conforming.h"
 #include "core/error.h"
 #include "core/metrics.h"
 #include "gl/renderer.h"
@@ -115,7 +114,7 @@ TEST(Slices, PartitionConservesArea) {
             }
             const double whole = bt::area(slice.polygon);
             EXPECT_NEAR(sum, whole, 1e-9 * whole + 1e-12) << name << " depth " << slice.depth;
-            bt::insert_t_junction_vertices(all, 1e-7 * scene.light.far);
+            sampling::remove_t_junctions(all, 1e-7 * scene.light.far);
             double conforming = 0.0;
             for (const bt::Polygon* piece : all)
                 conforming += bt::area(*piece);
