@@ -55,6 +55,9 @@ def main(source, target):
         if name.startswith("extract_regions_bench/"):
             out.append(f"| extract regions, {name.split('/')[1]} objects | {b['real_time']:.2f} | "
                        f"{b['faces']:.0f} region faces |")
+        if name.startswith("region_meshes_bench/"):
+            out.append(f"| conforming lit + uncertain meshes, {name.split('/')[1]} objects | "
+                       f"{b['real_time']:.2f} | {b['triangles']:.0f} triangles |")
         if name.startswith("partition_view_planes/"):
             out.append(f"| partition 100 view-aligned planes, {b['polygons']:.0f} outer polygons | "
                        f"{b['real_time']:.2f} | {b['pieces']:.0f} pieces |")

@@ -55,6 +55,21 @@ void extract_regions_bench(benchmark::State& state) {
 }
 BENCHMARK(extract_regions_bench)->Arg(16)->Arg(165)->Unit(benchmark::kMillisecond);
 
+// The GPU meshes of the lit and uncertain regions: welding, T-vertex insertion and fans
+// (Regions::mesh, beamtree/conforming.h), once per tree in `beamtree` and the hybrids.
+void region_meshes_bench(benchmark::State& state) {
+    const Prepared p = prepare(int(state.range(0)));
+    const Regions regions = extract_regions(BeamTree(p.scene.light, p.volumes));
+    size_t triangles = 0;
+    for (auto _ : state) {
+        triangles = regions.mesh(Region::lit).triangles.size() +
+                    regions.mesh(Region::uncertain).triangles.size();
+        benchmark::DoNotOptimize(triangles);
+    }
+    state.counters["triangles"] = double(triangles);
+}
+BENCHMARK(region_meshes_bench)->Arg(16)->Arg(165)->Unit(benchmark::kMillisecond);
+
 // 100 planes facing the camera, spaced evenly through the influence volume's depth range as
 // the sampling-plane methods will place them, partitioned into lit / uncertain / unlit.
 void partition_view_planes(benchmark::State& state) {
