@@ -667,6 +667,30 @@ bt::RegionMesh corner_fans(const bt::Regions& regions, bt::Region region) {
     return mesh;
 }
 
+// Conforming by hand: a square next to two half-height squares gets their shared corner in its
+// edge, and a copy of that corner 1e-12 away (round-off) is welded onto the original; a fan of
+// the square with the T-vertex goes around its centroid, of the others from a corner.
+TEST(Conforming, InsertsTVerticesAndWeldsCopies) {
+    bt::Polygon square({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}});
+    bt::Polygon lower({{2, 0, 0}, {3, 0, 0}, {3, 0.5, 0}, {2, 0.5, 0}});
+    bt::Polygon upper({{2, 0.5 + 1e-12, 0}, {3, 0.5, 0}, {3, 1, 0}, {2, 1, 0}});
+    bt::insert_t_junction_vertices({&square, &lower, &upper}, 1e-7);
+    EXPECT_EQ(square.vertices,
+              (std::vector<dvec3>{{0, 0, 0}, {2, 0, 0}, {2, 0.5, 0}, {2, 1, 0}, {0, 1, 0}}));
+    EXPECT_EQ(upper.vertices[0], dvec3(2, 0.5, 0));
+    EXPECT_EQ(lower.vertices.size(), 4u);
+    EXPECT_TRUE(bt::has_collinear_vertex(square));
+    EXPECT_FALSE(bt::has_collinear_vertex(lower));
+    size_t triangles = 0;
+    EXPECT_TRUE(bt::fan_triangles(square, [&](uint32_t a, uint32_t, uint32_t) {
+        EXPECT_EQ(a, 5u);
+        ++triangles;
+    }));
+    EXPECT_EQ(triangles, 5u);
+    EXPECT_FALSE(
+        bt::fan_triangles(lower, [](uint32_t a, uint32_t, uint32_t) { EXPECT_EQ(a, 0u); }));
+}
+
 // Region meshes are watertight: with the vertices welded and the T-vertices inserted
 // (beamtree/conforming.h) every edge is met from both sides, where the faces as extracted leave
 // hundreds of edges unmatched (650 and 1454 in 'parallel'); and fanning each face around its
