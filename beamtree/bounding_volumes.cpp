@@ -101,6 +101,35 @@ ConvexVolume box_volume(const Box& box) {
     return volume;
 }
 
+namespace {
+
+// The plane of a set of coplanar points, sorted and without duplicates, from the points alone:
+// through the first, the one farthest from it and the one farthest from their line, facing
+// like `hint` (which it replaces where the three are degenerate).
+Plane plane_of_corners(const std::vector<dvec3>& corners, const Plane& hint) {
+    const dvec3 p0 = corners[0];
+    dvec3 p1 = p0, p2 = p0;
+    for (const dvec3& c : corners) {
+        if (glm::distance(c, p0) > glm::distance(p1, p0)) {
+            p1 = c;
+        }
+    }
+    const dvec3 axis = glm::normalize(p1 - p0);
+    const auto off_line = [&](const dvec3& c) { return glm::length(glm::cross(c - p0, axis)); };
+    for (const dvec3& c : corners) {
+        if (off_line(c) > off_line(p2)) {
+            p2 = c;
+        }
+    }
+    Plane plane;
+    if (!Plane::through(p0, p1, p2, plane)) {
+        return hint;
+    }
+    return glm::dot(plane.normal, hint.normal) < 0.0 ? plane.flipped() : plane;
+}
+
+}  // namespace
+
 ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
     const Bounds bounds = mesh.bounds();
     const double extent = max_extent(bounds);
@@ -152,9 +181,6 @@ ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
     // that follows heap addresses, so the same mesh gave differently rounded planes, merged in a
     // different order, from one build to the next within a process. Each facet starts at its
     // lexicographically smallest corner (keeping its winding) and the facets are sorted.
-    const auto less = [](const dvec3& a, const dvec3& b) {
-        return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
-    };
     std::vector<std::vector<dvec3>> facets;
     facets.reserve(hull.number_of_faces());
     for (const auto face : hull.faces()) {
@@ -163,93 +189,65 @@ ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
             const Point& p = hull.point(vertex);
             corners.emplace_back(p.x(), p.y(), p.z());
         }
-        std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end(), less),
+        std::rotate(corners.begin(),
+                    std::min_element(corners.begin(), corners.end(), lexicographic_less),
                     corners.end());
     }
     std::sort(facets.begin(), facets.end(), [&](const auto& a, const auto& b) {
-        return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), less);
+        return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(),
+                                            lexicographic_less);
     });
 
-    // One plane per hull facet, coplanar facets merged; remember each plane's total area and
-    // the corners of its facets.
-    std::vector<std::pair<Plane, double>> planes;
+    // One plane per hull facet, coplanar facets merged; remember the corners of each plane's
+    // facets.
+    std::vector<Plane> planes;
     std::vector<std::vector<dvec3>> plane_corners;
     for (const std::vector<dvec3>& corners : facets) {
         Plane plane;
         if (corners.size() < 3 || !Plane::through(corners[0], corners[1], corners[2], plane)) {
             continue;
         }
-        const double a =
-            0.5 * glm::length(glm::cross(corners[1] - corners[0], corners[2] - corners[0]));
-        auto same = std::find_if(planes.begin(), planes.end(), [&](const auto& known) {
-            return glm::dot(known.first.normal, plane.normal) > 1.0 - 1e-10 &&
-                   std::abs(known.first.offset - plane.offset) <= tolerance;
+        auto same = std::find_if(planes.begin(), planes.end(), [&](const Plane& known) {
+            return glm::dot(known.normal, plane.normal) > 1.0 - 1e-10 &&
+                   std::abs(known.offset - plane.offset) <= tolerance;
         });
         if (same != planes.end()) {
-            same->second += a;
             auto& corners_of_plane = plane_corners[size_t(same - planes.begin())];
             corners_of_plane.insert(corners_of_plane.end(), corners.begin(), corners.end());
         } else {
-            planes.emplace_back(plane, a);
+            planes.push_back(plane);
             plane_corners.push_back(corners);
         }
     }
-    // Each merged plane and its area from its set of corners alone, and the planes in an order of
-    // those sets: CGAL triangulates a coplanar region (a box side, a flat cap) one way or another
-    // from build to build, so the first facet's plane, the summed facet areas and the order of
-    // first appearance were not functions of the mesh. The plane passes through the smallest
-    // corner, the corner farthest from it and the corner farthest from their line.
-    std::vector<size_t> order(planes.size());
+    // Each merged plane and its face from its set of corners alone, and the planes in the order
+    // of those sets: CGAL triangulates a coplanar region (a box side, a flat cap) one way or
+    // another from build to build, so the first facet's plane, the summed facet areas and the
+    // order of first appearance were not functions of the mesh.
+    struct Merged {
+        std::vector<dvec3> corners;  // sorted, distinct
+        Plane plane;
+        Polygon face;
+    };
+    std::vector<Merged> merged(planes.size());
     for (size_t i = 0; i < planes.size(); ++i) {
-        order[i] = i;
-        std::vector<dvec3>& corners = plane_corners[i];
-        std::sort(corners.begin(), corners.end(), less);
-        corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-        const dvec3 p0 = corners[0];
-        dvec3 p1 = p0, p2 = p0;
-        for (const dvec3& c : corners) {
-            if (glm::distance(c, p0) > glm::distance(p1, p0)) {
-                p1 = c;
-            }
-        }
-        const dvec3 axis = glm::normalize(p1 - p0);
-        const auto off_line = [&](const dvec3& c) { return glm::length(glm::cross(c - p0, axis)); };
-        for (const dvec3& c : corners) {
-            if (off_line(c) > off_line(p2)) {
-                p2 = c;
-            }
-        }
-        Plane canonical;
-        if (Plane::through(p0, p1, p2, canonical)) {
-            if (glm::dot(canonical.normal, planes[i].first.normal) < 0.0) {
-                canonical = canonical.flipped();
-            }
-            planes[i].first = canonical;
-        }
-        planes[i].second = area(convex_polygon_on_plane(corners, planes[i].first, tolerance));
+        Merged& m = merged[i];
+        m.corners = std::move(plane_corners[i]);
+        std::sort(m.corners.begin(), m.corners.end(), lexicographic_less);
+        m.corners.erase(std::unique(m.corners.begin(), m.corners.end()), m.corners.end());
+        m.plane = plane_of_corners(m.corners, planes[i]);
+        m.face = convex_polygon_on_plane(m.corners, m.plane, tolerance);
     }
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        return std::lexicographical_compare(plane_corners[a].begin(), plane_corners[a].end(),
-                                            plane_corners[b].begin(), plane_corners[b].end(), less);
+    std::sort(merged.begin(), merged.end(), [](const Merged& a, const Merged& b) {
+        return std::lexicographical_compare(a.corners.begin(), a.corners.end(), b.corners.begin(),
+                                            b.corners.end(), lexicographic_less);
     });
-    {
-        std::vector<std::pair<Plane, double>> sorted_planes;
-        std::vector<std::vector<dvec3>> sorted_corners;
-        for (const size_t i : order) {
-            sorted_planes.push_back(planes[i]);
-            sorted_corners.push_back(std::move(plane_corners[i]));
-        }
-        planes = std::move(sorted_planes);
-        plane_corners = std::move(sorted_corners);
-    }
 
-    if (max_planes <= 0 || int(planes.size()) <= max_planes) {
+    if (max_planes <= 0 || int(merged.size()) <= max_planes) {
         // The full hull: each face is the convex polygon of its facets' corners.
-        for (size_t i = 0; i < planes.size(); ++i) {
-            Polygon face = convex_polygon_on_plane(plane_corners[i], planes[i].first, tolerance);
-            if (!face.empty()) {
-                volume.faces.push_back(std::move(face));
-                volume.planes.push_back(planes[i].first);
+        for (Merged& m : merged) {
+            if (!m.face.empty()) {
+                volume.faces.push_back(std::move(m.face));
+                volume.planes.push_back(m.plane);
             }
         }
         return volume;
@@ -259,9 +257,10 @@ ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
     const dvec3 lo(bounds.min), hi(bounds.max);
     std::vector<Plane> chosen = {{{1, 0, 0}, -hi.x}, {{-1, 0, 0}, lo.x}, {{0, 1, 0}, -hi.y},
                                  {{0, -1, 0}, lo.y}, {{0, 0, 1}, -hi.z}, {{0, 0, -1}, lo.z}};
-    std::stable_sort(planes.begin(), planes.end(),
-                     [](const auto& a, const auto& b) { return a.second > b.second; });
-    for (const auto& [plane, a] : planes) {
+    std::stable_sort(merged.begin(), merged.end(),
+                     [](const Merged& a, const Merged& b) { return area(a.face) > area(b.face); });
+    for (const Merged& m : merged) {
+        const Plane& plane = m.plane;
         if (int(chosen.size()) >= max_planes) {
             break;
         }

@@ -122,16 +122,13 @@ bool has_collinear_vertex(const Polygon& polygon) {
     return false;
 }
 
-void insert_t_junction_vertices(const std::vector<Polygon*>& polygons, double tolerance) {
+void make_conforming(const std::vector<Polygon*>& polygons, double tolerance) {
     // The distinct vertex positions (faces of neighbouring cells share most of theirs).
     std::vector<dvec3> positions;
     for (const Polygon* polygon : polygons) {
         positions.insert(positions.end(), polygon->vertices.begin(), polygon->vertices.end());
     }
-    const auto lexicographic = [](const dvec3& p, const dvec3& q) {
-        return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
-    };
-    std::sort(positions.begin(), positions.end(), lexicographic);
+    std::sort(positions.begin(), positions.end(), lexicographic_less);
     positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
     if (positions.size() < 3) {
         return;
@@ -151,8 +148,9 @@ void insert_t_junction_vertices(const std::vector<Polygon*>& polygons, double to
         return i;
     };
     const auto index_of = [&](const dvec3& p) {
-        return uint32_t(std::lower_bound(positions.begin(), positions.end(), p, lexicographic) -
-                        positions.begin());
+        return uint32_t(
+            std::lower_bound(positions.begin(), positions.end(), p, lexicographic_less) -
+            positions.begin());
     };
     {
         const PointTree near(positions);

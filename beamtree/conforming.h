@@ -23,7 +23,7 @@ namespace sl::bt {
 // all on one plane, use the cheaper 2D sampling::remove_t_junctions). A point hierarchy over the
 // distinct positions finds those near each edge. Edge flags (`on_split_plane`) are cleared:
 // they no longer line up with the edges.
-void insert_t_junction_vertices(const std::vector<Polygon*>& polygons, double tolerance);
+void make_conforming(const std::vector<Polygon*>& polygons, double tolerance);
 
 // True when some vertex of the polygon lies (within a sine of 1e-4) on the line through its
 // neighbours, as inserted T-vertices do.

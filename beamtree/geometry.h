@@ -25,6 +25,12 @@ struct Plane {
     static bool through(const dvec3& a, const dvec3& b, const dvec3& c, Plane& plane);
 };
 
+// Lexicographic order of points (x, then y, then z): a canonical order that does not depend on
+// how the points were produced or stored.
+inline bool lexicographic_less(const dvec3& a, const dvec3& b) {
+    return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+}
+
 // A convex planar polygon. Bit i of `on_split_plane` marks the edge from vertex i to i + 1 as
 // lying on a plane through the light (created by splitting with a beam plane): attaching the
 // polygon to the tree needs no new plane along such an edge. Edges past the 64th are never

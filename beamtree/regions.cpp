@@ -49,7 +49,7 @@ RegionMesh Regions::mesh(Region region) const {
     for (Polygon& face : faces) {
         pointers.push_back(&face);
     }
-    insert_t_junction_vertices(pointers, kConformingTolerance * std::cbrt(influence_volume));
+    make_conforming(pointers, kConformingTolerance * std::cbrt(influence_volume));
 
     RegionMesh mesh;
     for (size_t f = 0; f < faces.size(); ++f) {

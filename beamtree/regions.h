@@ -32,7 +32,7 @@ struct RegionMesh {
 
 struct Regions {
     // Vertices within this fraction of the influence volume's size of each other are welded, and
-    // of another face's edge are T-junctions of the GPU mesh (bt::insert_t_junction_vertices).
+    // of another face's edge are T-junctions of the GPU mesh (bt::make_conforming).
     static constexpr double kConformingTolerance = 1e-7;
 
     size_t beam_count = 0;

@@ -674,7 +674,7 @@ TEST(Conforming, InsertsTVerticesAndWeldsCopies) {
     bt::Polygon square({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}});
     bt::Polygon lower({{2, 0, 0}, {3, 0, 0}, {3, 0.5, 0}, {2, 0.5, 0}});
     bt::Polygon upper({{2, 0.5 + 1e-12, 0}, {3, 0.5, 0}, {3, 1, 0}, {2, 1, 0}});
-    bt::insert_t_junction_vertices({&square, &lower, &upper}, 1e-7);
+    bt::make_conforming({&square, &lower, &upper}, 1e-7);
     EXPECT_EQ(square.vertices,
               (std::vector<dvec3>{{0, 0, 0}, {2, 0, 0}, {2, 0.5, 0}, {2, 1, 0}, {0, 1, 0}}));
     EXPECT_EQ(upper.vertices[0], dvec3(2, 0.5, 0));
