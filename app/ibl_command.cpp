@@ -20,6 +20,7 @@
 #include "gl/platform.h"
 #include "gl/renderer.h"
 #include "ibl/environment.h"
+#include "methods/registry.h"
 #include "reference/environment_light.h"
 #include "scenes/scene_file.h"
 

@@ -21,6 +21,7 @@
 #include "core/output_files.h"
 #include "gl/platform.h"
 #include "gl/renderer.h"
+#include "methods/registry.h"
 #include "scenes/scene_file.h"
 
 namespace sl::app {

@@ -15,6 +15,7 @@
 #include "experiments/measure.h"
 #include "gl/platform.h"
 #include "gl/renderer.h"
+#include "methods/registry.h"
 #include "scenes/scene_file.h"
 
 namespace sl::app {

@@ -5,6 +5,7 @@
 #include "app/commands.h"
 #include "gl/platform.h"
 #include "gl/volume_method.h"
+#include "methods/registry.h"
 #include "scenes/scene_file.h"
 
 namespace sl::app {

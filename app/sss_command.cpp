@@ -19,6 +19,7 @@
 #include "gl/platform.h"
 #include "gl/renderer.h"
 #include "gl/volume_method.h"
+#include "methods/registry.h"
 #include "scenes/scene_file.h"
 #include "sss/diffusion.h"
 #include "sss/surface_samples.h"
@@ -142,7 +143,7 @@ int run_bench(const BenchArguments& a) {
                 }
                 const double total_ms = experiments::median(total);
                 const double subsurface_ms = experiments::median(subsurface);
-                const gl::SubsurfacePass& pass = *renderer.subsurface();
+                const sss::SubsurfacePass& pass = *renderer.subsurface();
                 rows.push_back({{"model", model},
                                 {"distance", distance},
                                 {"grid", fmt::format("{}x{}", n, m)},

@@ -20,6 +20,7 @@
 #include "experiments/report.h"
 #include "gl/platform.h"
 #include "gl/renderer.h"
+#include "methods/registry.h"
 #include "scenes/scene_file.h"
 
 extern char** environ;

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "gl/volume_method.h"
+#include "methods/registry.h"
 #include "scenes/scene_file.h"
 #include "scenes/toml_reader.h"
 

@@ -12,6 +12,7 @@
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
+#include "methods/registry.h"
 #include "reference/reference.h"
 
 namespace sl::experiments {

@@ -190,13 +190,11 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
                                        {GL_FRAGMENT_SHADER, "gl/shaders/surface.frag"}});
     composite_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                          {GL_FRAGMENT_SHADER, "gl/shaders/composite.frag"}});
-    skybox_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                                      {GL_FRAGMENT_SHADER, "gl/shaders/skybox.frag"}});
     empty_vertex_array_ = create_vertex_array();
-    environment_ = std::make_unique<EnvironmentTextures>(scene);
+    environment_ = std::make_unique<ibl::EnvironmentTextures>(scene);
     environment_->set_uniforms(uniforms_, scene.environment);
     if (scene.has_translucent_objects()) {
-        subsurface_ = std::make_unique<SubsurfacePass>(scene, options.width, options.height);
+        subsurface_ = std::make_unique<sss::SubsurfacePass>(scene, options.width, options.height);
     }
 
     allocate_shadow(options.shadow);
@@ -300,10 +298,10 @@ void SceneRenderer::draw_object(size_t index, GLuint program, bool with_normals)
     if (program == surface_program_.id()) {
         const Material& material = scene_.materials[size_t(object.material)];
         GL.ProgramUniform1f(program, kRoughnessLocation, material.roughness);
-        const SubsurfaceMaterial* translucent =
+        const sss::SubsurfaceMaterial* translucent =
             subsurface_ ? subsurface_->material_of(object.material) : nullptr;
         if (translucent) {
-            // Subsurface scattering replaces the diffuse term (gl/subsurface_pass.h); the
+            // Subsurface scattering replaces the diffuse term (sss/subsurface_pass.h); the
             // surface keeps a dielectric specular with F0 from η and, under the ambient light,
             // the profile's total reflectance as its albedo.
             const double eta = material.translucency->medium.eta;
@@ -390,14 +388,7 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         environment_->bind();
         draw_objects(surface_program_.id(), true);
         if (environment_->enabled() && scene_.environment.skybox) {
-            // Where no surface was drawn (depth 1); the depth buffer stays as the methods expect.
-            GL.DepthFunc(GL_LEQUAL);
-            GL.DepthMask(GL_FALSE);
-            GL.UseProgram(skybox_program_.id());
-            GL.BindVertexArray(empty_vertex_array_.id());
-            GL.DrawArrays(GL_TRIANGLES, 0, 3);
-            GL.DepthMask(GL_TRUE);
-            GL.DepthFunc(GL_LESS);
+            environment_->draw_skybox();  // the depth buffer stays as the methods expect
         }
     }
     if (subsurface_) {

@@ -1,6 +1,7 @@
 #pragma once
 // The GPU frame (DESIGN.md §2): shadow map from the spot light -> surfaces (I_obj·T(Z), with the
-// environment's light and skybox when the scene has one) ->
+// environment's light and skybox when the scene has one, ibl/environment_textures.h, and the
+// translucent objects' subsurface pass, sss/subsurface_pass.h) ->
 // volumetric method (I_s) -> composite and tone map. Owns the scene's GPU meshes and the frame's
 // render targets; one renderer per scene and size.
 
@@ -11,12 +12,12 @@
 #include <vector>
 
 #include "core/image.h"
-#include "gl/environment_textures.h"
 #include "gl/objects.h"
 #include "gl/shaders/frame_uniforms.h"
-#include "gl/subsurface_pass.h"
 #include "gl/volume_method.h"
+#include "ibl/environment_textures.h"
 #include "scenes/scene.h"
+#include "sss/subsurface_pass.h"
 
 namespace sl::gl {
 
@@ -34,7 +35,7 @@ struct PassTimings {
     double composite_ms = 0;
     // The volume pass split by the method's timeline sections (they sum to volume_ms).
     std::vector<std::pair<std::string, double>> volume_sections;
-    double subsurface_ms = 0;  // translucent objects (gl/subsurface_pass.h), 0 without any
+    double subsurface_ms = 0;  // translucent objects (sss/subsurface_pass.h), 0 without any
     double total_ms() const {
         return shadow_ms + surface_ms + subsurface_ms + volume_ms + composite_ms;
     }
@@ -84,9 +85,9 @@ public:
     const ShadowSettings& shadow() const { return shadow_; }
     const shared::FrameUniforms& uniforms() const { return uniforms_; }
     // The scene's image-based lighting (1x1 stand-ins when it has no environment).
-    const EnvironmentTextures& environment() const { return *environment_; }
+    const ibl::EnvironmentTextures& environment() const { return *environment_; }
     // The translucent objects' pass; null when the scene has none.
-    const SubsurfacePass* subsurface() const { return subsurface_.get(); }
+    const sss::SubsurfacePass* subsurface() const { return subsurface_.get(); }
 
 private:
     struct GpuMesh {
@@ -113,8 +114,7 @@ private:
     Program shadow_blur_program_;
     Program surface_program_;
     Program composite_program_;
-    Program skybox_program_;
-    std::unique_ptr<EnvironmentTextures> environment_;
+    std::unique_ptr<ibl::EnvironmentTextures> environment_;
     VertexArray empty_vertex_array_;
 
     ShadowSettings shadow_;
@@ -131,7 +131,7 @@ private:
     Texture hdr_;
     Texture display_;
     Framebuffer composite_framebuffer_;
-    std::unique_ptr<SubsurfacePass> subsurface_;
+    std::unique_ptr<sss::SubsurfacePass> subsurface_;
     uint32_t frame_index_ = 0;
     Query timers_[5];
     std::unique_ptr<Timeline> timeline_;

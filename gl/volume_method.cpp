@@ -14,7 +14,18 @@ namespace {
 
 const std::vector<std::string> kShadowFilterNames = {"hard", "pcf", "vsm"};
 
+class NoVolume final : public VolumeMethod {
+public:
+    std::string name() const override { return "none"; }
+    void prepare(const Scene&) override {}
+    void render(const VolumeInputs&) override {}
+};
+
 }  // namespace
+
+std::unique_ptr<VolumeMethod> create_no_volume() {
+    return std::make_unique<NoVolume>();
+}
 
 const char* to_string(ShadowFilter filter) {
     return kShadowFilterNames[size_t(filter)].c_str();

@@ -2,7 +2,7 @@
 // The interface every volumetric method implements (DESIGN.md §3): given the scene and the
 // frame's buffers, add the in-scattered radiance I_s of Nilsson eq. 2.7 into the bound target.
 // The renderer, the harness and the viewer talk to methods only through this interface; methods
-// are created by name from the registry in methods/.
+// live in their family's folders and are created by name from the registry (methods/registry.h).
 
 #include <memory>
 #include <optional>
@@ -114,13 +114,8 @@ private:
     std::vector<Parameter> parameters_;
 };
 
+// `none`: no participating medium is rendered, I_s = 0; the frame is the surfaces alone
+// (I_obj·T(Z)). The baseline every method's cost is measured against.
+std::unique_ptr<VolumeMethod> create_no_volume();
+
 }  // namespace sl::gl
-
-namespace sl::methods {
-
-// The registry (methods/volume_methods.cpp): the methods that exist, in display order.
-std::vector<std::string> volume_method_names();
-// Throws sl::Error naming the known methods when `name` is not one of them.
-std::unique_ptr<gl::VolumeMethod> create_volume_method(const std::string& name);
-
-}  // namespace sl::methods

@@ -14,7 +14,7 @@
 //
 // Both estimators are self-normalised (divided by their weight sum), so a constant environment
 // stays constant at every level. Algorithm 6's inv_pdf = π tan² θ factor is applied by the seed's
-// shading instead (Moschos algorithm 7; see gl/shaders/ibl.glsl).
+// shading instead (Moschos algorithm 7; see ibl/shaders/ibl.glsl).
 
 #include <cstdint>
 #include <filesystem>

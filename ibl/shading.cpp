@@ -12,7 +12,7 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-// Figure 3.24 per level: tan² θ and tan² θ / α² (gl/environment_textures.cpp, the same values).
+// Figure 3.24 per level: tan² θ and tan² θ / α² (ibl/environment_textures.cpp, the same values).
 glm::vec2 cone_terms(float lod) {
     const size_t l0 = size_t(lod);
     const float f = lod - float(l0);

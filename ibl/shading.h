@@ -1,6 +1,6 @@
 #pragma once
 // The environment's light reflected by a surface, on the CPU: the two real-time paths exactly as
-// gl/shaders/ibl.glsl computes them (the GPU's oracle), and the integral they approximate,
+// ibl/shaders/ibl.glsl computes them (the GPU's oracle), and the integral they approximate,
 // estimated by Monte Carlo with many samples (their oracle).
 
 #include <functional>
@@ -19,7 +19,7 @@ struct SurfacePoint {
     glm::vec3 f0;
 };
 
-// gl/shaders/ibl.glsl environment_radiance(), with the cube map's trilinear lookup.
+// ibl/shaders/ibl.glsl environment_radiance(), with the cube map's trilinear lookup.
 glm::vec3 shade_environment(const LoadedEnvironment& environment, Shading shading,
                             const SurfacePoint& p);
 

@@ -3,10 +3,10 @@
 #include <chrono>
 #include <cmath>
 
+#include "analytic/region_pass.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
-#include "gl/analytic_pass.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
@@ -90,7 +90,7 @@ public:
 
     void prepare(const Scene& scene) override {
         if (variant_ == MarchVariant::hybrid3) {
-            gl::AnalyticRegionPass::require_closed_form(scene, name());
+            analytic::AnalyticRegionPass::require_closed_form(scene, name());
             const auto start = std::chrono::steady_clock::now();
             const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
             const bt::Regions regions = bt::extract_regions(tree);
@@ -257,7 +257,7 @@ private:
         GL.VertexArrayAttribBinding(vao, 0, 0);
         if (!interval_program_) {
             interval_program_ = gl::create_program(
-                {{GL_VERTEX_SHADER, "gl/shaders/beamtree.vert"},
+                {{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
                  {GL_FRAGMENT_SHADER, "sampling/shaders/uncertain_interval.frag"}});
         }
     }
@@ -288,7 +288,7 @@ private:
     }
 
     MarchVariant variant_;
-    gl::AnalyticRegionPass analytic_;
+    analytic::AnalyticRegionPass analytic_;
     gl::Program march_program_, resolve_program_, interval_program_;
     gl::VertexArray empty_vertex_array_;
     gl::Texture march_target_;

@@ -6,10 +6,10 @@
 
 #include <glm/vec3.hpp>
 
+#include "analytic/region_pass.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
-#include "gl/analytic_pass.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
@@ -77,7 +77,7 @@ public:
 
     void prepare(const Scene& scene) override {
         if (variant_ == PlanesVariant::hybrid2) {
-            gl::AnalyticRegionPass::require_closed_form(scene, name());
+            analytic::AnalyticRegionPass::require_closed_form(scene, name());
         }
         tree_.reset();
         if (variant_ != PlanesVariant::planes) {
@@ -206,7 +206,7 @@ public:
 private:
     PlanesVariant variant_;
     std::unique_ptr<bt::BeamTree> tree_;
-    gl::AnalyticRegionPass analytic_;
+    analytic::AnalyticRegionPass analytic_;
     gl::Program program_;
     gl::Buffer vertex_buffer_;
     gl::VertexArray vertex_array_;

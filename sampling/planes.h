@@ -5,7 +5,7 @@
 //   hybrid1  Nilsson's Method 1 (§5.3): every plane partitioned by the beam tree; lit pieces
 //            drawn without the shadow lookup, uncertain pieces with it, unlit pieces dropped;
 //   hybrid2  Nilsson's Method 2 (§5.4): the lit regions integrated in closed form
-//            (gl/analytic_pass.h) plus the planes' uncertain pieces only.
+//            (analytic/region_pass.h) plus the planes' uncertain pieces only.
 // Parameters: dz, jitter, shadow, shadow_size. Statistics per frame: CPU time of slicing and
 // partitioning, slices, pieces of each kind, fragment-shader invocations of the planes.
 

@@ -14,6 +14,7 @@
 #include "gl/objects.h"
 #include "gl/shaders.h"
 #include "gl/volume_method.h"
+#include "methods/registry.h"
 #include "scenes/mesh.h"
 #include "scenes/scene_file.h"
 

@@ -14,6 +14,7 @@
 #include "core/metrics.h"
 #include "experiments/experiment.h"
 #include "gl/functions.h"
+#include "methods/registry.h"
 #include "reference/reference.h"
 #include "scenes/scene_file.h"
 #include "tests/support.h"

@@ -44,7 +44,7 @@ SL_UNIFORM_BLOCK(FrameUniforms, SL_FRAME_UNIFORMS_BINDING) {
     vec4 shadow;                 // x = 1 / map size, y = PCF radius in texels (0 = hard),
                                  // z = normal offset in texels, w = 1 for VSM
     vec4 display;                // x = exposure; yz = viewport size in pixels
-    // Image-based lighting (ibl/, gl/shaders/ibl.glsl): x = 1 when on, y = shading (0 Moschos
+    // Image-based lighting (ibl/, ibl/shaders/ibl.glsl): x = 1 when on, y = shading (0 Moschos
     // algorithms 7-8, 1 split-sum), z = prefiltered levels, w = 1 for the cone (figure 3.24)
     // chain, 0 for the importance-sampled one.
     vec4 environment;

@@ -5,12 +5,12 @@
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/shadow.glsl"
-#include "gl/shaders/ibl.glsl"
+#include "ibl/shaders/ibl.glsl"
 
 layout(location = 2) uniform vec3 albedo;
 layout(location = 3) uniform float roughness;  // microfacet α
 layout(location = 4) uniform vec3 f0;
-// x > 0.5: translucent (gl/subsurface_pass.h adds the scattered light; here only the specular
+// x > 0.5: translucent (sss/subsurface_pass.h adds the scattered light; here only the specular
 // term, always, and the ambient light reflected with the profile's total reflectance in yzw).
 layout(location = 5) uniform vec4 translucent;
 

@@ -11,7 +11,7 @@
 #include "gl/shaders/scattering.glsl"
 #include "gl/shaders/shadow.glsl"
 #include "gl/shaders/view.glsl"
-#include "gl/shaders/in_scattering.glsl"
+#include "analytic/shaders/in_scattering.glsl"
 #include "gl/shaders/uncertain_interval.glsl"
 #include "sampling/shaders/ray_clip.glsl"
 

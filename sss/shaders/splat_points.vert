@@ -4,7 +4,7 @@
 // with the hemispherical average of Schlick's Fresnel, F0 + (1 − F0)/21.
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
-#include "gl/shaders/ibl.glsl"
+#include "ibl/shaders/ibl.glsl"
 #include "sss/shaders/subsurface.glsl"
 
 layout(location = 0) in vec3 position;

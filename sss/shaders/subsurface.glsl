@@ -1,4 +1,4 @@
-// Shared by the splatting shaders: the per-draw light and material (gl/subsurface_pass.cpp sets
+// Shared by the splatting shaders: the per-draw light and material (sss/subsurface_pass.cpp sets
 // them), Fresnel transmittance and the profile lookups (Rohat §5.1.1-5.1.2).
 
 layout(location = 10) uniform vec4 roi;              // light-map region: uv min, uv size

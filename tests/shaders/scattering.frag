@@ -1,5 +1,5 @@
 #version 450 core
-// Test pattern for tests/sampling_test.cpp: pixel (x, y) takes the camera ray through its centre
+// Test pattern for tests/sampling_planes_test.cpp: pixel (x, y) takes the camera ray through its centre
 // and writes e(t), t = 1 + 24 x / width (gl/shaders/scattering.glsl).
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"

@@ -1,5 +1,5 @@
 #version 450 core
-// Test pattern for tests/march_test.cpp: pixel (x, y) clips the camera ray through its centre,
+// Test pattern for tests/sampling_march_test.cpp: pixel (x, y) clips the camera ray through its centre,
 // with trace_end = 1 + 24 x / width, to the light's pyramid (sampling/shaders/ray_clip.glsl),
 // whose outward planes come from the light's matrix (Gribb & Hartmann): (start, end, case).
 #include "gl/shaders/frame_uniforms.h"

@@ -100,7 +100,7 @@ TEST_F(March, GlslClipMatchesCpp) {
     const gl::shared::FrameUniforms uniforms =
         gl::make_frame_uniforms(scene, {.width = width, .height = height});
     const std::vector<float> rgba =
-        render_test_pattern(uniforms, "gl/shaders/test_ray_clip.frag", width, height);
+        render_test_pattern(uniforms, "tests/shaders/ray_clip.frag", width, height);
     const std::vector<bt::Plane> pyramid = bt::influence_planes(scene.light);
     int same = 0, sampled = 0;
     std::array<int, 6> seen{};

@@ -1,8 +1,8 @@
 #pragma once
 // Volume-based integration over closed region meshes (Nilsson §3.2.2): every face of the lit
 // regions drawn once, back faces adding G(z) and front faces subtracting it, with signed
-// additive blending into the float target. Used by `beamtree`, `hybrid2` and `hybrid3`; the
-// lookup tables of gl/shaders/in_scattering.glsl come from here too.
+// additive blending into the float target (analytic/shaders/regions.frag). Used by `beamtree`,
+// `hybrid2` and `hybrid3`.
 
 #include <vector>
 
@@ -12,16 +12,15 @@
 #include "gl/volume_method.h"
 #include "scenes/scene.h"
 
-namespace sl::gl {
+namespace sl::analytic {
 
-// Sun et al. 2005's F(u, v) = ∫_0^v exp(-u tan ζ) dζ on u in [0, 32], v in [0, π/2], 1024², for
-// gl/shaders/in_scattering.glsl's `sun_table` at texture unit kSunTableUnit.
-constexpr GLuint kSunTableUnit = 7;
-Texture create_sun_table();
-// P(θ) = ∫_{-π/2}^θ p(-sin t) dt for the medium's phase function, 1024 samples over
-// θ in [-π/2, π/2], for in_scattering.glsl's `phase_table` at texture unit kPhaseTableUnit.
-constexpr GLuint kPhaseTableUnit = 6;
-Texture create_phase_table(const Medium& medium);
+using gl::Buffer;
+using gl::Program;
+using gl::Query;
+using gl::Texture;
+using gl::TextureViews;
+using gl::VertexArray;
+using gl::VolumeInputs;
 
 class AnalyticRegionPass {
 public:
@@ -52,4 +51,4 @@ private:
     GLsizei index_count_ = 0;
 };
 
-}  // namespace sl::gl
+}  // namespace sl::analytic

@@ -1,4 +1,4 @@
-#include "gl/subsurface_pass.h"
+#include "sss/subsurface_pass.h"
 
 #include <algorithm>
 #include <chrono>
@@ -15,7 +15,11 @@
 #include "sss/layers.h"
 #include "sss/surface_samples.h"
 
-namespace sl::gl {
+namespace sl::sss {
+
+using gl::Framebuffer;
+using gl::GL;
+using gl::Texture;
 
 namespace {
 
@@ -109,8 +113,8 @@ SubsurfacePass::SubsurfacePass(const Scene& scene, int width, int height)
         SubsurfaceMaterial sm;
         sm.material = int(m);
         sm.layer = int(materials_.size());
-        const sss::RgbDiffusion d = sss::RgbDiffusion::of(t->medium);
-        sm.r_max_mm = sss::splat_radius(d, settings.epsilon, settings.flux_radius);
+        const RgbDiffusion d = RgbDiffusion::of(t->medium);
+        sm.r_max_mm = splat_radius(d, settings.epsilon, settings.flux_radius);
         const double sigma_t_mean =
             (d[0].sigma_t_reduced + d[1].sigma_t_reduced + d[2].sigma_t_reduced) / 3.0;
         sm.d_min_mm = 4.0 / sigma_t_mean;
@@ -118,35 +122,35 @@ SubsurfacePass::SubsurfacePass(const Scene& scene, int width, int height)
         std::vector<glm::vec3> R(size_t(texels * kThicknessRows)), T(R.size(), glm::vec3(0.0f));
         if (!t->coats.empty()) {
             // Coats over a semi-infinite base, combined in frequency space (§5.1.2).
-            std::vector<sss::Layer> layers = t->coats;
+            std::vector<Layer> layers = t->coats;
             layers.push_back({t->medium, 0.0});
-            for (const sss::Layer& layer : layers) {
-                sm.r_max_mm = std::max(sm.r_max_mm,
-                                       sss::splat_radius(sss::RgbDiffusion::of(layer.material),
-                                                         settings.epsilon, settings.flux_radius));
+            for (const Layer& layer : layers) {
+                sm.r_max_mm =
+                    std::max(sm.r_max_mm, splat_radius(RgbDiffusion::of(layer.material),
+                                                       settings.epsilon, settings.flux_radius));
             }
-            const sss::LayeredProfile p = sss::layered_profile(layers, sm.r_max_mm, 256, texels);
+            const LayeredProfile p = layered_profile(layers, sm.r_max_mm, 256, texels);
             for (int row = 0; row < kThicknessRows; ++row) {
                 std::copy(p.reflectance.texels.begin(), p.reflectance.texels.end(),
                           R.begin() + row * texels);
             }
             sm.total_reflectance = glm::vec3(p.total_R);
         } else if (t->model == DiffusionModel::multipole) {
-            const sss::SlabProfiles p = sss::tabulate_multipole(
-                d, sm.r_max_mm, sm.d_min_mm, sm.d_max_mm, texels, kThicknessRows);
+            const SlabProfiles p = tabulate_multipole(d, sm.r_max_mm, sm.d_min_mm, sm.d_max_mm,
+                                                      texels, kThicknessRows);
             R = p.R;
             T = p.T;
             sm.multipole = true;
             any_multipole_ = true;
         } else {
-            const sss::RadialProfile p = sss::tabulate_dipole(d, sm.r_max_mm, texels);
+            const RadialProfile p = tabulate_dipole(d, sm.r_max_mm, texels);
             for (int row = 0; row < kThicknessRows; ++row) {
                 std::copy(p.texels.begin(), p.texels.end(), R.begin() + row * texels);
             }
         }
         if (t->coats.empty()) {
             for (int c = 0; c < 3; ++c) {
-                sm.total_reflectance[c] = float(sss::total_diffuse_reflectance(d[c]));
+                sm.total_reflectance[c] = float(total_diffuse_reflectance(d[c]));
             }
         }
         R_layers.push_back(std::move(R));
@@ -156,14 +160,14 @@ SubsurfacePass::SubsurfacePass(const Scene& scene, int width, int height)
     if (materials_.empty()) {
         fail("subsurface pass: the scene has no translucent object");
     }
-    // Footprint levels (sss::FootprintLevels): each material's rows averaged over disks of
+    // Footprint levels (FootprintLevels): each material's rows averaged over disks of
     // growing radius, layer = material layer x levels + level.
     const int levels = settings.footprint ? kFootprintLevels : 1;
     profile_R_ = create_profile_array(texels, kThicknessRows, int(materials_.size()) * levels);
     profile_T_ = create_profile_array(texels, kThicknessRows, int(materials_.size()) * levels);
     for (size_t i = 0; i < materials_.size(); ++i) {
         const SubsurfaceMaterial& sm = materials_[i];
-        const sss::FootprintLevels footprint{levels, sm.r_max_mm / 4.0};
+        const FootprintLevels footprint{levels, sm.r_max_mm / 4.0};
         for (int k = 0; k < levels; ++k) {
             const double rho = footprint.radius(k);
             std::vector<glm::vec3> R = R_layers[i], T = T_layers[i];
@@ -184,11 +188,11 @@ SubsurfacePass::SubsurfacePass(const Scene& scene, int width, int height)
                         };
                     };
                     const std::vector<glm::vec3> r_row =
-                        sss::disk_average(row_profile(R_layers[i]), sm.r_max_mm, texels, rho);
+                        disk_average(row_profile(R_layers[i]), sm.r_max_mm, texels, rho);
                     std::copy(r_row.begin(), r_row.end(), R.begin() + row * texels);
                     if (rows_differ) {
                         const std::vector<glm::vec3> t_row =
-                            sss::disk_average(row_profile(T_layers[i]), sm.r_max_mm, texels, rho);
+                            disk_average(row_profile(T_layers[i]), sm.r_max_mm, texels, rho);
                         std::copy(t_row.begin(), t_row.end(), T.begin() + row * texels);
                     }
                 }
@@ -214,8 +218,8 @@ SubsurfacePass::SubsurfacePass(const Scene& scene, int width, int height)
                 continue;
             }
             const size_t n = size_t(settings.environment_samples);
-            const sss::SurfaceSamples samples = sss::eliminate_samples(
-                sss::random_surface_points(*object.mesh, object.transform, 5 * n, 1 + i), n);
+            const SurfaceSamples samples = eliminate_samples(
+                random_surface_points(*object.mesh, object.transform, 5 * n, 1 + i), n);
             std::vector<float> interleaved;
             for (size_t k = 0; k < samples.positions.size(); ++k) {
                 const glm::vec3 p = samples.positions[k], nn = samples.normals[k];
@@ -225,8 +229,8 @@ SubsurfacePass::SubsurfacePass(const Scene& scene, int width, int height)
             e.object = i;
             e.count = GLsizei(samples.positions.size());
             e.area_per_sample = float(samples.area / double(e.count));
-            e.vertices = create_buffer(interleaved.data(), interleaved.size() * sizeof(float));
-            e.vertex_array = create_vertex_array();
+            e.vertices = gl::create_buffer(interleaved.data(), interleaved.size() * sizeof(float));
+            e.vertex_array = gl::create_vertex_array();
             GL.VertexArrayVertexBuffer(e.vertex_array.id(), 0, e.vertices.id(), 0,
                                        6 * sizeof(float));
             for (GLuint a = 0; a < 2; ++a) {
@@ -243,47 +247,47 @@ SubsurfacePass::SubsurfacePass(const Scene& scene, int width, int height)
                 .count();
     }
 
-    gbuffer_program_ = create_program({{GL_VERTEX_SHADER, "sss/shaders/gbuffer.vert"},
-                                       {GL_FRAGMENT_SHADER, "sss/shaders/gbuffer.frag"}});
-    splat_program_ = create_program({{GL_VERTEX_SHADER, "sss/shaders/splat_light.vert"},
-                                     {GL_GEOMETRY_SHADER, "sss/shaders/splat.geom"},
-                                     {GL_FRAGMENT_SHADER, "sss/shaders/splat.frag"}});
-    points_program_ = create_program({{GL_VERTEX_SHADER, "sss/shaders/splat_points.vert"},
-                                      {GL_GEOMETRY_SHADER, "sss/shaders/splat.geom"},
-                                      {GL_FRAGMENT_SHADER, "sss/shaders/splat.frag"}});
-    area_program_ = create_program({{GL_VERTEX_SHADER, "sss/shaders/splat_light.vert"},
-                                    {GL_GEOMETRY_SHADER, "sss/shaders/visible_area.geom"},
-                                    {GL_FRAGMENT_SHADER, "sss/shaders/visible_area.frag"}});
-    combine_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                                       {GL_FRAGMENT_SHADER, "sss/shaders/combine.frag"}});
-    empty_vertex_array_ = create_vertex_array();
+    gbuffer_program_ = gl::create_program({{GL_VERTEX_SHADER, "sss/shaders/gbuffer.vert"},
+                                           {GL_FRAGMENT_SHADER, "sss/shaders/gbuffer.frag"}});
+    splat_program_ = gl::create_program({{GL_VERTEX_SHADER, "sss/shaders/splat_light.vert"},
+                                         {GL_GEOMETRY_SHADER, "sss/shaders/splat.geom"},
+                                         {GL_FRAGMENT_SHADER, "sss/shaders/splat.frag"}});
+    points_program_ = gl::create_program({{GL_VERTEX_SHADER, "sss/shaders/splat_points.vert"},
+                                          {GL_GEOMETRY_SHADER, "sss/shaders/splat.geom"},
+                                          {GL_FRAGMENT_SHADER, "sss/shaders/splat.frag"}});
+    area_program_ = gl::create_program({{GL_VERTEX_SHADER, "sss/shaders/splat_light.vert"},
+                                        {GL_GEOMETRY_SHADER, "sss/shaders/visible_area.geom"},
+                                        {GL_FRAGMENT_SHADER, "sss/shaders/visible_area.frag"}});
+    combine_program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                           {GL_FRAGMENT_SHADER, "sss/shaders/combine.frag"}});
+    empty_vertex_array_ = gl::create_vertex_array();
 
-    eye_positions_ = create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
-    eye_normals_ = create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
-    eye_framebuffer_ = create_framebuffer();
+    eye_positions_ = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
+    eye_normals_ = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
+    eye_framebuffer_ = gl::create_framebuffer();
     const int size = settings.map_size;
-    light_positions_ = create_texture_2d(GL_RGBA32F, size, size, GL_NEAREST);
-    light_normals_ = create_texture_2d(GL_RGBA32F, size, size, GL_NEAREST);
-    light_depth_ = create_texture_2d(GL_DEPTH_COMPONENT32F, size, size, GL_NEAREST);
-    light_framebuffer_ = create_framebuffer();
+    light_positions_ = gl::create_texture_2d(GL_RGBA32F, size, size, GL_NEAREST);
+    light_normals_ = gl::create_texture_2d(GL_RGBA32F, size, size, GL_NEAREST);
+    light_depth_ = gl::create_texture_2d(GL_DEPTH_COMPONENT32F, size, size, GL_NEAREST);
+    light_framebuffer_ = gl::create_framebuffer();
     attach(light_framebuffer_, {light_positions_.id(), light_normals_.id()}, light_depth_.id(),
            "subsurface light map");
-    back_positions_ = create_texture_2d(GL_RGBA32F, any_multipole_ ? size : 1,
-                                        any_multipole_ ? size : 1, GL_NEAREST);
+    back_positions_ = gl::create_texture_2d(GL_RGBA32F, any_multipole_ ? size : 1,
+                                            any_multipole_ ? size : 1, GL_NEAREST);
     if (any_multipole_) {
-        back_scratch_ = create_texture_2d(GL_RGBA32F, size, size, GL_NEAREST);
-        back_depth_ = create_texture_2d(GL_DEPTH_COMPONENT32F, size, size, GL_NEAREST);
-        back_framebuffer_ = create_framebuffer();
+        back_scratch_ = gl::create_texture_2d(GL_RGBA32F, size, size, GL_NEAREST);
+        back_depth_ = gl::create_texture_2d(GL_DEPTH_COMPONENT32F, size, size, GL_NEAREST);
+        back_framebuffer_ = gl::create_framebuffer();
         attach(back_framebuffer_, {back_positions_.id(), back_scratch_.id()}, back_depth_.id(),
                "subsurface thickness");
     }
-    area_sums_ = create_texture_2d(GL_RGBA32F, 1, 1, GL_NEAREST);
-    area_framebuffer_ = create_framebuffer();
+    area_sums_ = gl::create_texture_2d(GL_RGBA32F, 1, 1, GL_NEAREST);
+    area_framebuffer_ = gl::create_framebuffer();
     attach(area_framebuffer_, {area_sums_.id()}, 0, "subsurface visible area");
-    scatter_ = create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
-    scatter_framebuffer_ = create_framebuffer();
+    scatter_ = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
+    scatter_framebuffer_ = gl::create_framebuffer();
     attach(scatter_framebuffer_, {scatter_.id()}, 0, "subsurface scatter");
-    check_errors("creating the subsurface pass");
+    gl::check_errors("creating the subsurface pass");
 }
 
 SubsurfacePass::~SubsurfacePass() = default;
@@ -511,4 +515,4 @@ void SubsurfacePass::render(const DrawObject& draw, const glm::mat4& view_projec
     GL.PopDebugGroup();
 }
 
-}  // namespace sl::gl
+}  // namespace sl::sss

@@ -1,9 +1,9 @@
 #version 450 core
-// Test pattern for the GLSL/C++ agreement test (tests/gpu_method_test.cpp): pixel (x, y) takes
+// Test pattern for the GLSL/C++ agreement test (tests/analytic_region_pass_test.cpp): pixel (x, y) takes
 // the camera ray through its centre and writes E(0, t) = G(t) - G(0), t = 1 + 24 x / width.
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
-#include "gl/shaders/in_scattering.glsl"
+#include "analytic/shaders/in_scattering.glsl"
 layout(location = 0) out vec4 result;
 void main() {
     vec2 size = frame.display.yz;

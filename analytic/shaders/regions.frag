@@ -7,7 +7,7 @@
 // between rasterizers and dropped one face of a pair.
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
-#include "gl/shaders/in_scattering.glsl"
+#include "analytic/shaders/in_scattering.glsl"
 #include "gl/shaders/view.glsl"
 #include "gl/shaders/uncertain_interval.glsl"
 

@@ -11,6 +11,7 @@
 
 #include "core/metrics.h"
 #include "gl/renderer.h"
+#include "methods/registry.h"
 #include "scenes/scene_file.h"
 #include "sss/diffusion.h"
 #include "tests/support.h"
@@ -157,9 +158,9 @@ TEST_F(SssRender, SlabSplatsMatchTheCpuSumOfEquation46) {
         const auto method = methods::create_volume_method("none");
         method->prepare(scene);
         renderer.render(*method);
-        const gl::SubsurfacePass& pass = *renderer.subsurface();
+        const sss::SubsurfacePass& pass = *renderer.subsurface();
         const Image scatter = renderer.read_rgb(pass.scatter());
-        const gl::SubsurfaceMaterial& m = pass.materials().front();
+        const sss::SubsurfaceMaterial& m = pass.materials().front();
         const double mm = scene.subsurface.mm_per_unit;
         const glm::vec4 roi = pass.region_of_interest(0, scene.light);
         const std::vector<Sample> samples = cpu_samples(scene, roi, m.r_max_mm / mm);

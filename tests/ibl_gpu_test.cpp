@@ -12,6 +12,7 @@
 
 #include "gl/renderer.h"
 #include "ibl/shading.h"
+#include "methods/registry.h"
 #include "scenes/scene_file.h"
 #include "tests/support.h"
 

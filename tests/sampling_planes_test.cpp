@@ -49,7 +49,7 @@ TEST_F(Sampling, GlslIntegrandMatchesCppForEveryPhaseFunction) {
             const gl::shared::FrameUniforms uniforms =
                 gl::make_frame_uniforms(scene, {.width = width, .height = height});
             const std::vector<float> rgba =
-                render_test_pattern(uniforms, "gl/shaders/test_scattering.frag", width, height);
+                render_test_pattern(uniforms, "tests/shaders/scattering.frag", width, height);
             const double peak = red_peak(rgba);
             ASSERT_GT(peak, 0.0);
             for (int y = 0; y < height; ++y) {

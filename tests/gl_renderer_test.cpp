@@ -10,6 +10,7 @@
 
 #include "core/image.h"
 #include "gl/renderer.h"
+#include "methods/registry.h"
 #include "tests/support.h"
 
 namespace sl::test {

@@ -3,7 +3,7 @@
 // seen through the medium up to the far plane.
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
-#include "gl/shaders/ibl.glsl"
+#include "ibl/shaders/ibl.glsl"
 
 in vec2 uv;
 layout(location = 0) out vec4 surface_radiance;

@@ -7,13 +7,15 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "analytic/gpu_tables.h"
 #include "analytic/in_scattering.h"
+#include "analytic/region_pass.h"
 #include "core/metrics.h"
-#include "gl/analytic_pass.h"
 #include "gl/debug.h"
 #include "gl/renderer.h"
 #include "gl/shaders.h"
 #include "gl/volume_method.h"
+#include "methods/registry.h"
 #include "reference/reference.h"
 #include "tests/support.h"
 
@@ -29,8 +31,8 @@ gl::Frame render(const Scene& scene, const std::string& method_name, int width, 
     return renderer.render(*method);
 }
 
-// The GLSL antiderivative (gl/shaders/in_scattering.glsl) integrates the same E(0, t) as the C++
-// closed forms (analytic/in_scattering.cpp) on every pixel's ray, to 1e-4 relative, for both
+// The GLSL antiderivative (analytic/shaders/in_scattering.glsl) integrates the same E(0, t) as the
+// C++ closed forms (analytic/in_scattering.cpp) on every pixel's ray, to 1e-4 relative, for both
 // models; the physical one goes through the Sun et al. F(u, v) table.
 TEST_F(GpuMethod, GlslAntiderivativeMatchesCpp) {
     for (const int variant : {0, 1, 2}) {
@@ -45,12 +47,12 @@ TEST_F(GpuMethod, GlslAntiderivativeMatchesCpp) {
         const int width = 96, height = 54;
         const gl::RenderOptions options{.width = width, .height = height};
         const gl::shared::FrameUniforms uniforms = gl::make_frame_uniforms(scene, options);
-        const gl::Texture sun_table = gl::create_sun_table();
-        const gl::Texture phase_table = gl::create_phase_table(scene.medium);
-        gl::GL.BindTextureUnit(gl::kPhaseTableUnit, phase_table.id());
-        gl::GL.BindTextureUnit(gl::kSunTableUnit, sun_table.id());
+        const gl::Texture sun_table = analytic::create_sun_table();
+        const gl::Texture phase_table = analytic::create_phase_table(scene.medium);
+        gl::GL.BindTextureUnit(analytic::kPhaseTableUnit, phase_table.id());
+        gl::GL.BindTextureUnit(analytic::kSunTableUnit, sun_table.id());
         const std::vector<float> rgba =
-            render_test_pattern(uniforms, "gl/shaders/test_in_scattering.frag", width, height);
+            render_test_pattern(uniforms, "tests/shaders/in_scattering.frag", width, height);
 
         const double peak = red_peak(rgba);
         ASSERT_GT(peak, 0.0);

@@ -19,7 +19,7 @@
 #include "gl/objects.h"
 #include "scenes/scene.h"
 
-namespace sl::gl {
+namespace sl::sss {
 
 // One translucent material as uploaded: its profiles' layer and extents.
 struct SubsurfaceMaterial {
@@ -68,8 +68,8 @@ public:
 private:
     struct EnvironmentSamples {
         size_t object = 0;
-        Buffer vertices;
-        VertexArray vertex_array;
+        gl::Buffer vertices;
+        gl::VertexArray vertex_array;
         GLsizei count = 0;
         float area_per_sample = 0.0f;
     };
@@ -83,24 +83,24 @@ private:
     SubsurfaceStats stats_;
     bool any_multipole_ = false;
 
-    Program gbuffer_program_;
-    Program splat_program_;
-    Program points_program_;
-    Program area_program_;
-    Program combine_program_;
-    VertexArray empty_vertex_array_;
+    gl::Program gbuffer_program_;
+    gl::Program splat_program_;
+    gl::Program points_program_;
+    gl::Program area_program_;
+    gl::Program combine_program_;
+    gl::VertexArray empty_vertex_array_;
 
-    Texture profile_R_, profile_T_;
-    Texture eye_positions_, eye_normals_;
-    Framebuffer eye_framebuffer_;
-    Texture light_positions_, light_normals_, light_depth_;
-    Framebuffer light_framebuffer_;
-    Texture back_positions_, back_scratch_, back_depth_;
-    Framebuffer back_framebuffer_;
-    Texture area_sums_;
-    Framebuffer area_framebuffer_;
-    Texture scatter_;
-    Framebuffer scatter_framebuffer_;
+    gl::Texture profile_R_, profile_T_;
+    gl::Texture eye_positions_, eye_normals_;
+    gl::Framebuffer eye_framebuffer_;
+    gl::Texture light_positions_, light_normals_, light_depth_;
+    gl::Framebuffer light_framebuffer_;
+    gl::Texture back_positions_, back_scratch_, back_depth_;
+    gl::Framebuffer back_framebuffer_;
+    gl::Texture area_sums_;
+    gl::Framebuffer area_framebuffer_;
+    gl::Texture scatter_;
+    gl::Framebuffer scatter_framebuffer_;
 };
 
-}  // namespace sl::gl
+}  // namespace sl::sss

@@ -1,0 +1,16 @@
+#pragma once
+// `beamtree`: volume integration over the beam tree's lit regions alone (Nilsson's "Beam Tree"
+// column, DESIGN.md §3): every lit-region face in one draw, signed additive blending into the
+// float target, G(z) in closed form (analytic/region_pass.h). Exact where the objects are their
+// own bounding volumes, B̂ ⊆ B otherwise (the uncertain regions are left to the hybrids).
+// Parameters: none. Statistics: the beam tree's CPU time and the region faces drawn.
+
+#include <memory>
+
+#include "gl/volume_method.h"
+
+namespace sl::analytic {
+
+std::unique_ptr<gl::VolumeMethod> create_beamtree_method();
+
+}  // namespace sl::analytic

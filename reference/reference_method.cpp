@@ -1,0 +1,113 @@
+#include "reference/reference_method.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "gl/objects.h"
+#include "gl/shaders.h"
+#include "reference/cache.h"
+
+namespace sl::reference {
+
+namespace {
+
+using gl::GL;
+using gl::Parameter;
+
+class ReferenceMethod final : public gl::VolumeMethod {
+public:
+    ReferenceMethod() {
+        declare({.name = "shadow_samples",
+                 .type = Parameter::Type::integer,
+                 .default_value = 256,
+                 .min = 2,
+                 .max = 65536,
+                 .description = "visibility samples along each ray's lit interval"});
+        declare({.name = "transition_tolerance",
+                 .default_value = 1e-6,
+                 .min = 1e-9,
+                 .max = 1e-2,
+                 .description = "metres: bisection of each light/shadow transition"});
+    }
+    std::string name() const override { return "reference"; }
+    void prepare(const Scene&) override {}
+    void render(const gl::VolumeInputs& inputs) override {
+        // Recomputed (or loaded from the cache) whenever anything it depends on changes: the
+        // viewer moves the camera and the light between frames.
+        const uint64_t key = reference_key(inputs.scene, inputs.width, inputs.height, options());
+        if (!texture_ || key != computed_key_) {
+            upload(compute(inputs.scene, inputs.width, inputs.height));
+            computed_key_ = key;
+        }
+        GL.UseProgram(program_.id());
+        GL.BindTextureUnit(0, texture_.id());
+        GL.BindVertexArray(vertex_array_.id());
+        GL.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    const Image& in_scattering() const { return image_; }
+    gl::TextureViews textures() const override {
+        return texture_ ? gl::TextureViews{{"reference/I_s", texture_.id()}} : gl::TextureViews{};
+    }
+
+private:
+    ReferenceOptions options() const {
+        return {.shadow_samples = int(parameter("shadow_samples")),
+                .transition_tolerance = parameter("transition_tolerance")};
+    }
+
+    Image compute(const Scene& scene, int width, int height) const {
+        const bool show = isatty(STDERR_FILENO);
+        std::atomic<int> shown = -1;
+        Image image = cached_reference(scene, width, height, options(), [&](double done) {
+            const int percent = int(100.0 * done);
+            if (show && percent / 2 > shown.exchange(percent / 2)) {
+                std::fprintf(stderr, "\rreference %dx%d [%-50s] %3d%%", width, height,
+                             std::string(size_t(percent / 2), '#').c_str(), percent);
+            }
+        });
+        if (show && shown >= 0) {
+            std::fputs("\n", stderr);
+        }
+        return image;
+    }
+
+    void upload(Image image) {
+        image_ = std::move(image);
+        width_ = image_.width;
+        height_ = image_.height;
+        std::vector<float> rgb(image_.rgb.size());
+        for (int y = 0; y < height_; ++y) {  // GL rows run bottom to top
+            std::copy_n(&image_.rgb[size_t(height_ - 1 - y) * width_ * 3], size_t(width_) * 3,
+                        &rgb[size_t(y) * width_ * 3]);
+        }
+        texture_ = gl::create_texture_2d(GL_RGBA32F, width_, height_, GL_NEAREST);
+        GL.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        GL.TextureSubImage2D(texture_.id(), 0, 0, 0, width_, height_, GL_RGB, GL_FLOAT, rgb.data());
+        if (!program_) {
+            program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                           {GL_FRAGMENT_SHADER, "reference/shaders/copy.frag"}});
+            vertex_array_ = gl::create_vertex_array();
+        }
+    }
+
+    Image image_;
+    int width_ = 0, height_ = 0;
+    uint64_t computed_key_ = 0;
+    gl::Texture texture_;
+    gl::Program program_;
+    gl::VertexArray vertex_array_;
+};
+
+}  // namespace
+
+std::unique_ptr<gl::VolumeMethod> create_reference_method() {
+    return std::make_unique<ReferenceMethod>();
+}
+
+}  // namespace sl::reference

@@ -1,0 +1,83 @@
+#include "viewer/window.h"
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include "core/error.h"
+#include "methods/registry.h"
+
+namespace sl::viewer {
+
+void Viewer::ui_method() {
+    const std::string current = method_->name();
+    if (ImGui::BeginCombo("method", current.c_str())) {
+        for (const std::string& name : methods::volume_method_names()) {
+            if (ImGui::Selectable(name.c_str(), name == current) && name != current) {
+                switch_method(name);
+            }
+        }
+        ImGui::EndCombo();
+    }
+    const std::vector<gl::Parameter> parameters = method_->parameters();
+    for (const gl::Parameter& p : parameters) {
+        std::optional<std::string> text;
+        bool commit = false;
+        switch (p.type) {
+            case gl::Parameter::Type::integer: {
+                int v = int(p.value);
+                const float speed = float(std::max(1.0, (p.max - p.min) / 400.0));
+                if (ImGui::DragInt(p.name.c_str(), &v, speed, int(p.min), int(p.max), "%d",
+                                   ImGuiSliderFlags_AlwaysClamp)) {
+                    text = fmt::format("{}", v);
+                }
+                break;
+            }
+            case gl::Parameter::Type::real: {
+                double v = p.value;
+                const bool logarithmic = p.min > 0.0 && p.max / p.min > 100.0;
+                ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp;
+                if (logarithmic)
+                    flags |= ImGuiSliderFlags_Logarithmic;
+                if (ImGui::SliderScalar(p.name.c_str(), ImGuiDataType_Double, &v, &p.min, &p.max,
+                                        "%.4g", flags)) {
+                    text = fmt::format("{}", v);
+                }
+                break;
+            }
+            case gl::Parameter::Type::choice: {
+                if (ImGui::BeginCombo(p.name.c_str(), p.text().c_str())) {
+                    for (const std::string& choice : p.choices) {
+                        if (ImGui::Selectable(choice.c_str(), choice == p.text())) {
+                            text = choice;
+                            commit = true;
+                        }
+                    }
+                    ImGui::EndCombo();
+                }
+                break;
+            }
+        }
+        help_marker(p.description);
+        commit |= ImGui::IsItemDeactivatedAfterEdit();
+        if (text) {
+            try {
+                method_->set(p.name, *text);
+            } catch (const Error& e) {
+                status_ = e.what();
+            }
+        }
+        if (commit) {
+            prepare_method();  // parameters read in prepare() take effect
+        }
+    }
+    if (!parameters.empty() && ImGui::Button("defaults")) {
+        for (const gl::Parameter& p : parameters) {
+            gl::Parameter d = p;
+            d.value = p.default_value;
+            method_->set(p.name, d.text());
+        }
+        prepare_method();
+    }
+}
+
+}  // namespace sl::viewer

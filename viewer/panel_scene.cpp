@@ -1,0 +1,58 @@
+#include "viewer/window.h"
+
+#include <imgui.h>
+
+namespace sl::viewer {
+
+void Viewer::ui_light() {
+    SpotLight& l = scene_.light;
+    bool changed = false;
+    changed |= ImGui::DragFloat3("position", &l.position.x, 0.02f);
+    changed |= ImGui::DragFloat3("target", &l.target.x, 0.02f);
+    changed |= ImGui::SliderFloat("cone", &l.cone_half_angle_degrees, 1.0f, 80.0f, "%.1f deg");
+    changed |= ImGui::DragFloatRange2("range", &l.near, &l.far, 0.05f, 0.01f, 1000.0f);
+    changed |= ImGui::DragFloat3("intensity", &l.intensity.x, 1.0f, 0.0f, 1e6f);
+    changed |= ImGui::SliderFloat("falloff", &l.falloff_degrees, 0.0f, l.cone_half_angle_degrees,
+                                  "%.1f deg");
+    l.near = std::max(l.near, 1e-3f);
+    l.far = std::max(l.far, l.near * 1.01f);
+    l.falloff_degrees = std::min(l.falloff_degrees, l.cone_half_angle_degrees);
+    if (changed && glm::length(l.target - l.position) > 1e-4f) {
+        scene_changed();
+    }
+    ImGui::TextDisabled("ctrl + drag in the view moves it too");
+}
+
+void Viewer::ui_medium() {
+    Medium& m = scene_.medium;
+    bool changed = false;
+    changed |= ImGui::DragFloat3("sigma_s", &m.sigma_s.x, 0.002f, 0.0f, 100.0f, "%.4f");
+    changed |= ImGui::DragFloat3("sigma_a", &m.sigma_a.x, 0.002f, 0.0f, 100.0f, "%.4f");
+    int phase = int(m.phase);
+    if (ImGui::BeginCombo("phase", to_string(m.phase))) {
+        for (int i = 0; i <= int(PhaseFunction::nishita_hazy); ++i) {
+            if (ImGui::Selectable(to_string(PhaseFunction(i)), i == phase)) {
+                m.phase = PhaseFunction(i);
+                changed = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    changed |= ImGui::SliderFloat("g", &m.g, -0.99f, 0.99f);
+    int model = int(m.model);
+    if (ImGui::Combo("model", &model, "simplified\0physical\0")) {
+        m.model = MediumModel(model);
+        changed = true;
+    }
+    if (m.model == MediumModel::simplified) {
+        changed |= ImGui::DragFloat("a0", &m.a0, 0.01f, 0.0f, 100.0f);
+        changed |= ImGui::DragFloat("a1", &m.a1, 0.01f, 0.0f, 100.0f);
+        if (m.a0 == 0.0f && m.a1 == 0.0f)
+            m.a0 = 1e-3f;
+    }
+    if (changed) {
+        scene_changed();
+    }
+}
+
+}  // namespace sl::viewer

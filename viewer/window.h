@@ -1,0 +1,161 @@
+#pragma once
+// The viewer's window (viewer/viewer.h runs it): the state every panel reads and edits, and where
+// each part is defined. One concern per file:
+//   viewer.cpp          start-up, the frame loop, scene changes (beam tree, method prepare),
+//                       drawing the frame and the panel layout
+//   input.cpp           mouse and keyboard: camera (orbit, fly) and light drags
+//   panel_camera.cpp    the camera panel
+//   panel_method.cpp    the method combo and its declared parameters
+//   panel_scene.cpp     the light and medium panels
+//   panel_environment.cpp  the image-based lighting panel (live uniforms, baked settings)
+//   panel_regions.cpp   the region overlay's panel and the light view of the leaves
+//   panel_buffers.cpp   the buffer previewer (every texture the passes declare)
+//   panel_timings.cpp   GPU and CPU timings with their history graphs, method counters
+//   error_view.cpp      the error heat map against a cached reference, computed in the background
+//   saving.cpp          screenshots, the I_s EXR and "save as experiment"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/image.h"
+#include "core/metrics.h"
+#include "gl/objects.h"
+#include "gl/platform.h"
+#include "gl/renderer.h"
+#include "gl/volume_method.h"
+#include "reference/reference.h"
+#include "scenes/scene.h"
+#include "viewer/camera_controller.h"
+#include "viewer/region_overlay.h"
+#include "viewer/texture_preview.h"
+#include "viewer/view_path.h"
+#include "viewer/viewer.h"
+
+namespace sl::viewer {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr size_t kHistory = 240;  // frames in the timing graphs
+constexpr int kLightViewSize = 256;
+
+// A ring of the last kHistory values, oldest first when read with offset().
+struct History {
+    std::vector<float> values = std::vector<float>(kHistory, 0.0f);
+    size_t next = 0;
+    void push(double v) {
+        values[next] = float(v);
+        next = (next + 1) % kHistory;
+    }
+    float latest() const { return values[(next + kHistory - 1) % kHistory]; }
+    float max() const { return *std::max_element(values.begin(), values.end()); }
+};
+
+// The CPU reference for the current view, computed on a thread of its own and cached on disk.
+struct ReferenceJob {
+    std::thread thread;
+    std::atomic<double> progress{0.0};
+    std::atomic<bool> done{false};
+    std::string error;
+};
+
+// A tooltip with `text` for the last item, when it is hovered.
+void help_marker(const std::string& text);
+
+class Viewer {
+public:
+    explicit Viewer(const ViewerOptions& options);
+    ~Viewer();
+    Viewer(const Viewer&) = delete;
+    Viewer& operator=(const Viewer&) = delete;
+    int run();
+
+private:
+    bool scripted() const { return options_.frames > 0; }
+    void switch_method(const std::string& name);
+    void scene_changed();  // light or medium: the beam tree and the method's prepare
+    void prepare_method();
+    void handle_input(double dt);  // input.cpp
+    void draw_frame();
+    void update_error_view();  // error_view.cpp
+    void draw_ui();
+    // The panels (panel_*.cpp, error_view.cpp, saving.cpp).
+    void ui_view();
+    void ui_light();
+    void ui_medium();
+    void ui_environment();
+    void ui_method();
+    void ui_regions();
+    void ui_error();
+    void ui_save();
+    void ui_timings();
+    void ui_previewer();
+    void ui_light_view();
+    gl::TextureViews all_textures() const;     // panel_buffers.cpp
+    void screenshot(const std::string& path);  // saving.cpp
+    void write_in_scattering(const std::string& path);
+    bool layer(const char* name) const;
+
+    ViewerOptions options_;
+    std::unique_ptr<gl::WindowPlatform> platform_;
+    Scene scene_;
+    CameraController controller_;
+    CameraMode mode_ = CameraMode::orbit;
+    std::optional<ViewPath> path_;  // scripted mode
+    float fly_speed_ = 2.0f;        // metres per second
+    std::unique_ptr<gl::VolumeMethod> method_;
+    std::unique_ptr<gl::SceneRenderer> renderer_;
+    int width_ = 0, height_ = 0;
+    RegionOverlay overlay_;
+    OverlaySettings overlay_settings_;
+    std::map<std::string, bool> layers_;
+    TexturePreview preview_;
+    PreviewSettings preview_settings_;
+    std::string preview_name_;
+    std::string fitted_name_;  // the buffer whose range the previewer last fitted
+    gl::Program blit_program_;
+    gl::VertexArray empty_array_;
+
+    // The last light and medium the beam tree and the method accepted.
+    SpotLight good_light_;
+    Medium good_medium_;
+    std::string status_;               // the last error, shown in red
+    Environment environment_pending_;  // baked settings being edited in the panel
+    bool environment_editing_ = false;
+
+    // Regions and timings.
+    size_t beams_ = 0;
+    std::array<size_t, 3> region_faces_{};
+    std::array<double, 3> region_volume_{};
+    double influence_volume_ = 0.0;
+    double tree_ms_ = 0.0, extract_ms_ = 0.0, prepare_ms_ = 0.0;
+    gl::FrameTimings timings_;
+    gl::MethodStatistics statistics_;
+    History frame_history_, cpu_history_, shadow_history_, surface_history_, volume_history_,
+        composite_history_;
+    Clock::time_point last_frame_ = Clock::now();
+
+    // Error view.
+    reference::ReferenceOptions reference_options_{};
+    uint64_t reference_key_ = 0;
+    std::optional<Image> reference_;
+    std::unique_ptr<ReferenceJob> job_;
+    gl::Texture heat_map_;
+    float heat_scale_ = 0.5f;
+    ErrorMetrics error_{};
+
+    std::string save_path_;
+    std::string saved_message_;
+    bool take_screenshot_ = false;
+    int frame_ = 0;
+};
+
+}  // namespace sl::viewer
