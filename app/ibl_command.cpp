@@ -49,7 +49,7 @@ fs::path resolve_environment(const std::string& name) {
     const fs::path file = environment_file(name, {}, SceneSearchPaths::defaults());
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) {
-        fail("no environment '{}' ({} does not exist)", name, file.string());
+        fail("no environment {} ({} does not exist)", quote(name), file.string());
     }
     return file;
 }
@@ -160,7 +160,7 @@ int run_reference(const ReferenceArguments& a) {
     const Scene scene =
         reference::environment_only_scene(load_scene(a.scene, SceneSearchPaths::defaults()));
     if (!scene.environment.enabled()) {
-        fail("scene '{}' has no [environment]", a.scene);
+        fail("scene {} has no [environment]", quote(a.scene));
     }
     const auto platform = gl::create_headless_platform();
     gl::SceneRenderer renderer(scene, {.width = width, .height = height});

@@ -6,6 +6,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/text.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"shaftlab: a testbed for real-time volumetric light shafts"};
@@ -34,7 +35,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "shaftlab: error: %s (see --help)\n", e.what());
+        std::fprintf(stderr, "shaftlab: error: %s (see --help)\n", sl::printable(e.what()).c_str());
         return 2;
     }
     try {
@@ -47,7 +48,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "shaftlab: error: %s\n", e.what());
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "shaftlab: error: %s\n", e.what());
+        std::fprintf(stderr, "shaftlab: error: %s\n", sl::printable(e.what()).c_str());
         return 1;
     }
     return 1;

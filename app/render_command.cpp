@@ -47,7 +47,7 @@ int run_render(const RenderArguments& args) {
     const std::unique_ptr<gl::VolumeMethod> method = experiments::create_configured_method(
         args.method, options.shadow, experiments::parse_settings(args.settings));
     if (!args.compare.empty() && args.compare != "reference") {
-        fail("--compare '{}': only 'reference' can be compared against", args.compare);
+        fail("--compare {}: only 'reference' can be compared against", quote(args.compare));
     }
 
     auto start = Clock::now();
@@ -174,12 +174,13 @@ void parse_size(const std::string& text, int& width, int& height, const char* op
     static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
     std::smatch match;
     if (!std::regex_match(text, match, pattern)) {
-        fail("{} '{}': expected WIDTHxHEIGHT with positive integers, e.g. 640x360", option, text);
+        fail("{} {}: expected WIDTHxHEIGHT with positive integers, e.g. 640x360", option,
+             quote(text));
     }
     width = std::stoi(match[1]);
     height = std::stoi(match[2]);
     if (width < 1 || height < 1 || width > 16384 || height > 16384) {
-        fail("{} '{}': width and height must be in 1..16384", option, text);
+        fail("{} {}: width and height must be in 1..16384", option, quote(text));
     }
 }
 

@@ -63,10 +63,10 @@ int run_bench(const BenchArguments& a) {
     }
     const Scene base = load_scene(a.scene, SceneSearchPaths::defaults());
     if (!base.has_translucent_objects()) {
-        fail("scene '{}' has no translucent object", a.scene);
+        fail("scene {} has no translucent object", quote(a.scene));
     }
     if (a.radius != "profile" && a.radius != "flux") {
-        fail("--radius must be profile (the seed's eq. 4.3) or flux, got '{}'", a.radius);
+        fail("--radius must be profile (the seed's eq. 4.3) or flux, got {}", quote(a.radius));
     }
     std::vector<std::pair<int, int>> grids;
     for (const std::string& g : split(a.grids, ',')) {
@@ -77,7 +77,7 @@ int run_bench(const BenchArguments& a) {
     const std::vector<std::string> models = split(a.models, ',');
     for (const std::string& model : models) {
         if (model != "dipole" && model != "multipole") {
-            fail("unknown diffusion model '{}' (dipole, multipole)", model);
+            fail("unknown diffusion model {} (dipole, multipole)", quote(model));
         }
     }
     std::vector<double> distances;
@@ -85,7 +85,7 @@ int run_bench(const BenchArguments& a) {
         try {
             distances.push_back(std::stod(d));
         } catch (const std::exception&) {
-            fail("--distances: '{}' is not a number", d);
+            fail("--distances: {} is not a number", quote(d));
         }
         if (!(distances.back() > 0.0)) {
             fail("--distances: {} must be > 0 (a factor on the camera's distance)", d);

@@ -1,7 +1,11 @@
 #include "beamtree/beam_tree.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <iterator>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -287,36 +291,136 @@ Region BeamTree::classify(const dvec3& p, double* margin) const {
             index = distance >= 0.0 ? node.front : node.back;  // Nilsson Program 2
         }
         const Node& leaf = nodes_[size_t(index)];
-        switch (leaf.kind) {
-            case Kind::open:
-                region = Region::lit;
-                break;
-            case Kind::solid: {
-                const double distance = leaf.plane.distance(p);
-                record(distance);
-                region = distance > 0.0 ? Region::lit : Region::uncertain;
-                break;
-            }
-            case Kind::blocker: {
-                const double to_occluder = leaf.plane.distance(p);
-                const double to_stopper = stopper_of(leaf).distance(p);
-                record(to_occluder);
-                record(to_stopper);
-                region = to_occluder > 0.0  ? Region::lit
-                         : to_stopper > 0.0 ? Region::uncertain
-                                            : Region::unlit;
-                break;
-            }
-            case Kind::out:
-            case Kind::split:
-                region = Region::unlit;
-                break;
+        region = leaf_region(leaf, p);
+        if (leaf.kind == Kind::solid) {
+            record(leaf.plane.distance(p));
+        } else if (leaf.kind == Kind::blocker) {
+            record(leaf.plane.distance(p));
+            record(stopper_of(leaf).distance(p));
         }
     }
     if (margin) {
         *margin = closest;
     }
     return region;
+}
+
+Region BeamTree::leaf_region(const Node& leaf, const dvec3& p) const {
+    switch (leaf.kind) {
+        case Kind::open:
+            return Region::lit;
+        case Kind::solid:
+            return leaf.plane.distance(p) > 0.0 ? Region::lit : Region::uncertain;
+        case Kind::blocker:
+            return leaf.plane.distance(p) > 0.0         ? Region::lit
+                   : stopper_of(leaf).distance(p) > 0.0 ? Region::uncertain
+                                                        : Region::unlit;
+        case Kind::out:
+        case Kind::split:
+            break;
+    }
+    return Region::unlit;
+}
+
+void BeamTree::trace(const dvec3& origin, const dvec3& direction, double t0, double t1,
+                     std::vector<RegionInterval>& out) const {
+    out.clear();
+    auto emit = [&](Region region, double begin, double end) {
+        if (!(end > begin)) {
+            return;
+        }
+        if (!out.empty() && out.back().region == region) {
+            out.back().end = end;
+        } else {
+            out.push_back({region, begin, end});
+        }
+    };
+    // Where a plane's signed distance a + b t changes sign along the ray.
+    auto crossing = [&](const Plane& plane, double& a, double& b) {
+        a = plane.distance(origin);
+        b = glm::dot(plane.normal, direction);
+    };
+    // Inside the near and far ranges: both distances negative (classify's test).
+    double inside0 = t0, inside1 = t1;
+    for (size_t i = 4; i < 6; ++i) {
+        double a = 0.0, b = 0.0;
+        crossing(influence_[i], a, b);
+        if (b == 0.0) {
+            if (!(a < 0.0)) {
+                inside1 = inside0;
+            }
+        } else if (b > 0.0) {
+            inside1 = std::min(inside1, -a / b);
+        } else {
+            inside0 = std::max(inside0, -a / b);
+        }
+    }
+    if (!(inside1 > inside0)) {
+        emit(Region::unlit, t0, t1);
+        return;
+    }
+    emit(Region::unlit, t0, inside0);
+    // Depth-first down the tree, nearer pieces first: the current piece descends without the
+    // stack (a push and pop per node stalls on store forwarding); the farther part of a split
+    // waits on it.
+    struct Piece {
+        int32_t node;
+        double begin, end;
+    };
+    thread_local std::vector<Piece> stack;
+    stack.clear();
+    Piece piece{0, inside0, inside1};
+    for (;;) {
+        const Node& node = nodes_[size_t(piece.node)];
+        if (node.kind == Kind::split) {
+            double a = 0.0, b = 0.0;
+            crossing(node.plane, a, b);
+            const bool front_begin = a + b * piece.begin >= 0.0;
+            const bool front_end = a + b * piece.end >= 0.0;
+            if (front_begin == front_end) {
+                piece.node = front_begin ? node.front : node.back;
+                continue;
+            }
+            const double t = b != 0.0 ? std::clamp(-a / b, piece.begin, piece.end)
+                                      : 0.5 * (piece.begin + piece.end);
+            stack.push_back({front_end ? node.front : node.back, t, piece.end});
+            piece = {front_begin ? node.front : node.back, piece.begin, t};
+            continue;
+        }
+        // A leaf: its occluder and stopper cut the piece into at most three parts.
+        std::array<double, 4> cuts = {piece.begin, piece.end, piece.end, piece.end};
+        size_t count = 1;
+        const Plane* planes[2] = {nullptr, nullptr};
+        if (node.kind == Kind::solid || node.kind == Kind::blocker) {
+            planes[0] = &node.plane;
+        }
+        if (node.kind == Kind::blocker) {
+            planes[1] = &stopper_of(node);
+        }
+        for (const Plane* plane : planes) {
+            double a = 0.0, b = 0.0;
+            if (plane) {
+                crossing(*plane, a, b);
+            }
+            if (b != 0.0 && -a / b > piece.begin && -a / b < piece.end) {
+                cuts[count++] = -a / b;
+            }
+        }
+        if (count == 3 && cuts[2] < cuts[1]) {
+            std::swap(cuts[1], cuts[2]);
+        }
+        cuts[count++] = piece.end;
+        for (size_t i = 0; i + 1 < count; ++i) {
+            const double middle = 0.5 * (cuts[i] + cuts[i + 1]);
+            emit(leaf_region(node, origin + middle * direction), cuts[i], cuts[i + 1]);
+        }
+        if (stack.empty()) {
+            break;
+        }
+        piece = stack.back();
+        stack.pop_back();
+    }
+    emit(Region::unlit, inside1, t1);
 }
 
 BeamTree::Partition BeamTree::partition(const Polygon& polygon) const {
@@ -384,14 +488,60 @@ BeamTree::Partition BeamTree::partition(const Polygon& polygon) const {
     return result;
 }
 
-void BeamTree::split_cells(Polyhedron cell, double epsilon,
-                           const std::function<void(Polyhedron&&, const Beam&)>& leaf) const {
-    std::vector<std::pair<int32_t, Polyhedron>> stack;
-    stack.emplace_back(0, std::move(cell));
-    while (!stack.empty()) {
-        auto [index, part] = std::move(stack.back());
-        stack.pop_back();
+std::vector<BeamTree::LeafCell> BeamTree::split_cells(Polyhedron cell, double epsilon) const {
+    std::vector<LeafCell> out;
+    split_cells(0, std::move(cell), epsilon, 0, out);
+    return out;
+}
+
+void BeamTree::split_cells(int32_t index, Polyhedron cell, double epsilon, int depth,
+                           std::vector<LeafCell>& out) const {
+    // While a split sends parts to both sides and fewer than kParallelDepth such splits lie
+    // above, its two subtrees go to two tasks, each into its own list, joined front first;
+    // below that, one thread walks its subtree depth first.
+    constexpr int kParallelDepth = 8;
+    auto emit_leaf = [&](const Node& node, Polyhedron&& part) {
+        if (node.kind == Kind::out) {
+            return;
+        }
+        Beam beam;
+        beam.has_occluder = node.kind != Kind::open;
+        beam.occluder = node.plane;
+        beam.has_stopper = node.kind == Kind::blocker;
+        if (beam.has_stopper) {
+            beam.stopper = stopper_of(node);
+        }
+        out.push_back({std::move(part), beam});
+    };
+    while (depth < kParallelDepth) {
         const Node& node = nodes_[size_t(index)];
+        if (node.kind != Kind::split) {
+            emit_leaf(node, std::move(cell));
+            return;
+        }
+        Polyhedron front = clip(cell, node.plane.flipped(), epsilon);
+        Polyhedron back = clip(cell, node.plane, epsilon);
+        if (front.empty() || back.empty()) {
+            if (front.empty() && back.empty()) {
+                return;
+            }
+            index = front.empty() ? node.back : node.front;
+            cell = std::move(front.empty() ? back : front);
+            continue;
+        }
+        std::vector<LeafCell> back_cells;
+        tbb::parallel_invoke(
+            [&] { split_cells(node.front, std::move(front), epsilon, depth + 1, out); },
+            [&] { split_cells(node.back, std::move(back), epsilon, depth + 1, back_cells); });
+        std::move(back_cells.begin(), back_cells.end(), std::back_inserter(out));
+        return;
+    }
+    std::vector<std::pair<int32_t, Polyhedron>> stack;
+    stack.emplace_back(index, std::move(cell));
+    while (!stack.empty()) {
+        auto [node_index, part] = std::move(stack.back());
+        stack.pop_back();
+        const Node& node = nodes_[size_t(node_index)];
         if (node.kind == Kind::split) {
             Polyhedron front = clip(part, node.plane.flipped(), epsilon);
             Polyhedron back = clip(part, node.plane, epsilon);
@@ -401,17 +551,7 @@ void BeamTree::split_cells(Polyhedron cell, double epsilon,
                 stack.emplace_back(node.front, std::move(front));
             continue;
         }
-        if (node.kind == Kind::out) {
-            continue;
-        }
-        Beam beam;
-        beam.has_occluder = node.kind != Kind::open;
-        beam.occluder = node.plane;
-        beam.has_stopper = node.kind == Kind::blocker;
-        if (beam.has_stopper) {
-            beam.stopper = stopper_of(node);
-        }
-        leaf(std::move(part), beam);
+        emit_leaf(node, std::move(part));
     }
 }
 

@@ -34,6 +34,13 @@ enum class Region : uint8_t { lit = 0, uncertain = 1, unlit = 2 };
 std::vector<Plane> influence_planes(const SpotLight& light);
 const char* to_string(Region region);
 
+// A piece of a segment in one region type: t in [begin, end] along origin + t·direction.
+struct RegionInterval {
+    Region region = Region::unlit;
+    double begin = 0.0;
+    double end = 0.0;
+};
+
 struct BeamTreeStats {
     size_t nodes = 0;
     size_t open_leaves = 0;
@@ -63,16 +70,27 @@ public:
     // given, receives the smallest distance from p to a plane the answer depended on.
     Region classify(const dvec3& p, double* margin = nullptr) const;
 
+    // The regions along the segment origin + t·direction, t in [t0, t1], in order of t:
+    // consecutive intervals of `out` differ in region and cover [t0, t1] (t0 < t1). Each leaf
+    // the segment crosses is visited once, so a ray costs its path through the tree instead of
+    // one descent per sample; every interval's interior is what classify() says of its points.
+    void trace(const dvec3& origin, const dvec3& direction, double t0, double t1,
+               std::vector<RegionInterval>& out) const;
+
     struct Partition {
         std::vector<Polygon> lit, uncertain, unlit;
     };
     // Appendix B `partition`, extended with blocker leaves and the near and far ranges.
     Partition partition(const Polygon& polygon) const;
 
-    // Splits `cell` (a polyhedron inside the influence pyramid) down the tree and calls `leaf`
-    // with each leaf's part of it and the leaf's beam: every node clips once.
-    void split_cells(Polyhedron cell, double epsilon,
-                     const std::function<void(Polyhedron&&, const Beam&)>& leaf) const;
+    // Splits `cell` (a polyhedron inside the influence pyramid) down the tree into each leaf's
+    // part of it with the leaf's beam, in depth-first order (front before back): every node
+    // clips once. Subtrees are split on several threads; the order does not depend on them.
+    struct LeafCell {
+        Polyhedron cell;
+        Beam beam;
+    };
+    std::vector<LeafCell> split_cells(Polyhedron cell, double epsilon) const;
     // The influence pyramid: four sides, near range, far range (outward planes).
     const std::vector<Plane>& influence_planes() const { return influence_; }
     double epsilon() const { return epsilon_; }
@@ -94,6 +112,10 @@ private:
         int32_t stopper = -1;  // index into stoppers_
     };
     const Plane& stopper_of(const Node& node) const { return stoppers_[size_t(node.back)]; }
+    void split_cells(int32_t node, Polyhedron cell, double epsilon, int depth,
+                     std::vector<LeafCell>& out) const;
+    // classify()'s answer at a point inside the near and far ranges that reached `leaf`.
+    Region leaf_region(const Node& leaf, const dvec3& p) const;
     void set_leaf(int32_t index, const Leaf& leaf);
 
     void insert(const Polygon& polygon, const Plane& plane, bool stopper);

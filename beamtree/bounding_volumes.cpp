@@ -1,5 +1,9 @@
 #include "beamtree/bounding_volumes.h"
 
+#include <tbb/parallel_for.h>
+
+#include <set>
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
@@ -398,7 +402,19 @@ std::optional<Box> inscribed_box(const Mesh& mesh) {
     float best_scale = 0.0f;
     glm::vec3 best_center(0.0f);
     for (const glm::vec3& seed : seeds) {
-        if (!point_inside_mesh(mesh, dvec3(seed))) {
+        // A box that touches no triangle around an inside seed stays inside the mesh's bounds,
+        // whose faces all touch the mesh: the scale reachable from this seed is below the
+        // distance to the nearest bound. Seeds that cannot beat the best are skipped before the
+        // winding number, the expensive test (the result is the same).
+        float bound = 1.0f;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (half[axis] > 0.0f) {
+                bound = std::min(
+                    bound, std::min(seed[axis] - bounds.min[axis], bounds.max[axis] - seed[axis]) /
+                               half[axis]);
+            }
+        }
+        if (bound <= best_scale || !point_inside_mesh(mesh, dvec3(seed))) {
             continue;
         }
         float lo = 0.0f, hi = 1.0f;
@@ -436,27 +452,46 @@ std::optional<Box> inscribed_box(const Mesh& mesh) {
     return box;
 }
 
+LocalVolumes VolumeLibrary::compute(const Mesh& mesh) const {
+    LocalVolumes volumes;
+    volumes.outer = convex_hull(mesh, options_.max_outer_planes);
+    volumes.closed = mesh.is_closed();
+    if (volumes.outer.flat) {
+        const double hull_area = area(volumes.outer.faces[0]);
+        volumes.self_inner = std::abs(mesh.area() - hull_area) <= 1e-6 * hull_area;
+    } else if (options_.automatic_inner && volumes.closed) {
+        if (const std::optional<Box> box = inscribed_box(mesh)) {
+            volumes.automatic_inner.push_back(box_volume(*box));
+        }
+    }
+    return volumes;
+}
+
 const LocalVolumes& VolumeLibrary::local(const std::shared_ptr<const Mesh>& mesh) {
     auto it = cache_.find(mesh.get());
     if (it != cache_.end()) {
         return it->second.second;
     }
-    LocalVolumes volumes;
-    volumes.outer = convex_hull(*mesh, options_.max_outer_planes);
-    volumes.closed = mesh->is_closed();
-    if (volumes.outer.flat) {
-        const double hull_area = area(volumes.outer.faces[0]);
-        volumes.self_inner = std::abs(mesh->area() - hull_area) <= 1e-6 * hull_area;
-    } else if (options_.automatic_inner && volumes.closed) {
-        if (const std::optional<Box> box = inscribed_box(*mesh)) {
-            volumes.automatic_inner.push_back(box_volume(*box));
-        }
-    }
-    return cache_.emplace(mesh.get(), std::pair{mesh, std::move(volumes)}).first->second.second;
+    return cache_.emplace(mesh.get(), std::pair{mesh, compute(*mesh)}).first->second.second;
 }
 
 std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
                                                 std::vector<std::string>* warnings) {
+    // The meshes not seen before, computed in parallel (each is independent of the others),
+    // then cached in scene order.
+    std::vector<std::shared_ptr<const Mesh>> missing;
+    std::set<const Mesh*> seen;
+    for (const Object& object : scene.objects) {
+        if (!cache_.contains(object.mesh.get()) && seen.insert(object.mesh.get()).second) {
+            missing.push_back(object.mesh);
+        }
+    }
+    std::vector<LocalVolumes> computed(missing.size());
+    tbb::parallel_for(size_t(0), missing.size(),
+                      [&](size_t i) { computed[i] = compute(*missing[i]); });
+    for (size_t i = 0; i < missing.size(); ++i) {
+        cache_.emplace(missing[i].get(), std::pair{missing[i], std::move(computed[i])});
+    }
     std::vector<ObjectVolumes> result;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const Object& object = scene.objects[i];

@@ -78,6 +78,8 @@ public:
     std::vector<ObjectVolumes> build(const Scene& scene, std::vector<std::string>* warnings);
 
 private:
+    LocalVolumes compute(const Mesh& mesh) const;
+
     BoundingVolumeOptions options_;
     std::map<const Mesh*, std::pair<std::shared_ptr<const Mesh>, LocalVolumes>> cache_;
 };

@@ -50,8 +50,8 @@ struct Regions {
 
 Regions extract_regions(const BeamTree& tree);
 
-// ASCII PLY: vertices, then faces with `uchar region` (0 lit, 1 uncertain, 2 unlit) and
-// `int beam`. Written to `path` directly; callers stage it (core/output_files.h).
+// Binary little-endian PLY: vertices, then faces with `uchar region` (0 lit, 1 uncertain, 2 unlit)
+// and `int beam`. Written to `path` directly; callers stage it (core/output_files.h).
 void write_regions_ply(const Regions& regions, const std::filesystem::path& path);
 
 }  // namespace sl::bt

@@ -324,7 +324,7 @@ Shard parse_shard(const std::string& text) {
             return shard;
         }
     }
-    fail("--shard '{}': expected i/n with 1 <= i <= n, e.g. 2/4", text);
+    fail("--shard {}: expected i/n with 1 <= i <= n, e.g. 2/4", quote(text));
 }
 
 void run_cell(const Experiment& x, const fs::path& out, const nlohmann::json& cell_json, int rep) {

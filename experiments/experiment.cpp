@@ -84,12 +84,12 @@ std::pair<int, int> parse_size_value(TomlTableReader& reader, std::string_view k
     static const std::regex pattern(R"((\d{1,5})(?:x(\d{1,5}))?)");
     std::smatch match;
     if (!std::regex_match(text, match, pattern)) {
-        reader.error(key, fmt::format("'{}': expected WIDTHxHEIGHT (or N for NxN)", text));
+        reader.error(key, fmt::format("{}: expected WIDTHxHEIGHT (or N for NxN)", quote(text)));
     }
     const int width = std::stoi(match[1]);
     const int height = match[2].matched ? std::stoi(match[2]) : width;
     if (width < 1 || height < 1 || width > 16384 || height > 16384) {
-        reader.error(key, fmt::format("'{}': width and height must be in 1..16384", text));
+        reader.error(key, fmt::format("{}: width and height must be in 1..16384", quote(text)));
     }
     return {width, height};
 }
@@ -107,7 +107,7 @@ void set_path(toml::table& root, const std::string& path, const toml::node& valu
         const size_t dot = path.find('.', begin);
         const std::string key = path.substr(begin, dot == std::string::npos ? dot : dot - begin);
         if (key.empty()) {
-            fail("{}: override '{}': empty key in the path", origin, path);
+            fail("{}: override {}: empty key in the path", origin, quote(path));
         }
         if (dot == std::string::npos) {
             assign(*table, key, value);
@@ -118,7 +118,7 @@ void set_path(toml::table& root, const std::string& path, const toml::node& valu
             next = table->insert_or_assign(key, toml::table{}).first->second.as_table();
         }
         if (!next->is_table()) {
-            fail("{}: override '{}': '{}' is not a table", origin, path, key);
+            fail("{}: override {}: {} is not a table", origin, quote(path), quote(key));
         }
         table = next->as_table();
         begin = dot + 1;
@@ -157,7 +157,8 @@ void check_method_parameter(const std::string& method, const std::string& name,
                             const std::vector<std::string>& texts, TomlTableReader& reader) {
     const auto instance = methods::create_volume_method(method);
     if (!instance->has_parameter(name)) {
-        reader.error(name, fmt::format("method '{}' has no parameter '{}'", method, name));
+        reader.error(name,
+                     fmt::format("method {} has no parameter {}", quote(method), quote(name)));
     }
     for (const std::string& text : texts) {
         try {
@@ -238,10 +239,12 @@ bool Experiment::excluded(const Cell& cell) const {
             } else if (const std::string* setting = cell.setting(key)) {
                 value = *setting;
             }
-            all = all && value &&
-                  std::any_of(accepted.begin(), accepted.end(), [&](const std::string& a) {
-                      return same_value(*value, a) || (key == "size" && a + "x" + a == *value);
-                  });
+            all =
+                all && value &&
+                std::any_of(accepted.begin(), accepted.end(),
+                            [&, is_size = key == "size"](const std::string& a) {
+                                return same_value(*value, a) || (is_size && a + "x" + a == *value);
+                            });
         }
         if (all) {
             return true;
@@ -354,7 +357,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
                     known.emplace_back(key.str());
                 }
             }
-            fail("{}: unknown preset '{}' (presets: {})", origin, preset,
+            fail("{}: unknown preset {} (presets: {})", origin, quote(preset),
                  known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", ")));
         }
         const toml::table copy = *table;  // set_path changes `root`, which holds `table`
@@ -362,7 +365,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
         flatten(copy, "", paths);
         for (const auto& [path, node] : paths) {
             if (path.starts_with("presets")) {
-                fail("{}: preset '{}' may not set presets", origin, preset);
+                fail("{}: preset {} may not set presets", origin, quote(preset));
             }
             set_path(root, path, *node, origin);
         }
@@ -371,7 +374,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
     for (const std::string& override_text : overrides) {
         const size_t equals = override_text.find('=');
         if (equals == std::string::npos || equals == 0) {
-            fail("--set '{}': expected KEY.PATH=VALUE", override_text);
+            fail("--set {}: expected KEY.PATH=VALUE", quote(override_text));
         }
         const std::string path = override_text.substr(0, equals);
         const toml::table value = parse_override_value(override_text.substr(equals + 1));
@@ -400,14 +403,14 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
         x.protocol.repetitions = r.integer_in("repetitions", x.protocol.repetitions, 1, 1000);
         const std::string isolation = r.string("isolation", "context");
         if (isolation != "context" && isolation != "process") {
-            r.error("isolation", fmt::format("'{}': expected \"context\" (a fresh GL context per "
+            r.error("isolation", fmt::format("{}: expected \"context\" (a fresh GL context per "
                                              "repetition) or \"process\" (a fresh process)",
-                                             isolation));
+                                             quote(isolation)));
         }
         x.protocol.isolation = isolation == "process" ? Isolation::process : Isolation::context;
         const std::string order = r.string("order", "sweep");
         if (order != "sweep" && order != "shuffled") {
-            r.error("order", fmt::format("'{}': expected \"sweep\" or \"shuffled\"", order));
+            r.error("order", fmt::format("{}: expected \"sweep\" or \"shuffled\"", quote(order)));
         }
         x.protocol.order_shuffled = order == "shuffled";
         x.protocol.seed = uint64_t(r.integer_in("seed", 1, 0, 1 << 30));
@@ -556,8 +559,8 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
             x.metrics = strings(r, "metrics");
             for (const std::string& metric : x.metrics) {
                 if (metric != "rel_rmse" && metric != "max_abs" && metric != "psnr") {
-                    r.error("metrics",
-                            fmt::format("unknown metric '{}' (rel_rmse, max_abs, psnr)", metric));
+                    r.error("metrics", fmt::format("unknown metric {} (rel_rmse, max_abs, psnr)",
+                                                   quote(metric)));
                 }
             }
         }
@@ -592,7 +595,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
         for (const std::string& target : values(r, "targets")) {
             const auto value = parse_number(target);
             if (!value || !(*value > 0.0 && *value < 1.0)) {
-                r.error("targets", fmt::format("'{}': a relative RMSE in (0, 1)", target));
+                r.error("targets", fmt::format("{}: a relative RMSE in (0, 1)", quote(target)));
             }
             e.targets.push_back(*value);
         }
@@ -605,7 +608,8 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
         e.baselines = strings(r, "baselines");
         for (const std::string& baseline : e.baselines) {
             if (std::find(x.methods.begin(), x.methods.end(), baseline) == x.methods.end()) {
-                r.error("baselines", fmt::format("'{}' is not a method of the sweep", baseline));
+                r.error("baselines",
+                        fmt::format("{} is not a method of the sweep", quote(baseline)));
             }
         }
         e.tolerance = r.number_in("tolerance", e.tolerance, 1e-3, 10.0);
@@ -618,8 +622,8 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
                 TomlTableReader s(*own, origin, "[equal_error.search." + method + "]");
                 search.parameter = s.string("parameter");
                 if (!instance->has_parameter(search.parameter)) {
-                    s.error("parameter", fmt::format("method '{}' has no parameter '{}'", method,
-                                                     search.parameter));
+                    s.error("parameter", fmt::format("method '{}' has no parameter {}", method,
+                                                     quote(search.parameter)));
                 }
                 search.cheap = s.number("cheap");
                 search.expensive = s.number("expensive");
@@ -654,8 +658,8 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
         if (searches) {
             for (const auto& [key, node] : *searches) {
                 if (!e.search.contains(std::string(key.str())) || !node.is_table()) {
-                    fail("{}: [equal_error.search]: '{}' is not a method of the sweep", origin,
-                         key.str());
+                    fail("{}: [equal_error.search]: {} is not a method of the sweep", origin,
+                         quote(key.str()));
                 }
             }
         }

@@ -50,7 +50,7 @@ std::vector<std::pair<std::string, std::string>> parse_settings(
     for (const std::string& setting : name_value) {
         const size_t equals = setting.find('=');
         if (equals == std::string::npos || equals == 0) {
-            fail("--set '{}': expected NAME=VALUE", setting);
+            fail("--set {}: expected NAME=VALUE", quote(setting));
         }
         settings.emplace_back(setting.substr(0, equals), setting.substr(equals + 1));
     }

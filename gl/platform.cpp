@@ -52,7 +52,7 @@ std::unique_ptr<Platform> create_headless_platform() {
             "-DSHAFTLAB_WITH_OSMESA=OFF); use SHAFTLAB_GL=egl");
 #endif
     }
-    fail("SHAFTLAB_GL='{}': expected 'osmesa' or 'egl'", choice);
+    fail("SHAFTLAB_GL={}: expected 'osmesa' or 'egl'", quote(choice));
 }
 
 }  // namespace sl::gl

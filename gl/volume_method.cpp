@@ -36,7 +36,7 @@ ShadowFilter parse_shadow_filter(const std::string& text) {
         if (kShadowFilterNames[i] == text)
             return ShadowFilter(i);
     }
-    fail("unknown shadow filter '{}' (known: {})", text, fmt::join(kShadowFilterNames, ", "));
+    fail("unknown shadow filter {} (known: {})", quote(text), fmt::join(kShadowFilterNames, ", "));
 }
 
 std::string Parameter::text() const {
@@ -50,7 +50,7 @@ double VolumeMethod::parameter(const std::string& name) const {
         if (p.name == name)
             return p.value;
     }
-    fail("method '{}' has no parameter '{}'", this->name(), name);
+    fail("method '{}' has no parameter {}", this->name(), quote(name));
 }
 
 bool VolumeMethod::has_parameter(const std::string& name) const {
@@ -103,14 +103,14 @@ void VolumeMethod::set(const std::string& name, const std::string& text) {
                     return;
                 }
             }
-            fail("method '{}' parameter '{}': '{}' is not one of {}", this->name(), name, text,
+            fail("method '{}' parameter '{}': {} is not one of {}", this->name(), name, quote(text),
                  fmt::join(p.choices, ", "));
         }
         char* end = nullptr;
         const double value = std::strtod(text.c_str(), &end);
         const bool integral = p.type != Parameter::Type::integer || value == std::floor(value);
         if (text.empty() || *end != '\0' || !std::isfinite(value) || !integral) {
-            fail("method '{}' parameter '{}': '{}' is not {}", this->name(), name, text,
+            fail("method '{}' parameter '{}': {} is not {}", this->name(), name, quote(text),
                  p.type == Parameter::Type::integer ? "an integer" : "a finite number");
         }
         if (value < p.min || value > p.max) {
@@ -123,7 +123,7 @@ void VolumeMethod::set(const std::string& name, const std::string& text) {
     std::string known;
     for (const Parameter& p : parameters_)
         known += (known.empty() ? "" : ", ") + p.name;
-    fail("method '{}' has no parameter '{}' ({})", this->name(), name,
+    fail("method '{}' has no parameter {} ({})", this->name(), quote(name),
          known.empty() ? "it has none" : "it has: " + known);
 }
 

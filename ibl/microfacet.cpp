@@ -1,5 +1,7 @@
 #include "ibl/microfacet.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -148,7 +150,7 @@ DfgTable compute_dfg_table(Distribution dist, int size, int samples) {
         fail("DFG table: size {} and samples {} must be at least 2 and 1", size, samples);
     }
     DfgTable table{size, dist, std::vector<float>(size_t(size * size) * 2)};
-    for (int j = 0; j < size; ++j) {
+    tbb::parallel_for(0, size, [&](int j) {
         const float root_alpha = float(j) / float(size - 1);
         for (int i = 0; i < size; ++i) {
             // n·v = 0 is a grazing limit the integral cannot be sampled at: start just above it.
@@ -157,7 +159,7 @@ DfgTable compute_dfg_table(Distribution dist, int size, int samples) {
             table.ab[size_t(j * size + i) * 2] = ab.x;
             table.ab[size_t(j * size + i) * 2 + 1] = ab.y;
         }
-    }
+    });
     return table;
 }
 

@@ -15,7 +15,7 @@ Distribution parse_distribution(const std::string& name) {
         return Distribution::ggx;
     if (name == "beckmann")
         return Distribution::beckmann;
-    fail("unknown distribution '{}' (expected ggx or beckmann)", name);
+    fail("unknown distribution {} (expected ggx or beckmann)", quote(name));
 }
 
 const char* to_string(PrefilterMethod method) {
@@ -27,7 +27,7 @@ PrefilterMethod parse_prefilter_method(const std::string& name) {
         return PrefilterMethod::cone;
     if (name == "importance")
         return PrefilterMethod::importance;
-    fail("unknown prefilter '{}' (expected cone (Moschos algorithm 6) or importance)", name);
+    fail("unknown prefilter {} (expected cone (Moschos algorithm 6) or importance)", quote(name));
 }
 
 const char* to_string(Shading shading) {
@@ -39,7 +39,7 @@ Shading parse_shading(const std::string& name) {
         return Shading::moschos;
     if (name == "split-sum")
         return Shading::split_sum;
-    fail("unknown IBL shading '{}' (expected moschos (algorithms 7-8) or split-sum)", name);
+    fail("unknown IBL shading {} (expected moschos (algorithms 7-8) or split-sum)", quote(name));
 }
 
 std::string PrefilterSettings::describe() const {

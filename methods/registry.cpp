@@ -50,7 +50,7 @@ std::unique_ptr<gl::VolumeMethod> create_volume_method(const std::string& name) 
             return factory();
         }
     }
-    fail("unknown method '{}' (known: {})", name, fmt::join(volume_method_names(), ", "));
+    fail("unknown method {} (known: {})", quote(name), fmt::join(volume_method_names(), ", "));
 }
 
 }  // namespace sl::methods

@@ -1,8 +1,7 @@
 #include "scenes/mesh.h"
 
-#include <tiny_obj_loader.h>
-
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -130,7 +129,8 @@ void fit_mesh(Mesh& mesh, float size) {
 
 namespace {
 
-// Reads the next non-empty, non-comment line of an OFF file; tracks the line number for errors.
+// Reads the non-empty lines of a mesh file with '#' comments removed; tracks the line number for
+// errors.
 class LineReader {
 public:
     explicit LineReader(const fs::path& path) : path_(path), in_(path) {
@@ -138,18 +138,25 @@ public:
             fail("{}: cannot open mesh file", path.string());
         }
     }
-    std::istringstream next(const char* expecting) {
-        std::string line;
+    // The next line, false at the end of the file.
+    bool read(std::string& line) {
         while (std::getline(in_, line)) {
             ++line_number_;
             if (const size_t hash = line.find('#'); hash != std::string::npos) {
                 line.resize(hash);
             }
             if (line.find_first_not_of(" \t\r") != std::string::npos) {
-                return std::istringstream(line);
+                return true;
             }
         }
-        fail("{}: unexpected end of file, expecting {}", path_.string(), expecting);
+        return false;
+    }
+    std::istringstream next(const char* expecting) {
+        std::string line;
+        if (!read(line)) {
+            fail("{}: unexpected end of file, expecting {}", path_.string(), expecting);
+        }
+        return std::istringstream(line);
     }
     [[noreturn]] void error(const std::string& reason) const {
         fail("{}:{}: {}", path_.string(), line_number_, reason);
@@ -161,6 +168,13 @@ private:
     int line_number_ = 0;
 };
 
+// Appends the fan of a convex polygon (its first vertex to each later edge).
+void append_fan(const std::vector<uint32_t>& face, Mesh& mesh) {
+    for (size_t k = 1; k + 1 < face.size(); ++k) {
+        mesh.triangles.emplace_back(face[0], face[k], face[k + 1]);
+    }
+}
+
 }  // namespace
 
 Mesh load_off(const fs::path& path) {
@@ -169,7 +183,7 @@ Mesh load_off(const fs::path& path) {
     std::string magic;
     header >> magic;
     if (magic != "OFF") {
-        reader.error(fmt::format("expected 'OFF' header, got '{}'", magic));
+        reader.error(fmt::format("expected 'OFF' header, got {}", quote(magic)));
     }
     long long vertex_count = -1, face_count = -1, edge_count = 0;
     if (!(header >> vertex_count)) {  // the counts may sit on the header line or the next one
@@ -179,9 +193,11 @@ Mesh load_off(const fs::path& path) {
     if (!(header >> face_count >> edge_count) || vertex_count < 0 || face_count < 0) {
         reader.error("malformed counts line (expected: vertices faces edges)");
     }
-    constexpr long long kMaxElements = 100'000'000;
-    if (vertex_count > kMaxElements || face_count > kMaxElements) {
-        reader.error("vertex or face count is implausibly large");
+    if (vertex_count > kMaxMeshVertices) {
+        reader.error(fmt::format("{} vertices, at most {}", vertex_count, kMaxMeshVertices));
+    }
+    if (face_count > kMaxMeshTriangles) {
+        reader.error(fmt::format("{} faces, at most {}", face_count, kMaxMeshTriangles));
     }
     Mesh mesh;
     mesh.positions.reserve(size_t(vertex_count));
@@ -196,13 +212,17 @@ Mesh load_off(const fs::path& path) {
         }
         mesh.positions.push_back(p);
     }
+    std::vector<uint32_t> face;
     for (long long i = 0; i < face_count; ++i) {
         std::istringstream line = reader.next("a face");
         long long n = 0;
-        if (!(line >> n) || n < 3 || n > 1'000'000) {
+        if (!(line >> n) || n < 3) {
             reader.error("malformed face (expected a vertex count of at least 3)");
         }
-        std::vector<uint32_t> face(static_cast<size_t>(n));
+        if (n > kMaxFaceVertices) {
+            reader.error(fmt::format("face of {} vertices, at most {}", n, kMaxFaceVertices));
+        }
+        face.resize(size_t(n));
         for (auto& v : face) {
             long long index = -1;
             if (!(line >> index)) {
@@ -214,9 +234,10 @@ Mesh load_off(const fs::path& path) {
             }
             v = uint32_t(index);
         }
-        for (size_t k = 1; k + 1 < face.size(); ++k) {
-            mesh.triangles.emplace_back(face[0], face[k], face[k + 1]);
+        if (static_cast<long long>(mesh.triangles.size()) + n - 2 > kMaxMeshTriangles) {
+            reader.error(fmt::format("more than {} triangles", kMaxMeshTriangles));
         }
+        append_fan(face, mesh);
     }
     validate_mesh(mesh, path.string());
     compute_vertex_normals(mesh);
@@ -224,36 +245,64 @@ Mesh load_off(const fs::path& path) {
 }
 
 Mesh load_obj(const fs::path& path) {
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    tinyobj::ObjReader reader;
-    if (!fs::is_regular_file(path)) {
-        fail("{}: cannot open mesh file", path.string());
-    }
-    if (!reader.ParseFromFile(path.string(), config)) {
-        std::string message = reader.Error();
-        while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) {
-            message.pop_back();
-        }
-        fail("{}: malformed OBJ: {}", path.string(), message);
-    }
+    // Positions (`v`) and polygons (`f`, each corner `v`, `v/vt`, `v//vn` or `v/vt/vn`, indices
+    // from 1 or negative from the end) are read; texture coordinates, normals, groups, materials
+    // and the other statements are skipped. Polygons are fanned here: linear in their size.
+    LineReader reader(path);
     Mesh mesh;
-    const auto& vertices = reader.GetAttrib().vertices;
-    for (size_t i = 0; i + 2 < vertices.size(); i += 3) {
-        mesh.positions.emplace_back(vertices[i], vertices[i + 1], vertices[i + 2]);
-    }
-    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-        const auto& indices = shape.mesh.indices;
-        for (size_t i = 0; i + 2 < indices.size(); i += 3) {
-            for (size_t k = 0; k < 3; ++k) {
-                if (indices[i + k].vertex_index < 0) {
-                    fail("{}: face refers to a missing vertex", path.string());
-                }
+    std::vector<uint32_t> face;
+    std::string line, keyword, corner;
+    long long referenced = -1;  // the largest index used, checked against the vertices at the end
+    while (reader.read(line)) {
+        std::istringstream in(line);
+        in >> keyword;
+        if (keyword == "v") {
+            glm::vec3 p;
+            if (!(in >> p.x >> p.y >> p.z)) {
+                reader.error("malformed vertex (expected v x y z)");
             }
-            mesh.triangles.emplace_back(indices[i].vertex_index, indices[i + 1].vertex_index,
-                                        indices[i + 2].vertex_index);
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+                reader.error("vertex coordinate is not finite");
+            }
+            if (static_cast<long long>(mesh.positions.size()) == kMaxMeshVertices) {
+                reader.error(fmt::format("more than {} vertices", kMaxMeshVertices));
+            }
+            mesh.positions.push_back(p);
+        } else if (keyword == "f") {
+            face.clear();
+            while (in >> corner) {
+                long long index = 0;
+                const char* end = corner.data() + corner.size();
+                const auto [rest, ec] = std::from_chars(corner.data(), end, index);
+                if (ec != std::errc() || (rest != end && *rest != '/') || index == 0) {
+                    reader.error(fmt::format("malformed face corner {}", quote(corner)));
+                }
+                // Negative: relative to the vertices read so far (-1 is the last).
+                index =
+                    index > 0 ? index - 1 : static_cast<long long>(mesh.positions.size()) + index;
+                if (index < 0 || index >= kMaxMeshVertices) {
+                    reader.error(
+                        fmt::format("face refers to a missing vertex ({})", quote(corner)));
+                }
+                if (static_cast<long long>(face.size()) == kMaxFaceVertices) {
+                    reader.error(fmt::format("face of more than {} vertices", kMaxFaceVertices));
+                }
+                referenced = std::max(referenced, index);
+                face.push_back(uint32_t(index));
+            }
+            if (face.size() < 3) {
+                reader.error("face with fewer than 3 vertices");
+            }
+            if (static_cast<long long>(mesh.triangles.size() + face.size()) - 2 >
+                kMaxMeshTriangles) {
+                reader.error(fmt::format("more than {} triangles", kMaxMeshTriangles));
+            }
+            append_fan(face, mesh);
         }
+    }
+    if (referenced >= static_cast<long long>(mesh.positions.size())) {
+        fail("{}: face refers to vertex {}, the file has {}", path.string(), referenced + 1,
+             mesh.positions.size());
     }
     validate_mesh(mesh, path.string());
     compute_vertex_normals(mesh);
@@ -270,7 +319,7 @@ Mesh load_mesh(const fs::path& path) {
     if (extension == ".obj") {
         return load_obj(path);
     }
-    fail("{}: unknown mesh format '{}' (expected .off or .obj)", path.string(), extension);
+    fail("{}: unknown mesh format {} (expected .off or .obj)", path.string(), quote(extension));
 }
 
 Mesh make_box(glm::vec3 size) {

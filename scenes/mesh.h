@@ -31,8 +31,16 @@ struct Mesh {
     bool is_closed() const;
 };
 
-// Load by extension: .off or .obj. Faces with more than three vertices are fan-triangulated;
-// zero-area triangles are dropped. Errors name the file and line.
+// What a loaded mesh may hold; beyond it a file is refused with an error naming the limit (a
+// scene that needs more should be split, or decimated first).
+constexpr long long kMaxMeshVertices = 1 << 24;
+constexpr long long kMaxMeshTriangles = 1 << 25;
+// A face is fan-triangulated from its first vertex, which is right for convex faces only:
+// polygons this large are not faces of a mesh but damage.
+constexpr long long kMaxFaceVertices = 4096;
+
+// Load by extension: .off or .obj. Faces with more than three vertices are fan-triangulated
+// (linear in the face's size); zero-area triangles are dropped. Errors name the file and line.
 Mesh load_mesh(const std::filesystem::path& path);
 Mesh load_off(const std::filesystem::path& path);
 Mesh load_obj(const std::filesystem::path& path);

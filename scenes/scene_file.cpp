@@ -69,7 +69,7 @@ Enum parse_enum(TableReader& reader, std::string_view key, Enum fallback,
     for (const auto& [name, e] : names) {
         known += (known.empty() ? "" : ", ") + name;
     }
-    reader.error(key, fmt::format("unknown value '{}' (expected one of: {})", value, known));
+    reader.error(key, fmt::format("unknown value {} (expected one of: {})", quote(value), known));
 }
 
 Camera read_camera(TableReader r) {
@@ -148,9 +148,9 @@ Environment read_environment(TableReader r, const fs::path& base_dir,
         e.file = environment_file(file, base_dir, paths);
     }
     if (enabled && !fs::is_regular_file(e.file, ec)) {
-        r.error("file", fmt::format("no environment '{}' ({} does not exist; the studio lights "
+        r.error("file", fmt::format("no environment {} ({} does not exist; the studio lights "
                                     "come with Debian's blender-data)",
-                                    file, e.file.string()));
+                                    quote(file), e.file.string()));
     }
     e.intensity = float(r.number_in("intensity", e.intensity, 0.0, 1e9));
     e.rotation_degrees = float(r.number_in("rotation", e.rotation_degrees, -360.0, 360.0));
@@ -215,7 +215,7 @@ Material read_material(TableReader r, std::string name) {
         const std::string model = r.string("model", "dipole");
         if (model != "dipole" && model != "multipole") {
             r.error("model",
-                    fmt::format("unknown diffusion model '{}' (dipole, multipole)", model));
+                    fmt::format("unknown diffusion model {} (dipole, multipole)", quote(model)));
         }
         t.model = model == "dipole" ? DiffusionModel::dipole : DiffusionModel::multipole;
         if (const toml::array* coats = r.array("coats")) {
@@ -267,13 +267,14 @@ Subsurface read_subsurface(TableReader r) {
     s.epsilon = float(r.number_in("epsilon", s.epsilon, 0.0, 1.0, true, true));
     const std::string radius = r.string("radius", "flux");
     if (radius != "flux" && radius != "profile") {
-        r.error("radius", fmt::format("unknown r_max criterion '{}' (flux, profile)", radius));
+        r.error("radius", fmt::format("unknown r_max criterion {} (flux, profile)", quote(radius)));
     }
     s.flux_radius = radius == "flux";
     s.footprint = r.boolean("footprint", s.footprint);
     const std::string weighting = r.string("weighting", to_string(s.weighting));
     if (weighting != "jacobian" && weighting != "seed") {
-        r.error("weighting", fmt::format("unknown weighting '{}' (jacobian, seed)", weighting));
+        r.error("weighting",
+                fmt::format("unknown weighting {} (jacobian, seed)", quote(weighting)));
     }
     s.weighting = weighting == "seed" ? SplatWeighting::seed : SplatWeighting::jacobian;
     s.profile_texels = r.integer_in("profile_texels", s.profile_texels, 4, 8192);
@@ -321,7 +322,7 @@ fs::path resolve_mesh_path(const std::string& file, const fs::path& base_dir,
             return candidate;
         }
     }
-    r.error("file", fmt::format("mesh '{}' not found (looked in {}, {}/meshes, {})", file,
+    r.error("file", fmt::format("mesh {} not found (looked in {}, {}/meshes, {})", quote(file),
                                 base_dir.string(), paths.data.string(), paths.data.string()));
 }
 
@@ -387,9 +388,9 @@ std::shared_ptr<const Mesh> read_shape(TableReader& r, const fs::path& base_dir,
         }
         return std::make_shared<const Mesh>(make_plane({size.x, size.z}));
     }
-    r.error("shape", fmt::format("unknown shape '{}' (expected mesh, box, sphere, cylinder, "
+    r.error("shape", fmt::format("unknown shape {} (expected mesh, box, sphere, cylinder, "
                                  "torus or plane)",
-                                 shape));
+                                 quote(shape)));
 }
 
 std::vector<Box> read_inner_boxes(TableReader& r, const std::string& origin,
@@ -443,7 +444,7 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
         char* end = nullptr;
         const long count = std::strtol(count_text.c_str(), &end, 10);
         if (count_text.empty() || *end != '\0' || count < 1 || count > 100000) {
-            fail("scene '{}': N in multiple:N must be an integer in [1, 100000]", name);
+            fail("scene {}: N in multiple:N must be an integer in [1, 100000]", quote(name));
         }
         return {generate_multiple_scene(int(count)), name, paths.scenes};
     }
@@ -467,9 +468,9 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
         effect_list += (effect_list.empty() ? "" : ", ") + effect;
     }
     fail(
-        "unknown scene '{}' (canonical: toplight, parallel, multiple, multiple:N; effects: {}; "
+        "unknown scene {} (canonical: toplight, parallel, multiple, multiple:N; effects: {}; "
         "or a .toml file)",
-        name, effect_list);
+        quote(name), effect_list);
 }
 
 toml::table parse_toml(const std::string& text, const std::string& origin) {
@@ -620,7 +621,7 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
             const std::string material = r.string("material", "default");
             const auto it = material_index.find(material);
             if (it == material_index.end()) {
-                r.error("material", fmt::format("unknown material '{}'", material));
+                r.error("material", fmt::format("unknown material {}", quote(material)));
             }
             object.material = it->second;
             object.transform = read_transform(r);

@@ -43,7 +43,7 @@ public:
     [[noreturn]] void error(std::string_view key, const std::string& reason) const {
         const toml::node* node = table_.get(key);
         const auto line = node ? node->source().begin.line : table_.source().begin.line;
-        fail("{}: {}{}: {}", where(line), prefix(), key, reason);
+        fail("{}: {}{}: {}", where(line), prefix(), clipped(key), reason);
     }
 
     double number(std::string_view key, double fallback) {
@@ -166,7 +166,8 @@ public:
         for (const auto& [key, node] : table_) {
             if (!used_.contains(std::string(key.str()))) {
                 const std::string name(key.str());
-                fail("{}: {}{}: unknown key", where(node.source().begin.line), prefix(), name);
+                fail("{}: {}{}: unknown key", where(node.source().begin.line), prefix(),
+                     clipped(name));
             }
         }
     }

@@ -17,22 +17,12 @@ packages=(
     libgl-dev libegl-dev libosmesa6-dev libglfw3-dev libglm-dev
     libcgal-dev libcgal-demo libembree-dev libtbb-dev
     libimgui-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
-    libstb-dev libopenexr-dev libtinyobjloader-dev libfftw3-dev
+    libstb-dev libopenexr-dev libfftw3-dev
     libgtest-dev libbenchmark-dev xvfb python3 python3-matplotlib blender-data
 )
 
-missing=()
-for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
-done
-if ((${#missing[@]})); then
-    echo "setup: installing ${missing[*]}"
-    sudo=""
-    if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-    export DEBIAN_FRONTEND=noninteractive
-    $sudo apt-get update -q
-    $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
-fi
+source "$repo/scripts/packages.sh"
+install_missing "${packages[@]}"
 
 build_type=${SHAFTLAB_BUILD_TYPE:-Release}
 build_dir=${SHAFTLAB_BUILD_DIR:-$repo/build}

@@ -61,7 +61,7 @@ const ScatteringMaterial& material_preset(std::string_view name) {
     for (const ScatteringMaterial& m : material_presets()) {
         known += (known.empty() ? "" : ", ") + m.name;
     }
-    fail("unknown translucent material '{}' (known: {})", name, known);
+    fail("unknown translucent material {} (known: {})", quote(name), known);
 }
 
 dvec3 reduced_scattering(const dvec3& sigma_s, double g) {

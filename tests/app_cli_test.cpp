@@ -367,19 +367,32 @@ TEST(Cli, RegionsWritesPlyJsonAndPng) {
                        json["regions"]["unlit"]["volume"].get<double>();
     EXPECT_NEAR(sum / json["influence_volume"].get<double>(), 1.0, 1e-6);
 
-    std::ifstream ply(out / "regions.ply");
+    // Binary PLY: the header, then 3 doubles per vertex and per face a uchar count, the
+    // indices, a uchar region and an int beam.
+    std::ifstream ply(out / "regions.ply", std::ios::binary);
     std::string line;
     size_t vertices = 0, faces = 0, body = 0;
-    bool header = true;
-    while (std::getline(ply, line)) {
-        if (header) {
-            std::sscanf(line.c_str(), "element vertex %zu", &vertices);
-            std::sscanf(line.c_str(), "element face %zu", &faces);
-            header = line != "end_header";
-        } else {
-            ++body;
-        }
+    while (std::getline(ply, line) && line != "end_header") {
+        std::sscanf(line.c_str(), "element vertex %zu", &vertices);
+        std::sscanf(line.c_str(), "element face %zu", &faces);
     }
+    ply.seekg(std::streamoff(vertices * 3 * sizeof(double)), std::ios::cur);
+    size_t indices = 0, region_counts[3] = {0, 0, 0};
+    for (size_t f = 0; f < faces; ++f) {
+        uint8_t count = 0, region = 9;
+        ply.read(reinterpret_cast<char*>(&count), 1);
+        ply.seekg(std::streamoff(count * sizeof(int32_t)), std::ios::cur);
+        ply.read(reinterpret_cast<char*>(&region), 1);
+        ply.seekg(std::streamoff(sizeof(int32_t)), std::ios::cur);
+        ASSERT_TRUE(ply) << "face " << f;
+        ASSERT_LT(region, 3);
+        indices += count;
+        ++region_counts[region];
+        ++body;
+    }
+    EXPECT_EQ(ply.peek(), EOF) << "nothing after the faces";
+    EXPECT_EQ(indices, vertices);
+    body += vertices;
     EXPECT_GT(faces, 0u);
     EXPECT_EQ(body, vertices + faces);
     size_t json_faces = 0;

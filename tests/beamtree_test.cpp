@@ -622,6 +622,58 @@ TEST(BeamTree, RegionsAndPartitionMatchClassify) {
     }
 }
 
+// trace() walks a segment through the tree once: its intervals tile the segment in order, no two
+// neighbours share a region, and classify() agrees with the interval around every point that
+// is not within 10ε of a plane the answer depends on (random scenes, segments through the
+// influence volume and beyond it, both directions).
+TEST(BeamTree, TraceTilesTheSegmentAndMatchesClassify) {
+    bt::VolumeLibrary library;
+    std::mt19937 rng(11);
+    std::vector<bt::RegionInterval> intervals;
+    size_t checked = 0, crossed = 0;
+    for (int seed = 400; seed < 420; ++seed) {
+        const Scene scene = random_scene(seed, library).scene;
+        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        for (int i = 0; i < 200; ++i) {
+            const dvec3 a = random_point(rng, scene.light) + random_unit(rng) * uniform(rng, 0, 3);
+            const dvec3 b = random_point(rng, scene.light) + random_unit(rng) * uniform(rng, 0, 3);
+            const double length = glm::length(b - a);
+            if (!(length > 1e-3)) {
+                continue;
+            }
+            const dvec3 direction = (b - a) / length;
+            const double t0 = uniform(rng, -1.0, 0.5), t1 = length + uniform(rng, -0.5, 1.0);
+            tree.trace(a, direction, t0, t1, intervals);
+            ASSERT_FALSE(intervals.empty());
+            EXPECT_EQ(intervals.front().begin, t0);
+            EXPECT_EQ(intervals.back().end, t1);
+            for (size_t k = 0; k < intervals.size(); ++k) {
+                EXPECT_LT(intervals[k].begin, intervals[k].end);
+                if (k > 0) {
+                    EXPECT_EQ(intervals[k].begin, intervals[k - 1].end);
+                    EXPECT_NE(intervals[k].region, intervals[k - 1].region);
+                }
+            }
+            crossed += intervals.size();
+            for (int s = 0; s < 64; ++s) {
+                const double t = uniform(rng, t0, t1);
+                double margin = 0.0;
+                const bt::Region expected = tree.classify(a + t * direction, &margin);
+                if (margin <= 10.0 * tree.epsilon()) {
+                    continue;
+                }
+                const auto it = std::find_if(intervals.begin(), intervals.end(),
+                                             [&](const auto& iv) { return t <= iv.end; });
+                ASSERT_NE(it, intervals.end());
+                EXPECT_EQ(it->region, expected) << "scene " << seed << " t " << t;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 100000u);
+    EXPECT_GT(crossed, 8000u) << "segments should cross several regions";
+}
+
 // The directed edges of a float triangle mesh that no triangle meets in the opposite direction
 // (zero-length edges left out). The faces of a region's pieces close up, so in a crack-free mesh
 // every edge is met from both sides; a T-junction leaves the long edge and the short ones each

@@ -45,7 +45,7 @@ Viewer::Viewer(const ViewerOptions& options)
             std::string known;
             for (const std::string& n : layer_names())
                 known += (known.empty() ? "" : ", ") + n;
-            fail("unknown layer '{}' (known: {})", name, known);
+            fail("unknown layer {} (known: {})", quote(name), known);
         }
         layers_[name] = true;
     }

@@ -1,0 +1,8 @@
+// OFF meshes (scenes/mesh.h): any file loads into a valid mesh or throws sl::Error.
+#include "scenes/mesh.h"
+#include "tests/fuzz/fuzz_support.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    const std::filesystem::path path = sl::fuzz::write_input(data, size, ".off");
+    return sl::fuzz::expect_load_or_error([&] { sl::load_off(path); });
+}
