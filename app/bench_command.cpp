@@ -11,7 +11,9 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/output_files.h"
 #include "experiments/bench.h"
+#include "experiments/report.h"
 
 namespace sl::app {
 
@@ -23,6 +25,7 @@ struct BenchArguments {
     std::vector<std::string> presets;
     std::vector<std::string> settings;
     std::string shard = "1/1";
+    std::string baseline;  // a committed run of the same experiment to print ratios against
     bool list = false;
     // Process isolation's child: one cell and repetition.
     std::string cell;
@@ -72,9 +75,20 @@ int run_bench_command(const BenchArguments& args) {
     for (const std::string& setting : args.settings) {
         options.relaunch.insert(options.relaunch.end(), {"--set", setting});
     }
+    if (!args.baseline.empty() && !std::filesystem::is_directory(args.baseline)) {
+        fail("--baseline {}: not a directory", quote(args.baseline));
+    }
     const int failed = experiments::run_bench(experiment, options);
     std::ifstream table(out / "table.md");
     std::cout << table.rdbuf() << std::flush;
+    if (!args.baseline.empty()) {
+        const std::string comparison =
+            experiments::baseline_comparison(experiment, out, args.baseline);
+        OutputFiles files(out);
+        files.add_text("comparison.md", comparison);
+        files.commit();
+        std::cout << "\n" << comparison << std::flush;
+    }
     fmt::print(stderr, "bench: results.csv, table.md, env.json{} in {}\n",
                experiment.plots ? ", plots/" : "", out.string());
     return failed ? 1 : 0;
@@ -91,7 +105,8 @@ Command add_bench_command(CLI::App& app) {
     command->add_option("experiment", args->experiment, "Experiment file (experiments/*.toml)")
         ->required();
     command->add_option("--out", args->out,
-                        "Output directory (default: the experiment's `out`, results/{name})");
+                        "Output directory (default: the experiment's `out`, out/{name}, "
+                        "git-ignored; committed runs go to results/NAME with --out)");
     command->add_option("--preset", args->presets, "Apply a preset of the file (repeatable)");
     command->add_option("--set", args->settings,
                         "Override a value, KEY.PATH=VALUE in TOML syntax, e.g. protocol.frames=3 "
@@ -100,6 +115,10 @@ Command add_bench_command(CLI::App& app) {
         ->add_option("--shard", args->shard,
                      "Run every n-th cell only, i/n (1 <= i <= n); join with `shaftlab merge`")
         ->capture_default_str();
+    command->add_option("--baseline", args->baseline,
+                        "After the run, print and write DIR/comparison.md: each cell's FPS here "
+                        "beside this run of the same experiment (e.g. results/default: the "
+                        "committed machine's), as ratios");
     command->add_flag("--list", args->list, "Print the cells of the sweep and exit");
     command->add_option("--cell", args->cell)->group("");  // process isolation's child
     command->add_option("--rep", args->rep)->group("");

@@ -24,6 +24,9 @@ struct CompareArguments {
 
 int run_compare(const CompareArguments& args) {
     const Image image = read_exr(args.image), reference = read_exr(args.reference);
+    // A NaN would score as a perfect or a meaningless match: name the file and the pixel.
+    require_finite(image, args.image);
+    require_finite(reference, args.reference);
     const ErrorMetrics error = compare_images(image, reference);
     fmt::print("rel_rmse {:.6g}  max_abs {:.6g}  psnr {:.2f} dB\n", error.rel_rmse, error.max_abs,
                error.psnr);

@@ -75,9 +75,11 @@ int run_render(const RenderArguments& args) {
 
     // Error against the reference on the I_s buffer, rendered by the same renderer (and cached).
     std::optional<ErrorMetrics> error;
+    std::optional<Image> reference_image;
     if (!args.compare.empty()) {
         const auto reference = methods::create_volume_method(args.compare);
-        error = compare_images(frame.in_scattering, renderer.render(*reference).in_scattering);
+        reference_image = renderer.render(*reference).in_scattering;
+        error = compare_images(frame.in_scattering, *reference_image);
     }
 
     const std::string stem = fmt::format("{}.{}", scene.name, method->name());
@@ -136,7 +138,15 @@ int run_render(const RenderArguments& args) {
                  values[name] = value;
              return values;
          }()},
-        {"files", {stem + ".png", stem + ".exr", stem + ".inscatter.exr", stem + ".json"}},
+        {"files",
+         [&] {
+             std::vector<std::string> files = {stem + ".png", stem + ".exr",
+                                               stem + ".inscatter.exr", stem + ".json"};
+             if (!args.compare.empty() && args.compare != method->name()) {
+                 files.push_back(fmt::format("{}.{}.inscatter.exr", scene.name, args.compare));
+             }
+             return files;
+         }()},
     };
 
     if (error) {
@@ -155,6 +165,11 @@ int run_render(const RenderArguments& args) {
                 [&](const std::filesystem::path& path) { write_exr(frame.radiance, path); });
     outputs.add(stem + ".inscatter.exr",
                 [&](const std::filesystem::path& path) { write_exr(frame.in_scattering, path); });
+    if (reference_image && args.compare != method->name()) {
+        // The reference's I_s beside the outputs, so that `shaftlab compare` has it to read.
+        outputs.add(fmt::format("{}.{}.inscatter.exr", scene.name, args.compare),
+                    [&](const std::filesystem::path& path) { write_exr(*reference_image, path); });
+    }
     outputs.add_text(stem + ".json", json.dump(2) + "\n");
     outputs.commit();
     fmt::print(
@@ -162,8 +177,11 @@ int run_render(const RenderArguments& args) {
         scene.name, options.width, options.height, method->name(), frame_gpu_ms, frame.cpu_ms,
         args.out, stem);
     if (error) {
-        fmt::print("  against {}: rel_rmse {:.3g}, max_abs {:.3g}, psnr {:.1f} dB\n", args.compare,
-                   error->rel_rmse, error->max_abs, error->psnr);
+        fmt::print(
+            "  against {} ({}/{}.{}.inscatter.exr): rel_rmse {:.3g}, max_abs {:.3g}, psnr "
+            "{:.1f} dB\n",
+            args.compare, args.out, scene.name, args.compare, error->rel_rmse, error->max_abs,
+            error->psnr);
     }
     return 0;
 }

@@ -329,7 +329,9 @@ Command add_sss_command(CLI::App& app) {
     bench->add_option("--size", b->size, "Image size WIDTHxHEIGHT")->capture_default_str();
     bench->add_option("--radius", b->radius, "r_max criterion: profile (eq. 4.3) or flux")
         ->capture_default_str();
-    bench->add_option("--frames", b->frames, "Measured frames (median)")->capture_default_str();
+    bench->add_option("--frames", b->frames, "Measured frames (median)")
+        ->check(CLI::Range(1, 10000))
+        ->capture_default_str();
     bench->add_option("--warmup", b->warmup, "Frames before measuring")->capture_default_str();
     bench->add_flag("--no-footprint{false}", b->footprint, "The seed's point samples");
     bench->add_option("--out", b->out, "Output directory")->capture_default_str();

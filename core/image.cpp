@@ -15,10 +15,37 @@
 
 namespace sl {
 
-Image::Image(int w, int h) : width(w), height(h), rgb(static_cast<size_t>(w) * h * 3, 0.0f) {
+namespace {
+
+int checked_side(int w, int h) {
     if (w <= 0 || h <= 0) {
         fail("image size {}x{} is not positive", w, h);
     }
+    if (w > kMaxImageSide || h > kMaxImageSide || static_cast<long long>(w) * h > kMaxImagePixels) {
+        fail("image size {}x{} is larger than {} a side or {} pixels", w, h, kMaxImageSide,
+             kMaxImagePixels);
+    }
+    return w;
+}
+
+}  // namespace
+
+Image::Image(int w, int h)
+    : width(checked_side(w, h)), height(h), rgb(static_cast<size_t>(w) * h * 3, 0.0f) {}
+
+void require_finite(std::span<const float> values, int width, int channels,
+                    std::string_view buffer) {
+    for (size_t i = 0; i < values.size(); ++i) {
+        if (!std::isfinite(values[i])) {
+            const size_t pixel = i / size_t(channels);
+            fail("{}: pixel ({}, {}) channel {} is {}: outputs must be finite", buffer,
+                 pixel % size_t(width), pixel / size_t(width), i % size_t(channels), values[i]);
+        }
+    }
+}
+
+void require_finite(const Image& image, std::string_view buffer) {
+    require_finite(image.rgb, image.width, 3, buffer);
 }
 
 glm::vec3 Image::at(int x, int y) const {
@@ -53,6 +80,7 @@ std::vector<unsigned char> tone_map_srgb8(const Image& image, const ToneMap& ton
 }
 
 void write_exr(const Image& image, const std::filesystem::path& path) {
+    require_finite(image, path.string());
     try {
         Imf::Header header(image.width, image.height);
         header.compression() = Imf::ZIP_COMPRESSION;
@@ -77,7 +105,13 @@ Image read_exr(const std::filesystem::path& path) {
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i window = file.header().dataWindow();
-        Image image(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+        const long long w = static_cast<long long>(window.max.x) - window.min.x + 1;
+        const long long h = static_cast<long long>(window.max.y) - window.min.y + 1;
+        if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide || w * h > kMaxImagePixels) {
+            fail("{}: EXR of {}x{} pixels (at most {} a side and {} pixels)", path.string(), w, h,
+                 kMaxImageSide, kMaxImagePixels);
+        }
+        Image image(static_cast<int>(w), static_cast<int>(h));
         const char* names[] = {"R", "G", "B"};
         Imf::FrameBuffer frame;
         for (int c = 0; c < 3; ++c) {

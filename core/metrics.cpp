@@ -13,6 +13,8 @@ ErrorMetrics compare_images(const Image& image, const Image& reference) {
         fail("cannot compare a {}x{} image with a {}x{} reference", image.width, image.height,
              reference.width, reference.height);
     }
+    require_finite(image, "compared image");
+    require_finite(reference, "reference");
     double squared = 0.0, norm = 0.0, peak = 0.0;
     ErrorMetrics metrics;
     for (size_t i = 0; i < image.rgb.size(); ++i) {

@@ -16,7 +16,8 @@ struct ErrorMetrics {
     double psnr = 0.0;
 };
 
-// Throws sl::Error when the sizes differ.
+// Throws sl::Error when the sizes differ, or when either holds a NaN or an infinity (named with
+// its first such pixel): a score of a broken image would look like a result.
 ErrorMetrics compare_images(const Image& image, const Image& reference);
 
 // Per-pixel error |a - r| (the RGB difference's length) relative to the reference's RMS pixel

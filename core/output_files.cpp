@@ -12,6 +12,13 @@ namespace fs = std::filesystem;
 
 OutputFiles::OutputFiles(fs::path directory) : directory_(std::move(directory)) {
     std::error_code ec;
+    for (fs::path p = fs::absolute(directory_, ec); !p.empty() && !fs::exists(p, ec);
+         p = p.parent_path()) {
+        created_.insert(created_.begin(), p);
+        if (p == p.parent_path()) {
+            break;
+        }
+    }
     fs::create_directories(directory_, ec);
     if (ec || !fs::is_directory(directory_)) {
         fail("{}: cannot create output directory: {}", directory_.string(), ec.message());
@@ -22,6 +29,12 @@ OutputFiles::~OutputFiles() {
     for (const auto& [temporary, final_path] : staged_) {
         std::error_code ec;
         fs::remove(temporary, ec);
+    }
+    if (!committed_) {
+        for (auto p = created_.rbegin(); p != created_.rend(); ++p) {
+            std::error_code ec;
+            fs::remove(*p, ec);  // only when empty: another writer may have used it meanwhile
+        }
     }
 }
 
@@ -54,6 +67,7 @@ std::vector<fs::path> OutputFiles::commit() {
         }
         written.push_back(final_path);
     }
+    committed_ = true;
     staged_.clear();
     return written;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // All-or-nothing output: every file of a result is written under a temporary name and renamed into
-// place only when all of them were written, so a failure never leaves a half-written result.
+// place only when all of them were written, so a failure never leaves a half-written result; the
+// folders made for it are removed again when nothing was committed into them.
 
 #include <filesystem>
 #include <functional>
@@ -14,7 +15,7 @@ public:
     explicit OutputFiles(std::filesystem::path directory);
     OutputFiles(const OutputFiles&) = delete;
     OutputFiles& operator=(const OutputFiles&) = delete;
-    // Removes the temporaries of an uncommitted set.
+    // Removes the temporaries of an uncommitted set, and the folders the constructor made.
     ~OutputFiles();
 
     // Calls write(temporary path); the file appears as directory/name on commit().
@@ -26,6 +27,8 @@ public:
 
 private:
     std::filesystem::path directory_;
+    std::vector<std::filesystem::path> created_;  // the folders made, deepest last
+    bool committed_ = false;
     std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_;  // temp, final
 };
 

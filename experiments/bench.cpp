@@ -164,9 +164,11 @@ Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path
     row["rel_rmse"] = metric("rel_rmse", error ? error->rel_rmse : 0.0);
     row["max_abs"] = metric("max_abs", error ? error->max_abs : 0.0);
     row["psnr"] = metric("psnr", error ? error->psnr : 0.0);  // empty when exact (infinite)
-    row["lit_frac"] = regions.lit_fraction;
-    row["uncertain_frac"] = regions.uncertain_fraction;
-    row["unlit_frac"] = regions.unlit_fraction;
+    for (size_t r = 0; r < 3; ++r) {
+        const char* region = std::array{"lit", "uncertain", "unlit"}[r];
+        row[fmt::format("ray_frac_{}", region)] = regions.ray_fraction[r];
+        row[fmt::format("volume_frac_{}", region)] = regions.volume_fraction[r];
+    }
     row["beams"] = regions.beams;
     row["region_faces"] = regions.region_faces;
     Json samples_or_slices;
@@ -335,6 +337,10 @@ void run_cell(const Experiment& x, const fs::path& out, const nlohmann::json& ce
 
 int run_bench(const Experiment& x, const BenchOptions& options) {
     const fs::path& out = options.out;
+    // Everything that can be refused is refused before the directory is claimed.
+    if (x.cells().empty()) {
+        fail("{}: the sweep is empty (every cell excluded)", x.source.string());
+    }
     claim_directory(x, out);
     Caches caches;
     const auto started = Clock::now();
@@ -421,9 +427,6 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
         }
     } else {
         std::vector<Cell> cells = x.cells();
-        if (cells.empty()) {
-            fail("{}: the sweep is empty (every cell excluded)", x.source.string());
-        }
         std::vector<size_t> mine;
         for (size_t i = 0; i < cells.size(); ++i) {
             if (int(i % size_t(options.shard.count)) == options.shard.index - 1) {

@@ -4,7 +4,8 @@
 // the outputs to write and, optionally, an equal-error search. Every key is read in
 // experiment.cpp next to its validation; an unknown key is an error naming the file and key.
 //
-//   name = "nilsson_table61"          out = "results/{name}"  (the default output directory)
+//   name = "nilsson_table61"          out = "out/{name}"  (the default output directory; the
+//                                     committed runs are written to results/NAME with --out)
 //   description = "..."
 //   [protocol]    warmup = 2, frames = 10, repetitions = 1, isolation = "context" | "process",
 //                 order = "sweep" | "shuffled", seed = 1 (of the shuffle)
@@ -104,7 +105,7 @@ struct Experiment {
     std::string text;                    // the file, verbatim
     std::vector<std::string> overrides;  // presets and --set, in order applied
     std::string effective;               // the document after overrides, as TOML
-    std::string out = "results/{name}";
+    std::string out = "out/{name}";
 
     Protocol protocol;
     RenderSettings render;

@@ -130,9 +130,9 @@ RegionStatistics region_statistics(const Scene& scene, int width, int height) {
     const reference::ReferenceRenderer caster(scene);
     const PixelUnprojector pixels(scene.camera, columns, rows);
     const glm::dvec3 eye(scene.camera.position);
-    constexpr int kPointsPerRay = 64;
     std::vector<std::array<double, 3>> row_lengths(size_t(rows), {0.0, 0.0, 0.0});
     tbb::parallel_for(0, rows, [&](int y) {
+        std::vector<bt::RegionInterval> intervals;
         for (int x = 0; x < columns; ++x) {
             const glm::dvec3 far = pixels.point(x, y, 1.0);
             const analytic::EyeRay ray{eye, glm::normalize(far - eye)};
@@ -141,10 +141,9 @@ RegionStatistics region_statistics(const Scene& scene, int width, int height) {
             if (beam.empty()) {
                 continue;
             }
-            const double step = (beam.end - beam.begin) / kPointsPerRay;
-            for (int i = 0; i < kPointsPerRay; ++i) {
-                const glm::dvec3 p = ray.origin + ray.direction * (beam.begin + (i + 0.5) * step);
-                row_lengths[size_t(y)][size_t(tree.classify(p))] += step;
+            tree.trace(ray.origin, ray.direction, beam.begin, beam.end, intervals);
+            for (const bt::RegionInterval& interval : intervals) {
+                row_lengths[size_t(y)][size_t(interval.region)] += interval.end - interval.begin;
             }
         }
     });
@@ -156,9 +155,12 @@ RegionStatistics region_statistics(const Scene& scene, int width, int height) {
     }
     const double total = lengths[0] + lengths[1] + lengths[2];
     if (total > 0.0) {
-        stats.lit_fraction = lengths[0] / total;
-        stats.uncertain_fraction = lengths[1] / total;
-        stats.unlit_fraction = lengths[2] / total;
+        for (size_t r = 0; r < 3; ++r) {
+            stats.ray_fraction[r] = lengths[r] / total;
+        }
+    }
+    for (size_t r = 0; r < 3; ++r) {
+        stats.volume_fraction[r] = regions.volume[r] / regions.influence_volume;
     }
     stats.ms = ms_since(start);
     return stats;

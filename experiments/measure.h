@@ -3,6 +3,7 @@
 // reference, and the beam-tree region statistics of the view. Shared by `shaftlab render` and the
 // harness, so a cell in a sweep measures exactly what a single render reports.
 
+#include <array>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -49,14 +50,15 @@ struct FrameMeasurement {
 FrameMeasurement measure_frames(gl::SceneRenderer& renderer, gl::VolumeMethod& method, int warmup,
                                 int frames);
 
-// How the view's eye rays cross the beam-tree regions (DESIGN.md §6 "region statistics"): of the
-// eye-ray length inside the light's cone and range, in front of the first surface, the fractions
-// lying in lit, uncertain and unlit regions (classified at 64 stratified points per ray, on a grid
-// of at most 160 rays across), and the tree's size.
+// How the view's eye rays cross the beam-tree regions (DESIGN.md §6 "region statistics"), in two
+// quantities with one name each everywhere (CSV, tables, viewer):
+//   eye-ray fraction  of the eye-ray length inside the light's cone and range, in front of the
+//                     first surface, the share in lit, uncertain and unlit regions (exact, from
+//                     each ray's walk through the tree, on a grid of at most 160 rays across);
+//   volume fraction   of the influence volume, the share of each region type.
 struct RegionStatistics {
-    double lit_fraction = 0.0;
-    double uncertain_fraction = 0.0;
-    double unlit_fraction = 0.0;
+    std::array<double, 3> ray_fraction{};     // indexed by bt::Region
+    std::array<double, 3> volume_fraction{};  // indexed by bt::Region
     size_t beams = 0;
     size_t region_faces = 0;  // faces of all region polyhedra
     double build_ms = 0.0;    // beam tree build + region extraction

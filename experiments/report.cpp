@@ -275,24 +275,130 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
 // Per scene and size: the beam tree and how the view's eye rays cross its regions.
 std::string regions_table(const std::vector<StoredRow>& rows) {
     std::string md =
-        "| scene | size | beams | region faces | lit | uncertain | unlit | tree + regions ms |\n"
-        "|---|---|---:|---:|---:|---:|---:|---:|\n";
+        "Eye-ray fraction: of the eye-ray length inside the light's cone and range, in front of "
+        "the first surface, the share in each region type. Volume fraction: of the influence "
+        "volume.\n\n"
+        "| scene | size | beams | region faces | eye-ray fraction lit / uncertain / unlit | "
+        "volume fraction lit / uncertain / unlit | tree + regions ms |\n"
+        "|---|---|---:|---:|---:|---:|---:|\n";
     std::set<std::pair<std::string, std::string>> done;
     for (const StoredRow& r : rows) {
         if (!done.insert({r.cell.scene, r.cell.size()}).second) {
             continue;
         }
         const Json& v = r.row;
-        md += fmt::format("| {} | {} | {} | {} | {:.1f}% | {:.1f}% | {:.1f}% | {:.1f} |\n",
-                          r.cell.scene, r.cell.size(), v.value("beams", 0),
-                          v.value("region_faces", 0), 100 * v.value("lit_frac", 0.0),
-                          100 * v.value("uncertain_frac", 0.0), 100 * v.value("unlit_frac", 0.0),
-                          v.value("cpu_ms_beamtree_regions", 0.0));
+        md += fmt::format(
+            "| {} | {} | {} | {} | {:.1f}% / {:.1f}% / {:.1f}% | {:.1f}% / {:.1f}% / {:.1f}% | "
+            "{:.1f} |\n",
+            r.cell.scene, r.cell.size(), v.value("beams", 0), v.value("region_faces", 0),
+            100 * v.value("ray_frac_lit", 0.0), 100 * v.value("ray_frac_uncertain", 0.0),
+            100 * v.value("ray_frac_unlit", 0.0), 100 * v.value("volume_frac_lit", 0.0),
+            100 * v.value("volume_frac_uncertain", 0.0), 100 * v.value("volume_frac_unlit", 0.0),
+            v.value("cpu_ms_beamtree_regions", 0.0));
     }
     return md;
 }
 
 }  // namespace
+
+std::string baseline_comparison(const Experiment& x, const fs::path& out,
+                                const fs::path& baseline) {
+    // The baseline's rows by cell id; its experiment file may be an older version of this one.
+    struct Cells {
+        std::vector<double> fps, error;
+    };
+    std::map<std::string, Cells> theirs;
+    if (fs::is_directory(baseline / "cells")) {
+        for (const auto& entry : fs::directory_iterator(baseline / "cells")) {
+            const std::string name = entry.path().filename().string();
+            if (name.starts_with(".") || !name.ends_with(".json")) {
+                continue;
+            }
+            std::ifstream file(entry.path());
+            try {
+                const Json row = Json::parse(file).at("row");
+                Cells& c = theirs[row.at("cell").get<std::string>()];
+                c.fps.push_back(row.at("fps").get<double>());
+                if (row.contains("rel_rmse") && row["rel_rmse"].is_number()) {
+                    c.error.push_back(row["rel_rmse"].get<double>());
+                }
+            } catch (const std::exception& e) {
+                fail("{}: not a result row: {}", entry.path().string(), e.what());
+            }
+        }
+    }
+    if (theirs.empty()) {
+        fail("{}: no result rows (cells/*.json) to compare with", baseline.string());
+    }
+    std::map<std::string, Cells> ours;
+    std::vector<std::string> order;
+    for (const StoredRow& r : load_rows(x, out)) {
+        const std::string id = r.row.at("cell").get<std::string>();
+        if (!ours.contains(id)) {
+            order.push_back(id);
+        }
+        Cells& c = ours[id];
+        c.fps.push_back(r.row.at("fps").get<double>());
+        if (r.row.contains("rel_rmse") && r.row["rel_rmse"].is_number()) {
+            c.error.push_back(r.row["rel_rmse"].get<double>());
+        }
+    }
+    auto machine = [](const fs::path& dir) {
+        std::ifstream file(dir / "env.json");
+        try {
+            const Json env = Json::parse(file);
+            return fmt::format("{} ({} cores), GL {}", env.at("cpu").value("model", "?"),
+                               env.at("cpu").value("cores", 0),
+                               env.at("gl").value("renderer", "?"));
+        } catch (const std::exception&) {
+            return std::string("an unrecorded machine");
+        }
+    };
+    auto mean = [](const std::vector<double>& v) {
+        double sum = 0.0;
+        for (const double e : v) {
+            sum += e / double(v.size());
+        }
+        return sum;
+    };
+    std::string md = fmt::format(
+        "# {}: this machine beside {}\n\nHere: {}.\nThere: {}.\n\nFPS is the median over "
+        "the cell's repetitions; the ratio is here / there (above 1: faster here). The error "
+        "is the mean rel_rmse of I_s; it should not depend on the machine beyond the GPU's "
+        "rounding.\n\n| cell | FPS here | FPS there | ratio | error here | error there |\n"
+        "|---|---:|---:|---:|---:|---:|\n",
+        x.name, baseline.string(), machine(out), machine(baseline));
+    std::vector<double> ratios;
+    for (const std::string& id : order) {
+        const Cells& here = ours.at(id);
+        const auto it = theirs.find(id);
+        const std::string error_here =
+            here.error.empty() ? "" : fmt::format("{:.3g}%", 100 * mean(here.error));
+        if (it == theirs.end()) {
+            md += fmt::format("| {} | {:.2f} | (none) | | {} | |\n", id, median(here.fps),
+                              error_here);
+            continue;
+        }
+        const double ratio = median(here.fps) / median(it->second.fps);
+        ratios.push_back(ratio);
+        md += fmt::format("| {} | {:.2f} | {:.2f} | {:.2f}x | {} | {} |\n", id, median(here.fps),
+                          median(it->second.fps), ratio, error_here,
+                          it->second.error.empty()
+                              ? std::string()
+                              : fmt::format("{:.3g}%", 100 * mean(it->second.error)));
+    }
+    for (const auto& [id, cells] : theirs) {
+        if (!ours.contains(id)) {
+            md += fmt::format("| {} | (none) | {:.2f} | | | |\n", id, median(cells.fps));
+        }
+    }
+    if (!ratios.empty()) {
+        std::sort(ratios.begin(), ratios.end());
+        md += fmt::format("\nRatio over {} cells: median {:.2f}x, from {:.2f}x to {:.2f}x.\n",
+                          ratios.size(), median(ratios), ratios.front(), ratios.back());
+    }
+    return md;
+}
 
 std::vector<StoredRow> load_rows(const Experiment& x, const fs::path& out) {
     std::vector<StoredRow> rows;
@@ -345,9 +451,19 @@ std::string results_csv(const std::vector<StoredRow>& rows) {
     static const std::vector<std::string> head = {
         "experiment", "cell",   "scene", "method",          "width",       "height",      "params",
         "rep",        "frames", "fps",   "frame_ms_median", "frame_ms_p5", "frame_ms_p95"};
-    static const std::vector<std::string> middle = {
-        "rel_rmse",   "max_abs", "psnr",         "lit_frac",          "uncertain_frac",
-        "unlit_frac", "beams",   "region_faces", "samples_or_slices", "image"};
+    static const std::vector<std::string> middle = {"rel_rmse",
+                                                    "max_abs",
+                                                    "psnr",
+                                                    "ray_frac_lit",
+                                                    "ray_frac_uncertain",
+                                                    "ray_frac_unlit",
+                                                    "volume_frac_lit",
+                                                    "volume_frac_uncertain",
+                                                    "volume_frac_unlit",
+                                                    "beams",
+                                                    "region_faces",
+                                                    "samples_or_slices",
+                                                    "image"};
     std::vector<std::string> seen;
     for (const StoredRow& r : rows) {
         for (const auto& [key, value] : r.row.items()) {

@@ -21,6 +21,13 @@ struct StoredRow {
 };
 std::vector<StoredRow> load_rows(const Experiment& experiment, const std::filesystem::path& out);
 
+// This run beside a baseline run of the same experiment (the committed results, another machine):
+// per cell, in this run's order, the FPS here and there and their ratio, and the error here and
+// there; a cell only one of them has is marked. Markdown, with both machines named. Throws when
+// the baseline holds no rows.
+std::string baseline_comparison(const Experiment& experiment, const std::filesystem::path& out,
+                                const std::filesystem::path& baseline);
+
 // results.csv's text: the union of the rows' columns, fixed ones first.
 std::string results_csv(const std::vector<StoredRow>& rows);
 // Nilsson Table 6.1's layout: rows (dz ×) scene × size, columns methods, FPS with the error.

@@ -493,6 +493,11 @@ Frame SceneRenderer::read_back() const {
         std::copy_n(&depth[size_t(h - 1 - y) * w], w, &frame.depth[size_t(y) * w]);
     }
     check_errors("reading the frame back");
+    // Before anything is written from it: a NaN or an infinity in any buffer is a failure of the
+    // method or the input, never an output.
+    require_finite(frame.in_scattering, "I_s (in-scattering)");
+    require_finite(frame.surface, "surface radiance");
+    require_finite(frame.radiance, "HDR radiance (I_eye)");
     return frame;
 }
 

@@ -15,7 +15,7 @@
 
 namespace sl::ibl {
 
-Image load_equirect(const std::filesystem::path& path) {
+Image load_equirect(const std::filesystem::path& path, double intensity) {
     Image image = read_exr(path);
     if (image.width != 2 * image.height) {
         fail("{}: an equirectangular environment must be 2:1, not {}x{}", path.string(),
@@ -28,6 +28,14 @@ Image load_equirect(const std::filesystem::path& path) {
             const size_t pixel = i / 3;
             fail("{}: pixel ({}, {}) has radiance {} (must be finite)", path.string(),
                  pixel % size_t(image.width), pixel / size_t(image.width), v);
+        }
+        if (double(v) * intensity > kMaxEnvironmentRadiance) {
+            const size_t pixel = i / 3;
+            fail(
+                "{}: pixel ({}, {}) has radiance {} (x intensity {}: above {}, the range the "
+                "prefilter and SH9 integrate without overflow)",
+                path.string(), pixel % size_t(image.width), pixel / size_t(image.width), v,
+                intensity, kMaxEnvironmentRadiance);
         }
         mean += double(std::max(v, 0.0f)) / double(image.rgb.size());
     }
@@ -69,7 +77,17 @@ LoadedEnvironment load_environment(const Environment& environment) {
     static std::mutex mutex;
     static std::optional<std::pair<Environment, LoadedEnvironment>> last;
     const std::lock_guard lock(mutex);
+    auto check_range = [&](const LoadedEnvironment& loaded) {
+        if (double(loaded.max_radiance) * environment.intensity > kMaxEnvironmentRadiance) {
+            fail(
+                "{}: radiance {} x intensity {} is above {}, the range the prefilter and SH9 "
+                "integrate without overflow",
+                environment.file.string(), loaded.max_radiance, environment.intensity,
+                kMaxEnvironmentRadiance);
+        }
+    };
     if (last && same_bake(last->first, environment)) {
+        check_range(last->second);
         LoadedEnvironment copy = last->second;
         copy.intensity = environment.intensity;
         copy.load_seconds = 0.0;
@@ -78,7 +96,8 @@ LoadedEnvironment load_environment(const Environment& environment) {
     }
     const auto start = std::chrono::steady_clock::now();
     LoadedEnvironment loaded;
-    const Image equirect = load_equirect(environment.file);
+    const Image equirect = load_equirect(environment.file, environment.intensity);
+    loaded.max_radiance = *std::max_element(equirect.rgb.begin(), equirect.rgb.end());
     loaded.cube = cube_from_equirect(equirect, environment.face_size, environment.rotation_degrees);
     loaded.intensity = environment.intensity;
     loaded.key = fmt::format("{:016x} face={} rotation={}", file_hash(environment.file),

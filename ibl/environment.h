@@ -15,9 +15,14 @@
 
 namespace sl::ibl {
 
+// The largest radiance an environment may have once its intensity is applied: far above any sky
+// (the sun's disk is ~1e9 in these units) and far below where sums over 2^27 texels overflow.
+constexpr double kMaxEnvironmentRadiance = 1e18;
+
 // Reads an equirectangular EXR (2:1) and rejects what would poison every prefiltered texel: a
-// NaN, an infinity or a negative radiance, named with its pixel.
-Image load_equirect(const std::filesystem::path& path);
+// NaN, an infinity, a negative radiance or one above kMaxEnvironmentRadiance / `intensity`,
+// named with its pixel.
+Image load_equirect(const std::filesystem::path& path, double intensity = 1.0);
 
 struct LoadedEnvironment {
     CubeMap cube;  // level 0, as in the file (the intensity is applied when shading)
@@ -25,6 +30,7 @@ struct LoadedEnvironment {
     PrefilteredChain chain;
     DfgTable dfg;
     float intensity = 1.0f;   // radiance scale, applied when shading: one cached bake for all
+    float max_radiance = 0;   // of the source, before the intensity
     std::string key;          // the cache key of the source (file contents and conversion)
     double load_seconds = 0;  // reading and converting (the prefilter's time is in chain)
 };

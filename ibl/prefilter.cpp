@@ -240,6 +240,10 @@ PrefilteredChain prefilter(const CubeMap& source, const PrefilterSettings& s,
                 }
             });
         }
+        for (int f = 0; f < 6; ++f) {
+            require_finite(level.faces[size_t(f)],
+                           fmt::format("prefiltered level {} face {}", l, f));
+        }
         chain.levels.push_back(std::move(level));
         chain.level_seconds.push_back(
             std::chrono::duration<double>(std::chrono::steady_clock::now() - level_start).count());

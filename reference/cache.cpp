@@ -20,7 +20,9 @@ std::optional<Image> find_cached(const Scene& scene, int width, int height,
     if (!std::filesystem::is_regular_file(file, ec)) {
         return std::nullopt;
     }
-    return read_exr(file);
+    Image image = read_exr(file);
+    require_finite(image, file.string());
+    return image;
 }
 
 Image cached_reference(const Scene& scene, int width, int height, const ReferenceOptions& options,
@@ -30,6 +32,7 @@ Image cached_reference(const Scene& scene, int width, int height, const Referenc
     }
     const ReferenceRenderer renderer(scene);
     Image image = renderer.render(width, height, options, progress);
+    require_finite(image, "reference I_s");
     write_cache_file(cache_file(scene, width, height, options),
                      [&](const std::filesystem::path& temporary) { write_exr(image, temporary); });
     return image;

@@ -18,7 +18,7 @@ packages=(
     libcgal-dev libcgal-demo libembree-dev libtbb-dev
     libimgui-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
     libstb-dev libopenexr-dev libfftw3-dev
-    libgtest-dev libbenchmark-dev xvfb python3 python3-matplotlib blender-data
+    libgtest-dev libbenchmark-dev xvfb python3 python3-matplotlib blender-data parallel
 )
 
 source "$repo/scripts/packages.sh"

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -182,7 +183,7 @@ TEST(Cli, SssToolsWriteTheirFilesAndRejectBadInputs) {
         {"bench --scene sss-bunny --models foo", "unknown diffusion model 'foo'"},
         {"bench --scene sss-bunny --radius bar", "--radius must be profile"},
         {"bench --scene sss-bunny --distances -1", "--distances: -1 must be > 0"},
-        {"bench --scene sss-bunny --frames 0", "--frames must be at least 1"},
+        {"bench --scene sss-bunny --frames 0", "--frames: Value 0 not in range 1 to 10000"},
         {"uniformity --mesh bunny00.off --points 1", "--points must be at least 2"},
         {"uniformity --mesh missing.off", "cannot open mesh file"},
         {"profile --material unobtainium", "unknown translucent material 'unobtainium'"},
@@ -338,6 +339,101 @@ TEST(Cli, CompareScoresAndRejectsMismatchedSizes) {
     EXPECT_FALSE(std::filesystem::exists(dir / "bad.png"));
 }
 
+// A NaN or an infinity never scores: compare names the file and the first bad pixel, whether
+// it is in the image (it scored "rel_rmse -nan") or in the reference (it scored a perfect 0).
+TEST(Cli, CompareRefusesNonFiniteImages) {
+    TempDir dir;
+    Image good(8, 4), bad(8, 4);
+    for (int x = 0; x < 8; ++x) {
+        good.set(x, 1, {1.0f, 1.0f, 1.0f});
+        bad.set(x, 1, {1.0f, 1.0f, 1.0f});
+    }
+    bad.set(5, 2, {0.0f, std::numeric_limits<float>::quiet_NaN(), 0.0f});
+    write_exr(good, dir / "good.exr");
+    write_unchecked_exr(bad, dir / "nan.exr");
+    const std::string d = dir.path().string();
+    for (const std::string& arguments :
+         {"/nan.exr " + d + "/good.exr", "/good.exr " + d + "/nan.exr"}) {
+        const CommandResult run =
+            run_shaftlab("compare " + d + arguments + " --difference " + d + "/diff.png");
+        EXPECT_EQ(run.exit_code, 1) << run.output;
+        EXPECT_NE(run.output.find("nan.exr: pixel (5, 2) channel 1 is nan"), std::string::npos)
+            << run.output;
+        EXPECT_EQ(run.output.find("rel_rmse"), std::string::npos) << run.output;
+        EXPECT_FALSE(std::filesystem::exists(dir / "diff.png"));
+    }
+}
+
+// An environment of huge finite radiance (3.4e38, which made the SH9 sums and the prefilter
+// overflow into a NaN image and exit 0) is refused with the pixel and the limit, before anything
+// is rendered or written.
+TEST(Cli, HugeEnvironmentRadianceIsRefused) {
+    TempDir dir;
+    Image sky(16, 8);
+    for (int y = 0; y < 8; ++y) {
+        for (int x = 0; x < 16; ++x) {
+            sky.set(x, y, {1.0f, 1.0f, 1.0f});
+        }
+    }
+    sky.set(3, 1, {3.4e38f, 3.4e38f, 3.4e38f});
+    write_exr(sky, dir / "huge.exr");
+    write_text(dir / "huge.toml",
+               "[scene]\nbase = \"toplight\"\n[environment]\nfile = \"huge.exr\"\n"
+               "face_size = 16\nsamples = 4\n");
+    const CommandResult run =
+        run_shaftlab("render --scene " + (dir / "huge.toml").string() +
+                     " --method none --size 32x18 --out " + (dir / "out").string());
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_NE(run.output.find("huge.exr: pixel (3, 1) has radiance 3.4e+38"), std::string::npos)
+        << run.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+}
+
+// Every command's early failure (a bad scene, option, file or an empty sweep) is one line on
+// stderr, a non-zero exit, and nothing on disk: not a file, not even the output folder (a bench
+// whose sweep excluded every cell used to leave experiment.toml).
+TEST(Cli, EveryCommandsEarlyFailureWritesNothing) {
+    TempDir dir;
+    const std::string d = dir.path().string();
+    const std::string smoke = std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/smoke.toml";
+    write_text(dir / "bad.toml", "[camera\n");
+    Image good(8, 4);
+    write_exr(good, dir / "a.exr");
+    write_exr(Image(4, 4), dir / "b.exr");
+    const std::string out = d + "/never/made";
+    const std::pair<std::string, std::string> cases[] = {
+        {"render --scene " + d + "/bad.toml --out " + out, "malformed TOML"},
+        {"regions --scene nowhere --out " + out, "unknown scene 'nowhere'"},
+        {"regions --scene toplight --size 0x9 --out " + out, "width and height"},
+        {"compare " + d + "/a.exr " + d + "/b.exr --difference " + out + "/d.png",
+         "cannot compare"},
+        {"bench " + smoke +
+             " --set 'sweep.methods=[\"planes\"]' --set 'exclude=[{method = "
+             "\"planes\"}]' --out " +
+             out,
+         "the sweep is empty"},
+        {"bench " + smoke + " --set protocol.frames=0 --out " + out, "frames"},
+        {"merge " + d + " --out " + out, "not a bench output directory"},
+        {"ibl prefilter atlantis --out " + out, "no environment 'atlantis'"},
+        {"ibl reference --scene toplight --out " + out, "has no [environment]"},
+        {"sss bench --scene toplight --out " + out, "has no translucent object"},
+        {"sss profile --material unobtainium --out " + out, "unknown translucent material"},
+        {"sss uniformity --mesh " + d + "/absent.off --out " + out, "absent.off"},
+        {"view --scene toplight --method magic --frames 1 --screenshot " + out + "/s.png",
+         "unknown method 'magic'"},
+    };
+    for (const auto& [arguments, expected] : cases) {
+        const CommandResult run = run_shaftlab(arguments);
+        EXPECT_NE(run.exit_code, 0) << arguments;
+        EXPECT_NE(run.output.find(expected), std::string::npos)
+            << arguments << "\nexpected: " << expected << "\ngot: " << run.output;
+        EXPECT_TRUE(run.output.starts_with("shaftlab: error: ")) << run.output;
+        EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+        EXPECT_FALSE(std::filesystem::exists(dir / "never")) << arguments << " wrote something";
+        std::filesystem::remove_all(dir / "never");
+    }
+}
+
 TEST(Cli, UnwritableOutputIsAnError) {
     TempDir dir;
     write_text(dir / "file", "x");
@@ -476,7 +572,7 @@ TEST(Cli, IblPrefilterRejectsBadInput) {
     TempDir inputs;
     Image nan(8, 4);
     nan.set(1, 1, glm::vec3(std::nanf("")));
-    write_exr(nan, inputs / "nan.exr");
+    write_unchecked_exr(nan, inputs / "nan.exr");
     const std::pair<std::string, std::string> cases[] = {
         {"atlantis", "no environment 'atlantis'"},
         {"courtyard --method magic", "unknown prefilter 'magic'"},

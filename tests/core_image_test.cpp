@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 #include "core/error.h"
 #include "core/image.h"
@@ -103,6 +104,48 @@ TEST(OutputFiles, AllOrNothing) {
     } catch (const Error&) {
     }
     EXPECT_EQ(failed.file_count(), 0u) << "temporaries must be removed";
+
+    // The folders a failed set made are removed with it; a committed set keeps its own.
+    TempDir root;
+    try {
+        OutputFiles files(root / "new" / "deeper");
+        files.add_text("a.txt", "a");
+        fail("simulated failure");
+    } catch (const Error&) {
+    }
+    EXPECT_FALSE(std::filesystem::exists(root / "new")) << "the made folders must go too";
+    {
+        OutputFiles files(root / "kept");
+        files.add_text("a.txt", "a");
+        files.commit();
+    }
+    EXPECT_TRUE(std::filesystem::exists(root / "kept" / "a.txt"));
+}
+
+// No output holds a NaN or an infinity: write_exr names the file and the first bad pixel and
+// writes nothing; require_finite names the buffer it is given.
+TEST(Image, NonFiniteOutputsAreRefusedNamingThePixel) {
+    TempDir dir;
+    Image image(6, 3);
+    image.set(4, 1, {0.0f, 0.0f, std::numeric_limits<float>::infinity()});
+    try {
+        write_exr(image, dir / "out.exr");
+        ADD_FAILURE() << "an infinite pixel was written";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("out.exr: pixel (4, 1) channel 2 is inf"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.exr"));
+    image.set(4, 1, {0.0f, 0.0f, 0.0f});
+    image.set(0, 2, {std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f});
+    EXPECT_THROW(require_finite(image, "I_s"), Error);
+    try {
+        require_finite(image, "I_s");
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "I_s: pixel (0, 2) channel 0 is nan: outputs must be finite");
+    }
+    EXPECT_THROW(Image(1 << 15, 2), Error) << "wider than kMaxImageSide";
 }
 
 }  // namespace

@@ -325,9 +325,12 @@ TEST(Bench, SmokeExperimentWritesEveryOutput) {
                                "rel_rmse",
                                "max_abs",
                                "psnr",
-                               "lit_frac",
-                               "uncertain_frac",
-                               "unlit_frac",
+                               "ray_frac_lit",
+                               "ray_frac_uncertain",
+                               "ray_frac_unlit",
+                               "volume_frac_lit",
+                               "volume_frac_uncertain",
+                               "volume_frac_unlit",
                                "beams",
                                "region_faces",
                                "samples_or_slices",
@@ -343,9 +346,9 @@ TEST(Bench, SmokeExperimentWritesEveryOutput) {
         cells.insert(csv[r][column("cell")]);
         const double fps = std::stod(csv[r][column("fps")]);
         const double error = std::stod(csv[r][column("rel_rmse")]);
-        const double lit = std::stod(csv[r][column("lit_frac")]);
-        const double uncertain = std::stod(csv[r][column("uncertain_frac")]);
-        const double unlit = std::stod(csv[r][column("unlit_frac")]);
+        const double lit = std::stod(csv[r][column("ray_frac_lit")]);
+        const double uncertain = std::stod(csv[r][column("ray_frac_uncertain")]);
+        const double unlit = std::stod(csv[r][column("ray_frac_unlit")]);
         EXPECT_GT(fps, 0.0);
         EXPECT_TRUE(error >= 0.0 && error < 0.5) << csv[r][column("cell")] << " " << error;
         EXPECT_NEAR(lit + uncertain + unlit, 1.0, 1e-9);
@@ -455,6 +458,101 @@ TEST(Bench, ShardsMergeIntoTheWholeSweep) {
     EXPECT_EQ(cells.size(), total);
     EXPECT_EQ(csv.size(), 1 + total);
     EXPECT_TRUE(fs::exists(dir.path() / "m" / "table.md"));
+}
+
+// The README's GNU parallel one-liner and the Slurm array job (its scripts run as Slurm would
+// run them, one task per shard, then the merge) each give every cell of the sweep exactly once.
+TEST(Bench, GnuParallelAndSlurmShardsMergeIntoTheWholeSweep) {
+    TempDir dir;
+    const std::string source = SHAFTLAB_SOURCE_DIR;
+    const std::string build = fs::path(SHAFTLAB_BINARY).parent_path().string();
+    const std::string smoke = source + "/experiments/smoke.toml";
+    const size_t total = experiments::load_experiment(smoke, {"tiny"}).cells().size();
+    auto rows_of = [&](const fs::path& merged) {
+        const auto csv = read_csv(merged / "results.csv");
+        std::set<std::string> cells;
+        for (size_t r = 1; r < csv.size(); ++r) {
+            cells.insert(csv[r][1]);
+        }
+        EXPECT_EQ(csv.size(), 1 + total) << "one row per cell";
+        return cells.size();
+    };
+    // The one-liner exactly as the README has it, with its folders under the test's own.
+    const std::string out = (dir.path() / "p").string();
+    const CommandResult parallel =
+        run_command("cd " + source + " && parallel " + build +
+                    "/shaftlab bench experiments/smoke.toml --preset tiny --shard {}/2 --out " +
+                    out + "/shard-{} ::: 1 2 && " + build + "/shaftlab merge " + out + "/shard-1 " +
+                    out + "/shard-2 --out " + out + "/merged");
+    ASSERT_EQ(parallel.exit_code, 0) << parallel.output;
+    EXPECT_EQ(rows_of(fs::path(out) / "merged"), total);
+
+    const std::string slurm = "SLURM_SUBMIT_DIR=" + source + " SHAFTLAB_BUILD_DIR=" + build +
+                              " SHAFTLAB_OUT=" + (dir.path() / "s").string() + " ";
+    for (const char* task : {"1", "2"}) {
+        const CommandResult run =
+            run_command(slurm + "SLURM_ARRAY_TASK_ID=" + task + " SLURM_ARRAY_TASK_COUNT=2 bash " +
+                        source + "/scripts/slurm/sweep.sbatch " + smoke + " --preset tiny");
+        ASSERT_EQ(run.exit_code, 0) << run.output;
+    }
+    const CommandResult merge =
+        run_command(slurm + "bash " + source + "/scripts/slurm/merge.sbatch " + smoke);
+    ASSERT_EQ(merge.exit_code, 0) << merge.output;
+    EXPECT_EQ(rows_of(dir.path() / "s" / "merged"), total);
+}
+
+// `--baseline DIR` puts every cell beside the same cell of an earlier run: FPS here and there,
+// their ratio, and a cell only one run has is marked.
+TEST(Bench, BaselineComparisonListsEveryCellWithItsRatio) {
+    TempDir dir;
+    const std::string smoke = std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/smoke.toml";
+    const std::string a = (dir.path() / "a").string(), b = (dir.path() / "b").string();
+    ASSERT_EQ(
+        run_shaftlab("bench " + smoke +
+                     " --preset tiny --set 'sweep.methods=[\"hybrid2\", \"march\"]' --out " + a)
+            .exit_code,
+        0);
+    const CommandResult run = run_shaftlab(
+        "bench " + smoke + " --preset tiny --set 'sweep.methods=[\"march\", \"planes\"]' --out " +
+        b + " --baseline " + a);
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    std::ifstream file(dir.path() / "b" / "comparison.md");
+    std::stringstream text;
+    text << file.rdbuf();
+    const std::string md = text.str();
+    EXPECT_NE(run.output.find(md.substr(0, 40)), std::string::npos) << "printed too";
+    EXPECT_NE(md.find("| toplight.march.32x16.samples=16 | "), std::string::npos) << md;
+    EXPECT_NE(md.find("x | "), std::string::npos) << "a ratio: " << md;
+    EXPECT_NE(md.find("(none)"), std::string::npos) << "cells of one run only: " << md;
+    EXPECT_NE(md.find("llvmpipe"), std::string::npos) << "the machines named: " << md;
+    EXPECT_NE(run_shaftlab("bench " + smoke + " --preset tiny --out " + b + " --baseline " +
+                           (dir.path() / "absent").string())
+                  .exit_code,
+              0);
+}
+
+// The main job measures this machine afresh into out/ (a second run too, not "from an earlier
+// run"), prints its table, and leaves the working tree exactly as it was.
+TEST(MainJob, MeasuresAfreshAndLeavesTheWorkingTreeAsItWas) {
+    TempDir dir;
+    const std::string source = SHAFTLAB_SOURCE_DIR;
+    const std::string status = "git -C " + source + " status --porcelain --ignored=no";
+    const CommandResult before = run_command(status);
+    ASSERT_EQ(before.exit_code, 0) << before.output;
+    const std::string command =
+        "SHAFTLAB_PREBUILT=" + fs::path(SHAFTLAB_BINARY).parent_path().string() +
+        " SHAFTLAB_OUT=" + dir.path().string() + " " + source + "/scripts/run.sh --experiment " +
+        source + "/experiments/smoke.toml --preset tiny";
+    for (int run = 0; run < 2; ++run) {
+        const CommandResult main_job = run_command(command);
+        ASSERT_EQ(main_job.exit_code, 0) << main_job.output;
+        EXPECT_EQ(main_job.output.find("from an earlier run"), std::string::npos)
+            << "run " << run << " measured nothing:\n"
+            << main_job.output;
+        EXPECT_NE(main_job.output.find("| toplight"), std::string::npos) << "the table printed";
+        EXPECT_TRUE(fs::exists(dir.path() / "smoke" / "results.csv"));
+    }
+    EXPECT_EQ(run_command(status).output, before.output) << "the working tree changed";
 }
 
 // Process isolation: each repetition runs in a child process of its own and lands as its own row.

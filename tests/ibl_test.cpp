@@ -325,7 +325,7 @@ TEST(Environment, BadImagesAreRejected) {
     test::TempDir dir;
     auto expect_error = [&](const Image& image, const std::string& fragment) {
         const auto path = dir.path() / "env.exr";
-        write_exr(image, path);
+        test::write_unchecked_exr(image, path);
         try {
             load_equirect(path);
             ADD_FAILURE() << "no error for " << fragment;
@@ -341,6 +341,9 @@ TEST(Environment, BadImagesAreRejected) {
     negative.set(2, 2, glm::vec3(1.0f));
     negative.set(1, 1, glm::vec3(-1.0f));
     expect_error(negative, "non-negative");
+    Image huge(8, 4);
+    huge.set(6, 1, glm::vec3(2e18f));
+    expect_error(huge, "pixel (6, 1) has radiance 2e+18");
 }
 
 }  // namespace

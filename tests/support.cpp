@@ -1,4 +1,9 @@
 #include "tests/support.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
 #include <array>
 
 #include <cmath>
@@ -254,9 +259,27 @@ Image unoccluded_in_scattering(const Scene& scene, int width, int height) {
     return image;
 }
 
+void write_unchecked_exr(const Image& image, const std::filesystem::path& path) {
+    Imf::Header header(image.width, image.height);
+    Imf::FrameBuffer frame;
+    const char* names[] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c) {
+        header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+        char* base = reinterpret_cast<char*>(const_cast<float*>(image.rgb.data() + c));
+        frame.insert(names[c], Imf::Slice(Imf::FLOAT, base, sizeof(float) * 3,
+                                          sizeof(float) * 3 * size_t(image.width)));
+    }
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(frame);
+    file.writePixels(image.height);
+}
+
 CommandResult run_shaftlab_with(const std::string& environment, const std::string& arguments) {
-    const std::string command =
-        environment + std::string(SHAFTLAB_BINARY) + " " + arguments + " 2>&1";
+    return run_command(environment + std::string(SHAFTLAB_BINARY) + " " + arguments);
+}
+
+CommandResult run_command(const std::string& line) {
+    const std::string command = "{ " + line + "; } 2>&1";
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) {
         return {-1, "popen failed"};

@@ -46,6 +46,9 @@ private:
 };
 
 void write_text(const std::filesystem::path& path, const std::string& text);
+// An EXR as any program might write it: no check of its values (write_exr refuses NaN), for
+// testing what readers make of non-finite or huge pixels.
+void write_unchecked_exr(const Image& image, const std::filesystem::path& path);
 
 // Brute-force CPU visibility (Möller–Trumbore in double precision over world-space triangles,
 // culled by each object's bounding box): an oracle independent of the GPU path.
@@ -104,6 +107,8 @@ struct CommandResult {
     int exit_code;
     std::string output;
 };
+// Runs a shell command line, stdout and stderr together.
+CommandResult run_command(const std::string& command);
 // Runs the binary with `environment` ("NAME=value " pairs) in front of it.
 CommandResult run_shaftlab_with(const std::string& environment, const std::string& arguments);
 CommandResult run_shaftlab(const std::string& arguments);

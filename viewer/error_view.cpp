@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include "core/error.h"
 #include "reference/cache.h"
 
 namespace sl::viewer {
@@ -25,7 +26,12 @@ void Viewer::update_error_view() {
         return;
     }
     const Image image = renderer_->read_in_scattering();
-    error_ = compare_images(image, *reference_);
+    try {
+        error_ = compare_images(image, *reference_);
+    } catch (const Error& e) {
+        status_ = e.what();  // a NaN in I_s: the heat map shows it at full scale
+        error_ = {};
+    }
     const std::vector<unsigned char> rgb = error_heat_map(image, *reference_, heat_scale_);
     std::vector<unsigned char> flipped(rgb.size());
     const size_t row = size_t(width_) * 3;

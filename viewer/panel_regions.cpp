@@ -25,7 +25,7 @@ void Viewer::ui_regions() {
     ImGui::Text("%zu beams; faces %zu / %zu / %zu", beams_, region_faces_[0], region_faces_[1],
                 region_faces_[2]);
     if (influence_volume_ > 0.0) {
-        ImGui::Text("volume: lit %.1f%%, uncertain %.1f%%, unlit %.1f%%",
+        ImGui::Text("volume fraction: lit %.1f%%, uncertain %.1f%%, unlit %.1f%%",
                     100.0 * region_volume_[0] / influence_volume_,
                     100.0 * region_volume_[1] / influence_volume_,
                     100.0 * region_volume_[2] / influence_volume_);

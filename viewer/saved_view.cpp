@@ -50,7 +50,7 @@ SavedView save_view_as_experiment(const fs::path& experiment, const Scene& scene
                         toml_quoted(fmt::format("The view of {} saved from the viewer: {} "
                                                 "with its parameters as set there.",
                                                 opened, method.name())));
-    text += "out = \"results/{name}\"\n\n";
+    text += "out = \"out/{name}\"\n\n";
     text += "[protocol]\nwarmup = 2\nframes = 10\n\n";
     text += fmt::format("[render]\nshadow = {}\nshadow_map_size = {}\npcf_radius = {}\n\n",
                         toml_quoted(gl::to_string(shadow.filter)), shadow.map_size, shadow.radius);
