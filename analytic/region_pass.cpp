@@ -46,11 +46,10 @@ void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>
     phase_table_ = create_phase_table(scene.medium);
 }
 
-void AnalyticRegionPass::draw(const VolumeInputs& inputs, bool exclude_interval) const {
+void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     if (index_count_ == 0)
         return;
     GL.UseProgram(program_.id());
-    GL.ProgramUniform1i(program_.id(), 0, exclude_interval ? 1 : 0);
     GL.BindTextureUnit(0, inputs.surface_depth);
     GL.BindTextureUnit(kSunTableUnit, sun_table_.id());
     GL.BindTextureUnit(kPhaseTableUnit, phase_table_.id());

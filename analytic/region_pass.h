@@ -31,10 +31,8 @@ public:
     // Uploads the region faces (closed, outward-wound) and the scene's tables.
     void upload(const Scene& scene, const std::vector<glm::vec3>& positions,
                 const std::vector<glm::uvec3>& triangles);
-    // Adds ∫ e over the regions' part of every eye ray, up to the first surface. With
-    // `exclude_interval`, the uncertain interval bound at units 1-3 (gl/shaders/
-    // uncertain_interval.glsl) is left out of every ray: hybrid3 marches it instead.
-    void draw(const VolumeInputs& inputs, bool exclude_interval = false) const;
+    // Adds ∫ e over the regions' part of every eye ray, up to the first surface.
+    void draw(const VolumeInputs& inputs) const;
     size_t triangle_count() const { return size_t(index_count_) / 3; }
     // Its lookup tables, named "<owner>/...".
     TextureViews textures(const std::string& owner) const;

@@ -19,7 +19,7 @@ Command add_scenes_command(CLI::App& app) {
     command
         ->add_option("--generate", *generate,
                      "Print the TOML of the generated scene multiple:N and exit")
-        ->check(CLI::Range(1, 100000));
+        ->check(CLI::Range(1, kMultipleMaxCount));
     return [=] {
         if (*generate > 0) {
             std::fputs(generate_multiple_scene(*generate).c_str(), stdout);

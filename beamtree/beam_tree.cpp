@@ -423,6 +423,30 @@ void BeamTree::trace(const dvec3& origin, const dvec3& direction, double t0, dou
     emit(Region::unlit, inside1, t1);
 }
 
+BeamTree::FacePlane BeamTree::face_plane(const dvec3& interior, const Polygon& face,
+                                         double tolerance) const {
+    // Near the light every plane through it passes within any tolerance of a small face: a face
+    // whose normal is well defined must also share the plane's direction.
+    const dvec3 area = area_vector(face);
+    const double length = glm::length(area);
+    const bool oriented = length > tolerance * tolerance;
+    const dvec3 normal = oriented ? area / length : dvec3(0.0);
+    int32_t index = 0;
+    while (nodes_[size_t(index)].kind == Kind::split) {
+        const Node& node = nodes_[size_t(index)];
+        bool on_plane = !oriented || std::abs(glm::dot(normal, node.plane.normal)) > 1.0 - 1e-9;
+        for (const dvec3& v : face.vertices) {
+            on_plane = on_plane && std::abs(node.plane.distance(v)) <= tolerance;
+        }
+        const bool front = node.plane.distance(interior) >= 0.0;
+        if (on_plane) {
+            return {index, front, node.plane};
+        }
+        index = front ? node.front : node.back;
+    }
+    return {};
+}
+
 BeamTree::Partition BeamTree::partition(const Polygon& polygon) const {
     Partition result;
     // Outside the near and far ranges: unlit.
@@ -553,6 +577,29 @@ void BeamTree::split_cells(int32_t index, Polyhedron cell, double epsilon, int d
         }
         emit_leaf(node, std::move(part));
     }
+}
+
+GpuTree BeamTree::gpu_tree() const {
+    static_assert(int(Kind::split) == 0 && int(Kind::out) == 1 && int(Kind::open) == 2 &&
+                  int(Kind::solid) == 3 && int(Kind::blocker) == 4);
+    auto relative = [&](const Plane& plane) {
+        return glm::vec4(glm::vec3(plane.normal), float(plane.distance(apex_)));
+    };
+    GpuTree gpu;
+    gpu.planes = {relative(influence_[4]), relative(influence_[5])};
+    for (const Plane& stopper : stoppers_) {
+        gpu.planes.push_back(relative(stopper));
+    }
+    gpu.nodes.reserve(nodes_.size());
+    for (const Node& node : nodes_) {
+        GpuTreeNode g;
+        g.plane = relative(node.plane);
+        const bool split = node.kind == Kind::split;
+        g.link = glm::ivec4(split ? node.front : -1, split ? node.back : -1, int(node.kind),
+                            node.kind == Kind::blocker ? node.back + 2 : -1);
+        gpu.nodes.push_back(g);
+    }
+    return gpu;
 }
 
 BeamTreeStats BeamTree::stats() const {

@@ -21,6 +21,8 @@
 #include <functional>
 #include <vector>
 
+#include <glm/vec4.hpp>
+
 #include "beamtree/bounding_volumes.h"
 #include "beamtree/geometry.h"
 #include "scenes/scene.h"
@@ -39,6 +41,18 @@ struct RegionInterval {
     Region region = Region::unlit;
     double begin = 0.0;
     double end = 0.0;
+};
+
+// The tree as the GPU reads it (beamtree/shaders/classify.glsl, std430): every plane relative to
+// the light (q = p - L), where float keeps the tree's ε (a 10 m range in 32-bit float resolves a
+// micrometre at the light, the plane's value grows only with |q|).
+struct GpuTreeNode {
+    glm::vec4 plane;  // xyz normal, w offset: distance = dot(xyz, q) + w
+    glm::ivec4 link;  // x front child, y back child, z kind (classify.glsl's KIND_*), w stopper
+};
+struct GpuTree {
+    std::vector<GpuTreeNode> nodes;
+    std::vector<glm::vec4> planes;  // 0 near range, 1 far range, then the stoppers (link.w)
 };
 
 struct BeamTreeStats {
@@ -83,6 +97,18 @@ public:
     // Appendix B `partition`, extended with blocker leaves and the near and far ranges.
     Partition partition(const Polygon& polygon) const;
 
+    // Where a region piece's face lies (beamtree/boundary.h): on an influence plane, the
+    // piece's occluder or stopper, or the plane of a split node on its path (the highest one).
+    struct FacePlane {
+        int32_t split = -1;           // the split node whose plane holds the face, or -1
+        bool piece_in_front = false;  // the piece lies on that plane's front side
+        Plane plane;                  // that node's plane
+    };
+    const Plane& node_plane(int32_t node) const { return nodes_[size_t(node)].plane; }
+    // The highest split node on the path to the leaf holding `interior` (a point strictly inside
+    // a piece) whose plane holds every vertex of `face` within `tolerance`.
+    FacePlane face_plane(const dvec3& interior, const Polygon& face, double tolerance) const;
+
     // Splits `cell` (a polyhedron inside the influence pyramid) down the tree into each leaf's
     // part of it with the leaf's beam, in depth-first order (front before back): every node
     // clips once. Subtrees are split on several threads; the order does not depend on them.
@@ -96,6 +122,9 @@ public:
     double epsilon() const { return epsilon_; }
     const dvec3& apex() const { return apex_; }
     BeamTreeStats stats() const;
+    // The nodes and planes for the GPU's classify (kinds: 0 split, 1 out, 2 open, 3 solid,
+    // 4 blocker).
+    GpuTree gpu_tree() const;
 
 private:
     enum class Kind : uint8_t { split, out, open, solid, blocker };

@@ -77,9 +77,8 @@ RegionMesh Regions::mesh(Region region) const {
 
 Regions extract_regions(const BeamTree& tree) {
     Regions regions;
-    // Vertices within this distance of a clipping plane count as on it; well below the tree's ε
-    // so that the cells keep the tree's geometry.
-    const double epsilon = 1e-3 * tree.epsilon();
+    // Vertices within this distance of a clipping plane count as on it.
+    const double epsilon = Regions::kCutEpsilon * tree.epsilon();
     double far = 0.0;
     for (const Plane& plane : tree.influence_planes()) {
         far = std::max(far, std::abs(plane.distance(tree.apex())));
@@ -99,8 +98,7 @@ Regions extract_regions(const BeamTree& tree) {
     regions.influence_volume = volume(influence);
 
     // Each leaf's cell cut by its occluder and stopper into up to three pieces (in parallel), then
-    // gathered in the tree's order. Pieces thinner than round-off (slivers of cells that only
-    // touch a plane) are dropped: they carry no volume, only faces.
+    // gathered in the tree's order.
     std::vector<BeamTree::LeafCell> cells = tree.split_cells(std::move(influence), epsilon);
     std::vector<std::array<Polyhedron, 3>> cut(cells.size());
     tbb::parallel_for(size_t(0), cells.size(), [&](size_t i) {
@@ -120,13 +118,23 @@ Regions extract_regions(const BeamTree& tree) {
         parts[size_t(Region::uncertain)] = clip(behind, beam.stopper.flipped(), epsilon);
         parts[size_t(Region::unlit)] = clip(behind, beam.stopper, epsilon);
     });
-    const double negligible = 1e-12 * regions.influence_volume;
+    // A piece is dropped only when it has no thickness at all (its faces lie on one plane from
+    // both sides, to round-off: they cancel in every integral and bound nothing); a thin one
+    // stays, or its neighbours' faces would not close up around the gap it leaves.
+    const double flat = 1e-3 * epsilon;
     const uint32_t next_beam = uint32_t(cells.size());
     for (uint32_t b = 0; b < next_beam; ++b) {
         for (size_t r = 0; r < 3; ++r) {
             Polyhedron& polyhedron = cut[b][r];
+            if (polyhedron.empty()) {
+                continue;
+            }
             const double v = volume(polyhedron);
-            if (polyhedron.empty() || v <= negligible) {
+            double surface = 0.0;
+            for (const Polygon& face : polyhedron.faces) {
+                surface += area(face);
+            }
+            if (!(v > 0.0) || 2.0 * v <= flat * surface) {
                 continue;
             }
             regions.volume[r] += v;

@@ -34,6 +34,9 @@ struct Regions {
     // Vertices within this fraction of the influence volume's size of each other are welded, and
     // of another face's edge are T-junctions of the GPU mesh (bt::make_conforming).
     static constexpr double kConformingTolerance = 1e-7;
+    // The pieces are cut with planes this fraction of the tree's ε thick: well below it, so that
+    // the cells keep the tree's geometry.
+    static constexpr double kCutEpsilon = 1e-3;
 
     size_t beam_count = 0;
     std::array<std::vector<RegionPiece>, 3> pieces;  // indexed by Region

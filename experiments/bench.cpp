@@ -146,6 +146,15 @@ Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path
     for (const auto& [section, ms] : m.gpu.volume_sections) {
         row["gpu_ms_volume_" + section] = ms;
     }
+    // The volume cost (DESIGN.md §11): the volume pass's GPU time plus the method's CPU work per
+    // frame (slicing and partitioning sampling planes); what the regions must make cheaper.
+    double cpu_frame_ms = 0.0;
+    for (const auto& [name, value] : m.statistics) {
+        if (name == "cpu_ms_frame") {
+            cpu_frame_ms = value;
+        }
+    }
+    row["volume_cost_ms"] = m.gpu.volume_ms + cpu_frame_ms;
     row["cpu_ms_scene_load"] = load_ms;
     row["cpu_ms_gl_setup"] = setup_ms;
     row["cpu_ms_prepare"] = prepare_ms;
@@ -169,6 +178,9 @@ Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path
         row[fmt::format("ray_frac_{}", region)] = regions.ray_fraction[r];
         row[fmt::format("volume_frac_{}", region)] = regions.volume_fraction[r];
     }
+    row["lit_crossings"] = regions.lit_crossings;
+    row["lit_crossings_visible"] = regions.lit_crossings_visible;
+    row["uncertain_span_ratio"] = regions.uncertain_span_ratio;
     row["beams"] = regions.beams;
     row["region_faces"] = regions.region_faces;
     Json samples_or_slices;
@@ -349,7 +361,7 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
 
     // Measures (or loads) every repetition of a cell; nullopt when one failed.
     auto ensure = [&](const Cell& cell, const std::string& progress) -> std::optional<CellSummary> {
-        std::vector<double> errors, times;
+        std::vector<double> errors, times, volume_times;
         for (int rep = 0; rep < x.protocol.repetitions; ++rep) {
             const fs::path path = row_path(out, cell, rep);
             std::optional<Json> row = read_row(path);
@@ -382,6 +394,7 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
             }
             const Json& r = row->at("row");
             times.push_back(r.at("frame_ms_median").get<double>());
+            volume_times.push_back(r.value("volume_cost_ms", 0.0));
             errors.push_back(r.at("rel_rmse").is_number() ? r.at("rel_rmse").get<double>() : 0.0);
             const double elapsed = ms_since(started) / 1000.0;
             fmt::print(stderr, "{} {} rep {}: {:.2f} fps{}  [{} elapsed{}]\n", progress,
@@ -395,7 +408,7 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
         for (const double e : errors) {
             error += e / double(errors.size());
         }
-        return CellSummary{error, median(times)};
+        return CellSummary{error, median(times), median(volume_times)};
     };
 
     if (x.equal_error) {

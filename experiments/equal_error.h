@@ -13,10 +13,12 @@
 
 namespace sl::experiments {
 
-// What the search needs of a measured cell: its error and frame time (over the repetitions).
+// What the search needs of a measured cell: its error and frame time, and for the report its
+// volume cost (volume pass GPU time + per-frame CPU work), over the repetitions.
 struct CellSummary {
     double rel_rmse = 0.0;
     double frame_ms = 0.0;
+    double volume_ms = 0.0;
 };
 // Measures (or loads) a cell; nullopt when it is not available (a failed cell, or a summary of
 // shards that lack it).

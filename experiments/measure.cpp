@@ -113,6 +113,9 @@ FrameMeasurement measure_frames(gl::SceneRenderer& renderer, gl::VolumeMethod& m
     return m;
 }
 
+// Far enough along an eye ray to leave any influence volume (scenes are metres to a kilometre).
+constexpr double kWholeRay = 1e7;
+
 RegionStatistics region_statistics(const Scene& scene, int width, int height) {
     const auto start = std::chrono::steady_clock::now();
     RegionStatistics stats;
@@ -130,28 +133,61 @@ RegionStatistics region_statistics(const Scene& scene, int width, int height) {
     const reference::ReferenceRenderer caster(scene);
     const PixelUnprojector pixels(scene.camera, columns, rows);
     const glm::dvec3 eye(scene.camera.position);
-    std::vector<std::array<double, 3>> row_lengths(size_t(rows), {0.0, 0.0, 0.0});
+    struct Row {
+        std::array<double, 3> lengths{0.0, 0.0, 0.0};
+        double crossings = 0.0, crossings_visible = 0.0, span = 0.0;
+    };
+    std::vector<Row> row_sums(static_cast<size_t>(rows));
     tbb::parallel_for(0, rows, [&](int y) {
         std::vector<bt::RegionInterval> intervals;
+        Row& sums = row_sums[size_t(y)];
         for (int x = 0; x < columns; ++x) {
             const glm::dvec3 far = pixels.point(x, y, 1.0);
             const analytic::EyeRay ray{eye, glm::normalize(far - eye)};
             const double t_max = caster.first_hit(ray, glm::length(far - eye));
-            const analytic::Interval beam = analytic::light_interval(ray, scene.light, t_max);
-            if (beam.empty()) {
+            // The crossings along the whole eye ray (the analytic pass has no depth test and
+            // clamps depth instead of clipping: it shades every face in front of the eye); the
+            // lengths up to the first surface, inside the cone and range.
+            const analytic::Interval cone = analytic::light_interval(ray, scene.light, t_max);
+            tree.trace(ray.origin, ray.direction, 0.0, kWholeRay, intervals);
+            for (size_t k = 0; k < intervals.size(); ++k) {
+                const bt::RegionInterval& interval = intervals[k];
+                if (interval.region == bt::Region::lit &&
+                    (k == 0 || intervals[k - 1].region != bt::Region::lit)) {
+                    sums.crossings += 2.0;
+                    sums.crossings_visible += interval.begin < t_max ? 2.0 : 0.0;
+                }
+            }
+            if (cone.empty()) {
                 continue;
             }
-            tree.trace(ray.origin, ray.direction, beam.begin, beam.end, intervals);
+            tree.trace(ray.origin, ray.direction, cone.begin, cone.end, intervals);
+            double first = 0.0, last = 0.0;
+            bool any = false;
             for (const bt::RegionInterval& interval : intervals) {
-                row_lengths[size_t(y)][size_t(interval.region)] += interval.end - interval.begin;
+                const double begin = interval.begin, end = std::min(interval.end, t_max);
+                if (!(end > begin)) {
+                    continue;
+                }
+                sums.lengths[size_t(interval.region)] += end - begin;
+                if (interval.region == bt::Region::uncertain) {
+                    first = any ? first : begin;
+                    last = end;
+                    any = true;
+                }
             }
+            sums.span += any ? last - first : 0.0;
         }
     });
     std::array<double, 3> lengths{0.0, 0.0, 0.0};
-    for (const auto& row : row_lengths) {
+    double span = 0.0;
+    for (const Row& row : row_sums) {
         for (size_t r = 0; r < 3; ++r) {
-            lengths[r] += row[r];
+            lengths[r] += row.lengths[r];
         }
+        stats.lit_crossings += row.crossings / double(columns * rows);
+        stats.lit_crossings_visible += row.crossings_visible / double(columns * rows);
+        span += row.span;
     }
     const double total = lengths[0] + lengths[1] + lengths[2];
     if (total > 0.0) {
@@ -159,6 +195,7 @@ RegionStatistics region_statistics(const Scene& scene, int width, int height) {
             stats.ray_fraction[r] = lengths[r] / total;
         }
     }
+    stats.uncertain_span_ratio = lengths[1] > 0.0 ? span / lengths[1] : 0.0;
     for (size_t r = 0; r < 3; ++r) {
         stats.volume_fraction[r] = regions.volume[r] / regions.influence_volume;
     }

@@ -56,9 +56,20 @@ FrameMeasurement measure_frames(gl::SceneRenderer& renderer, gl::VolumeMethod& m
 //                     first surface, the share in lit, uncertain and unlit regions (exact, from
 //                     each ray's walk through the tree, on a grid of at most 160 rays across);
 //   volume fraction   of the influence volume, the share of each region type.
+// And what the region passes can at best cost, on the same rays:
+//   lit crossings     per pixel, twice the maximal lit intervals of the whole eye ray (the
+//                     fewest fragments an analytic pass that shades every face in front of the
+//                     eye can: it enters and leaves each interval once), and of the eye ray up
+//                     to the first surface (what a depth-tested pass could get down to);
+//   uncertain span    the length from the first entry into the uncertain region to the last exit
+//                     (up to the first surface), over the uncertain length itself: what marching
+//                     one spanning interval per pixel walks for each metre of uncertain space.
 struct RegionStatistics {
     std::array<double, 3> ray_fraction{};     // indexed by bt::Region
     std::array<double, 3> volume_fraction{};  // indexed by bt::Region
+    double lit_crossings = 0.0;               // per pixel, whole eye ray
+    double lit_crossings_visible = 0.0;       // per pixel, up to the first surface
+    double uncertain_span_ratio = 0.0;        // spanning interval length / uncertain length
     size_t beams = 0;
     size_t region_faces = 0;  // faces of all region polyhedra
     double build_ms = 0.0;    // beam tree build + region extraction

@@ -16,6 +16,7 @@
 #include <set>
 #include <sstream>
 #include <thread>
+#include <tuple>
 
 #include <glm/detail/setup.hpp>
 
@@ -107,11 +108,12 @@ struct Entry {
     Cell cell;
     double frame_ms = 0.0;
     std::optional<double> error;
+    double volume_ms = 0.0;  // volume_cost_ms
 };
 
 std::vector<Entry> aggregate(const std::vector<StoredRow>& rows, const std::string& metric) {
     std::vector<Entry> entries;
-    std::vector<std::vector<double>> times, errors;
+    std::vector<std::vector<double>> times, errors, volume_times;
     for (const StoredRow& r : rows) {
         auto found = std::find_if(entries.begin(), entries.end(),
                                   [&](const Entry& e) { return e.cell == r.cell; });
@@ -120,14 +122,17 @@ std::vector<Entry> aggregate(const std::vector<StoredRow>& rows, const std::stri
             entries.push_back({r.cell, 0.0, std::nullopt});
             times.emplace_back();
             errors.emplace_back();
+            volume_times.emplace_back();
         }
         times[i].push_back(r.row.at("frame_ms_median").get<double>());
+        volume_times[i].push_back(r.row.value("volume_cost_ms", 0.0));
         if (!metric.empty() && r.row.contains(metric) && r.row.at(metric).is_number()) {
             errors[i].push_back(r.row.at(metric).get<double>());
         }
     }
     for (size_t i = 0; i < entries.size(); ++i) {
         entries[i].frame_ms = median(times[i]);
+        entries[i].volume_ms = median(volume_times[i]);
         if (!errors[i].empty()) {
             double sum = 0.0;
             for (const double e : errors[i]) {
@@ -161,20 +166,23 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
     const CellMeasure lookup = [&](const Cell& cell) -> std::optional<CellSummary> {
         for (const Entry& e : entries) {
             if (e.cell == cell && e.error) {
-                return CellSummary{*e.error, e.frame_ms};
+                return CellSummary{*e.error, e.frame_ms, e.volume_ms};
             }
         }
         return std::nullopt;
     };
     std::string csv =
         "target,scene,width,height,method,params,parameter,value,reached,complete,rel_rmse,"
-        "frame_ms,fps,best_baseline,speedup_vs_best_baseline,probes\n";
+        "frame_ms,fps,best_baseline,speedup_vs_best_baseline,volume_cost_ms,"
+        "best_volume_baseline,volume_speedup_vs_best_baseline,probes\n";
     std::string md = "## Equal error\n\n";
     md += fmt::format(
         "Per method, the cheapest value of its cost parameter whose relative RMSE of I_s reaches "
         "the target (bisection in log space, tolerance {:.0f}%), the median frame time there and "
-        "the speed-up against the fastest of the pure methods ({}) at the same target. Methods "
-        "without a cost parameter are measured as they are.\n",
+        "the speed-up against the fastest of the pure methods ({}) at the same target; then "
+        "(vol) the volume cost — the volume pass's GPU time plus the method's CPU work per "
+        "frame — of its cheapest variant by that cost, and the speed-up against the pure "
+        "method cheapest by it. Methods without a cost parameter are measured as they are.\n",
         100 * x.equal_error->tolerance, fmt::join(x.equal_error->baselines, ", "));
 
     const std::vector<Cell> groups = search_groups(x);
@@ -190,11 +198,12 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
             md += "---:|";
         }
         md += "\n";
-        std::map<std::tuple<std::string, int, int>, const SearchOutcome*> baselines;
+        std::map<std::tuple<std::string, int, int>, const SearchOutcome*> baselines,
+            volume_baselines;
         for (const std::string& scene : x.scenes) {
             for (const auto& [w, h] : x.sizes) {
-                // Each method's cheapest reached variant.
-                std::map<std::string, const SearchOutcome*> best;
+                // Each method's cheapest reached variant, by frame time and by volume cost.
+                std::map<std::string, const SearchOutcome*> best, best_volume;
                 for (const SearchOutcome& o : outcomes) {
                     if (o.group.scene != scene || o.group.width != w || o.group.height != h ||
                         !o.reached || !o.complete) {
@@ -204,18 +213,31 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
                     if (!b || o.summary.frame_ms < b->summary.frame_ms) {
                         b = &o;
                     }
-                }
-                const SearchOutcome* baseline = nullptr;
-                for (const std::string& name : x.equal_error->baselines) {
-                    if (best.contains(name) &&
-                        (!baseline || best[name]->summary.frame_ms < baseline->summary.frame_ms)) {
-                        baseline = best[name];
+                    const SearchOutcome*& v = best_volume[o.group.method];
+                    if (!v || o.summary.volume_ms < v->summary.volume_ms) {
+                        v = &o;
                     }
                 }
-                baselines[{scene, w, h}] = baseline;
-                auto speedup = [&](const SearchOutcome& o) {
-                    return baseline ? baseline->summary.frame_ms / o.summary.frame_ms : 0.0;
+                auto best_of = [&](std::map<std::string, const SearchOutcome*>& of, auto cost,
+                                   bool baseline_methods) {
+                    const SearchOutcome* found = nullptr;
+                    const auto& names = x.equal_error->baselines;
+                    for (const auto& [method, o] : of) {
+                        const bool is_baseline =
+                            std::find(names.begin(), names.end(), method) != names.end();
+                        if (is_baseline == baseline_methods &&
+                            (!found || cost(*o) < cost(*found))) {
+                            found = o;
+                        }
+                    }
+                    return found;
                 };
+                auto frame = [](const SearchOutcome& o) { return o.summary.frame_ms; };
+                auto volume = [](const SearchOutcome& o) { return o.summary.volume_ms; };
+                const SearchOutcome* baseline = best_of(best, frame, true);
+                const SearchOutcome* baseline_volume = best_of(best_volume, volume, true);
+                baselines[{scene, w, h}] = baseline;
+                volume_baselines[{scene, w, h}] = baseline_volume;
                 md += fmt::format("| {} | {}x{} |", scene, w, h);
                 for (const std::string& method : x.methods) {
                     if (!best.contains(method)) {
@@ -223,36 +245,43 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
                         continue;
                     }
                     const SearchOutcome& o = *best[method];
+                    const SearchOutcome& v = *best_volume[method];
                     md += fmt::format(
-                        " {}{:.1f} ms{} |",
+                        " {}{:.1f} ms{} · vol {}{:.1f} ms{} |",
                         o.parameter.empty() ? "" : fmt::format("{}={}: ", o.parameter, o.value),
                         o.summary.frame_ms,
-                        baseline ? fmt::format(" (×{:.2f})", speedup(o)) : std::string());
+                        baseline ? fmt::format(" (×{:.2f})", frame(*baseline) / frame(o))
+                                 : std::string(),
+                        &v == &o ? "" : fmt::format("at {}={} ", v.parameter, v.value),
+                        v.summary.volume_ms,
+                        baseline_volume
+                            ? fmt::format(" (×{:.2f})", volume(*baseline_volume) / volume(v))
+                            : std::string());
                 }
                 md += "\n";
-                // The headline: the best method that is not a baseline against the best baseline.
-                const SearchOutcome* hybrid = nullptr;
-                for (const auto& [method, o] : best) {
-                    const auto& b = x.equal_error->baselines;
-                    if (std::find(b.begin(), b.end(), method) == b.end() &&
-                        (!hybrid || o->summary.frame_ms < hybrid->summary.frame_ms)) {
-                        hybrid = o;
-                    }
-                }
-                if (hybrid && baseline) {
+                // The headline: the best method that is not a baseline against the best baseline,
+                // on the whole frame and on the volume cost.
+                const SearchOutcome* hybrid = best_of(best, frame, false);
+                const SearchOutcome* hybrid_volume = best_of(best_volume, volume, false);
+                if (hybrid && baseline && hybrid_volume && baseline_volume) {
                     headlines.push_back(fmt::format(
-                        "- {:.3g}% on {} {}x{}: **{}** {:.1f} ms vs **{}** {:.1f} ms: ×{:.2f}",
-                        100 * target, scene, w, h, hybrid->group.method, hybrid->summary.frame_ms,
-                        baseline->group.method, baseline->summary.frame_ms, speedup(*hybrid)));
+                        "- {:.3g}% on {} {}x{}: frame **{}** {:.1f} ms vs **{}** {:.1f} ms: "
+                        "×{:.2f}; volume cost **{}** {:.1f} ms vs **{}** {:.1f} ms: ×{:.2f}",
+                        100 * target, scene, w, h, hybrid->group.method, frame(*hybrid),
+                        baseline->group.method, frame(*baseline), frame(*baseline) / frame(*hybrid),
+                        hybrid_volume->group.method, volume(*hybrid_volume),
+                        baseline_volume->group.method, volume(*baseline_volume),
+                        volume(*baseline_volume) / volume(*hybrid_volume)));
                 }
             }
         }
         for (const SearchOutcome& o : outcomes) {
-            const SearchOutcome* baseline =
-                baselines[{o.group.scene, o.group.width, o.group.height}];
+            const auto key = std::tuple{o.group.scene, o.group.width, o.group.height};
+            const SearchOutcome* baseline = baselines[key];
+            const SearchOutcome* volume_baseline = volume_baselines[key];
             const bool measured = o.complete && (o.reached || !o.value.empty());
             csv += fmt::format(
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", target,
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", target,
                 csv_field(o.group.scene), o.group.width, o.group.height, o.group.method,
                 csv_field(o.group.settings_text()), o.parameter, o.value, o.reached ? 1 : 0,
                 o.complete ? 1 : 0, measured ? fmt::format("{}", o.summary.rel_rmse) : "",
@@ -261,6 +290,11 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
                 baseline ? baseline->group.method : "",
                 baseline && o.reached
                     ? fmt::format("{}", baseline->summary.frame_ms / o.summary.frame_ms)
+                    : "",
+                measured ? fmt::format("{}", o.summary.volume_ms) : "",
+                volume_baseline ? volume_baseline->group.method : "",
+                volume_baseline && o.reached
+                    ? fmt::format("{}", volume_baseline->summary.volume_ms / o.summary.volume_ms)
                     : "",
                 o.probes.size());
         }
@@ -277,10 +311,15 @@ std::string regions_table(const std::vector<StoredRow>& rows) {
     std::string md =
         "Eye-ray fraction: of the eye-ray length inside the light's cone and range, in front of "
         "the first surface, the share in each region type. Volume fraction: of the influence "
-        "volume.\n\n"
+        "volume. Lit crossings: per pixel, twice the maximal lit intervals along the whole eye "
+        "ray (the fewest fragments an analytic pass without a depth test draws) and up to the "
+        "first surface. Uncertain span: the length from the first uncertain entry to "
+        "the last exit over the uncertain length (what one spanning interval per pixel "
+        "marches).\n\n"
         "| scene | size | beams | region faces | eye-ray fraction lit / uncertain / unlit | "
-        "volume fraction lit / uncertain / unlit | tree + regions ms |\n"
-        "|---|---|---:|---:|---:|---:|---:|\n";
+        "volume fraction lit / uncertain / unlit | lit crossings / px (ray / visible) | "
+        "uncertain span | tree + regions ms |\n"
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     std::set<std::pair<std::string, std::string>> done;
     for (const StoredRow& r : rows) {
         if (!done.insert({r.cell.scene, r.cell.size()}).second) {
@@ -289,14 +328,44 @@ std::string regions_table(const std::vector<StoredRow>& rows) {
         const Json& v = r.row;
         md += fmt::format(
             "| {} | {} | {} | {} | {:.1f}% / {:.1f}% / {:.1f}% | {:.1f}% / {:.1f}% / {:.1f}% | "
-            "{:.1f} |\n",
+            "{:.2f} / {:.2f} | {:.2f}x | {:.1f} |\n",
             r.cell.scene, r.cell.size(), v.value("beams", 0), v.value("region_faces", 0),
             100 * v.value("ray_frac_lit", 0.0), 100 * v.value("ray_frac_uncertain", 0.0),
             100 * v.value("ray_frac_unlit", 0.0), 100 * v.value("volume_frac_lit", 0.0),
             100 * v.value("volume_frac_uncertain", 0.0), 100 * v.value("volume_frac_unlit", 0.0),
-            v.value("cpu_ms_beamtree_regions", 0.0));
+            v.value("lit_crossings", 0.0), v.value("lit_crossings_visible", 0.0),
+            v.value("uncertain_span_ratio", 0.0), v.value("cpu_ms_beamtree_regions", 0.0));
     }
     return md;
+}
+
+// Per method, scene and size with an analytic pass: its fragments per pixel against the fewest
+// it could draw (the lit crossings of the regions table).
+std::string fragments_table(const std::vector<StoredRow>& rows) {
+    std::string md;
+    std::set<std::tuple<std::string, std::string, std::string>> done;
+    for (const StoredRow& r : rows) {
+        const Json& v = r.row;
+        if (!v.contains("stat_fragments_analytic") || !v["stat_fragments_analytic"].is_number() ||
+            !done.insert({r.cell.method, r.cell.scene, r.cell.size()}).second) {
+            continue;
+        }
+        const double pixels = v.value("width", 1.0) * v.value("height", 1.0);
+        const double per_pixel = v["stat_fragments_analytic"].get<double>() / pixels;
+        const double minimum = v.value("lit_crossings", 0.0);
+        md += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {} |\n", r.cell.method, r.cell.scene,
+                          r.cell.size(), per_pixel, minimum,
+                          minimum > 0.0 ? fmt::format("{:.2f}x", per_pixel / minimum) : "");
+    }
+    if (md.empty()) {
+        return md;
+    }
+    return "\n## Analytic-pass fragments\n\nFragments the analytic pass shades per pixel "
+           "(`stat_fragments_analytic` over the image), the fewest it could (lit crossings per "
+           "pixel along the whole eye ray, regions table), and their ratio.\n\n"
+           "| method | scene | size | fragments / px | minimum / px | ratio |\n"
+           "|---|---|---|---:|---:|---:|\n" +
+           md;
 }
 
 }  // namespace
@@ -460,6 +529,9 @@ std::string results_csv(const std::vector<StoredRow>& rows) {
                                                     "volume_frac_lit",
                                                     "volume_frac_uncertain",
                                                     "volume_frac_unlit",
+                                                    "lit_crossings",
+                                                    "lit_crossings_visible",
+                                                    "uncertain_span_ratio",
                                                     "beams",
                                                     "region_faces",
                                                     "samples_or_slices",
@@ -743,7 +815,7 @@ void write_summary(const Experiment& x, const fs::path& out) {
         "\n## Regions\n\nThe beam tree of each scene and the fractions of the eye-ray length "
         "inside the light's cone (in front of the first surface) that lie in its lit, uncertain "
         "and unlit regions.\n\n" +
-        regions_table(rows);
+        regions_table(rows) + fragments_table(rows);
     OutputFiles files(out);
     files.add_text("results.csv", results_csv(rows));
     files.add_text("table.md", md);

@@ -103,7 +103,15 @@ namespace sl::gl {
     X(PFNGLGETTEXTURELEVELPARAMETERIVPROC, GetTextureLevelParameteriv)   \
     X(PFNGLPROGRAMUNIFORM2FPROC, ProgramUniform2f)                       \
     X(PFNGLREADBUFFERPROC, ReadBuffer)                                   \
-    X(PFNGLREADPIXELSPROC, ReadPixels)
+    X(PFNGLREADPIXELSPROC, ReadPixels)                                   \
+    X(PFNGLCLEARNAMEDBUFFERDATAPROC, ClearNamedBufferData)               \
+    X(PFNGLGETNAMEDBUFFERSUBDATAPROC, GetNamedBufferSubData)             \
+    X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                             \
+    X(PFNGLCOLORMASKPROC, ColorMask)                                     \
+    X(PFNGLSTENCILFUNCPROC, StencilFunc)                                 \
+    X(PFNGLSTENCILOPPROC, StencilOp)                                     \
+    X(PFNGLSTENCILMASKPROC, StencilMask)                                 \
+    X(PFNGLCLEARNAMEDFRAMEBUFFERFIPROC, ClearNamedFramebufferfi)
 
 struct Api {
 #define SL_GL_DECLARE(type, name) type name = nullptr;

@@ -91,7 +91,7 @@ private:
         GL.TextureSubImage2D(texture_.id(), 0, 0, 0, width_, height_, GL_RGB, GL_FLOAT, rgb.data());
         if (!program_) {
             program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                                           {GL_FRAGMENT_SHADER, "reference/shaders/copy.frag"}});
+                                           {GL_FRAGMENT_SHADER, "gl/shaders/copy.frag"}});
             vertex_array_ = gl::create_vertex_array();
         }
     }

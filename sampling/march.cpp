@@ -5,11 +5,13 @@
 
 #include "analytic/region_pass.h"
 #include "beamtree/beam_tree.h"
+#include "beamtree/boundary.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
+#include "sampling/region_lists.h"
 
 namespace sl::sampling {
 
@@ -21,7 +23,7 @@ using gl::Parameter;
 // Uniform locations of sampling/shaders/march.frag and march_resolve.frag.
 namespace march_uniform {
 constexpr GLint samples = 0, jitter = 1, clip_mode = 2, buffer_scale = 3, attenuation = 4,
-                optical_thickness = 5, animate_phase = 6, time = 7, interval_mode = 8,
+                optical_thickness = 5, animate_phase = 6, time = 7, interval_mode = 8, adaptive = 9,
                 clip_planes = 10;
 }
 namespace resolve_uniform {
@@ -29,6 +31,8 @@ constexpr GLint buffer_scale = 0, blur = 1;
 }
 
 constexpr double kScales[] = {1.0, 0.5, 0.25};
+// SSBO bindings of beamtree/shaders/classify.glsl.
+constexpr GLuint kTreeNodesBinding = 1, kTreePlanesBinding = 2;
 
 class MarchMethod final : public gl::VolumeMethod {
 public:
@@ -40,7 +44,22 @@ public:
                  .max = 4096,
                  .description = variant == MarchVariant::march
                                     ? "samples per eye ray over its clipped trace"
-                                    : "samples per eye ray over its uncertain interval"});
+                                    : "the most samples an eye ray spends on its uncertain "
+                                      "intervals"});
+        if (variant == MarchVariant::hybrid3) {
+            declare({.name = "density",
+                     .default_value = 256.0,
+                     .min = 1e-3,
+                     .max = 1e7,
+                     .description = "samples per metre of uncertain interval: N = clamp(ceil("
+                                    "density x length), min_samples, samples)"});
+            declare({.name = "min_samples",
+                     .type = Parameter::Type::integer,
+                     .default_value = 2,
+                     .min = 1,
+                     .max = 4096,
+                     .description = "the fewest samples a ray with any uncertain length gets"});
+        }
         declare({.name = "resolution_scale",
                  .type = Parameter::Type::choice,
                  .default_value = 0,
@@ -94,13 +113,19 @@ public:
             const auto start = std::chrono::steady_clock::now();
             const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
             const bt::Regions regions = bt::extract_regions(tree);
-            const bt::RegionMesh lit = regions.mesh(bt::Region::lit);
-            const bt::RegionMesh uncertain = regions.mesh(bt::Region::uncertain);
+            const bt::RegionMesh lit = bt::boundary_mesh(tree, regions, bt::Region::lit);
+            const bt::RegionMesh uncertain =
+                bt::boundary_mesh(tree, regions, bt::Region::uncertain);
+            const bt::GpuTree gpu = tree.gpu_tree();
             beamtree_ms_ =
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                     .count();
             analytic_.upload(scene, lit.positions, lit.triangles);
-            upload_uncertain(uncertain);
+            lists_.upload(bt::RegionMesh{}, uncertain);
+            tree_nodes_ =
+                gl::create_buffer(gpu.nodes.data(), gpu.nodes.size() * sizeof(gpu.nodes[0]));
+            tree_planes_ =
+                gl::create_buffer(gpu.planes.data(), gpu.planes.size() * sizeof(gpu.planes[0]));
         }
         clip_planes_.clear();
         for (const bt::Plane& plane : bt::influence_planes(scene.light)) {
@@ -126,14 +151,12 @@ public:
         allocate(inputs.width, inputs.height, scale);
         const bool hybrid = variant_ == MarchVariant::hybrid3;
         if (hybrid) {
-            inputs.timeline.section("intervals");
-            draw_intervals(inputs);
-            for (GLuint unit = 1; unit <= 3; ++unit)
-                GL.BindTextureUnit(unit, interval_textures_[unit - 1].id());
-            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
-            GL.Viewport(0, 0, inputs.width, inputs.height);
+            inputs.timeline.section("region lists");
+            lists_.build(inputs);
             inputs.timeline.section("analytic");
-            analytic_.draw(inputs, true);  // leaves units 1-3 (the intervals) bound
+            analytic_.draw(inputs);
+            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreeNodesBinding, tree_nodes_.id());
+            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreePlanesBinding, tree_planes_.id());
         }
 
         inputs.timeline.section("march");
@@ -156,6 +179,10 @@ public:
                             hybrid ? 0 : int(parameter("animate_phase")));
         GL.ProgramUniform1f(program, march_uniform::time, float(frame_index_++) / 60.0f);
         GL.ProgramUniform1i(program, march_uniform::interval_mode, hybrid ? 1 : 0);
+        if (hybrid) {
+            GL.ProgramUniform2f(program, march_uniform::adaptive, float(parameter("density")),
+                                float(parameter("min_samples")));
+        }
         GL.ProgramUniform4fv(program, march_uniform::clip_planes, 6, clip_planes_.data());
         GL.BindTextureUnit(0, inputs.surface_depth);
         GL.BindVertexArray(empty_vertex_array_.id());
@@ -189,8 +216,9 @@ public:
         if (variant_ == MarchVariant::hybrid3) {
             stats.insert(stats.end(), {{"cpu_ms_beamtree", beamtree_ms_},
                                        {"region_faces", double(analytic_.triangle_count())},
-                                       {"uncertain_faces", double(uncertain_count_ / 3)},
-                                       {"fragments_analytic", analytic_.fragments()}});
+                                       {"uncertain_faces", double(lists_.triangle_count(1))},
+                                       {"fragments_analytic", analytic_.fragments()},
+                                       {"list_overflows", double(lists_.overflows())}});
         }
         return stats;
     }
@@ -202,10 +230,6 @@ public:
         gl::TextureViews views = {
             {name() + "/marching buffer (rgb I_s, a samples)", march_target_.id()}};
         if (variant_ == MarchVariant::hybrid3) {
-            const char* names[3] = {"uncertain entry", "uncertain exit", "camera inside"};
-            for (int i = 0; i < 3; ++i) {
-                views.push_back({name() + "/interval " + names[i], interval_textures_[i].id()});
-            }
             for (gl::TextureView& view : analytic_.textures(name())) {
                 views.push_back(std::move(view));
             }
@@ -229,75 +253,16 @@ private:
         march_framebuffer_ = gl::create_framebuffer();
         GL.NamedFramebufferTexture(march_framebuffer_.id(), GL_COLOR_ATTACHMENT0,
                                    march_target_.id(), 0);
-        if (variant_ == MarchVariant::hybrid3) {
-            interval_framebuffer_ = gl::create_framebuffer();
-            const GLenum attachments[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
-                                           GL_COLOR_ATTACHMENT2};
-            for (int i = 0; i < 3; ++i) {
-                interval_textures_[i] = gl::create_texture_2d(GL_R32F, width, height, GL_NEAREST);
-                GL.NamedFramebufferTexture(interval_framebuffer_.id(), attachments[i],
-                                           interval_textures_[i].id(), 0);
-            }
-            GL.NamedFramebufferDrawBuffers(interval_framebuffer_.id(), 3, attachments);
-        }
-    }
-
-    void upload_uncertain(const bt::RegionMesh& mesh) {
-        uncertain_count_ = GLsizei(mesh.triangles.size() * 3);
-        uncertain_vertices_ =
-            gl::create_buffer(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
-        uncertain_indices_ =
-            gl::create_buffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
-        uncertain_vertex_array_ = gl::create_vertex_array();
-        const GLuint vao = uncertain_vertex_array_.id();
-        GL.VertexArrayVertexBuffer(vao, 0, uncertain_vertices_.id(), 0, sizeof(glm::vec3));
-        GL.VertexArrayElementBuffer(vao, uncertain_indices_.id());
-        GL.EnableVertexArrayAttrib(vao, 0);
-        GL.VertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-        GL.VertexArrayAttribBinding(vao, 0, 0);
-        if (!interval_program_) {
-            interval_program_ = gl::create_program(
-                {{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
-                 {GL_FRAGMENT_SHADER, "sampling/shaders/uncertain_interval.frag"}});
-        }
-    }
-
-    // Nearest entry (MIN), farthest exit (MAX) and the camera-inside count (ADD) per pixel.
-    void draw_intervals(const gl::VolumeInputs& inputs) {
-        const GLuint fb = interval_framebuffer_.id();
-        GL.BindFramebuffer(GL_FRAMEBUFFER, fb);
-        GL.Viewport(0, 0, inputs.width, inputs.height);
-        const float far_entry[4] = {1e30f, 0, 0, 0}, zero[4] = {0, 0, 0, 0};
-        GL.ClearNamedFramebufferfv(fb, GL_COLOR, 0, far_entry);
-        GL.ClearNamedFramebufferfv(fb, GL_COLOR, 1, zero);
-        GL.ClearNamedFramebufferfv(fb, GL_COLOR, 2, zero);
-        if (uncertain_count_ == 0)
-            return;
-        GL.Enable(GL_BLEND);
-        GL.BlendFunc(GL_ONE, GL_ONE);
-        GL.BlendEquationi(0, GL_MIN);
-        GL.BlendEquationi(1, GL_MAX);
-        GL.BlendEquationi(2, GL_FUNC_ADD);
-        GL.Enable(GL_DEPTH_CLAMP);
-        GL.UseProgram(interval_program_.id());
-        GL.BindVertexArray(uncertain_vertex_array_.id());
-        GL.DrawElements(GL_TRIANGLES, uncertain_count_, GL_UNSIGNED_INT, nullptr);
-        GL.Disable(GL_DEPTH_CLAMP);
-        GL.BlendEquation(GL_FUNC_ADD);
-        GL.Disable(GL_BLEND);
     }
 
     MarchVariant variant_;
     analytic::AnalyticRegionPass analytic_;
-    gl::Program march_program_, resolve_program_, interval_program_;
+    gl::Program march_program_, resolve_program_;
     gl::VertexArray empty_vertex_array_;
     gl::Texture march_target_;
     gl::Framebuffer march_framebuffer_;
-    gl::Texture interval_textures_[3];
-    gl::Framebuffer interval_framebuffer_;
-    gl::Buffer uncertain_vertices_, uncertain_indices_;
-    gl::VertexArray uncertain_vertex_array_;
-    GLsizei uncertain_count_ = 0;
+    RegionLists lists_;                    // hybrid3: where each ray is uncertain
+    gl::Buffer tree_nodes_, tree_planes_;  // and the tree, where a list overflows
     std::vector<float> clip_planes_;
     int buffer_width_ = 0, buffer_height_ = 0, frame_width_ = 0, frame_height_ = 0;
     int frame_index_ = 0;

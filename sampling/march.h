@@ -6,13 +6,15 @@
 //            jitter, the shared model or Moschos' eq. 3.1, phase animation; then depth-aware
 //            upsampling, optionally through the 5x5 Gaussian of algorithm 3 or its depth-aware
 //            variant.
-//   hybrid3  the lit regions in closed form plus the marcher spending all N samples on each
-//            pixel's uncertain interval (nearest entry to farthest exit of the uncertain
-//            regions); the lit parts inside that interval are left out of the closed form, so
-//            nothing is counted twice.
+//   hybrid3  the lit regions in closed form (the boundary of their union, beamtree/boundary.h)
+//            plus the marcher inside each pixel's uncertain intervals only (per-pixel lists of
+//            the uncertain surface's crossings, sampling/region_lists.h), with samples in
+//            proportion to their length: N = clamp(ceil(density x length), min_samples,
+//            samples). Lit and uncertain regions are disjoint: nothing is counted twice.
 // Parameters: samples, resolution_scale, blur, shadow, shadow_size, jitter, clip (march),
-// attenuation, optical_thickness, animate_phase (march). Statistics: samples evaluated (after
-// dark-sample skipping), buffer size, and for hybrid3 the beam tree's time and region faces.
+// attenuation, optical_thickness, animate_phase (march), density, min_samples (hybrid3).
+// Statistics: samples evaluated (after dark-sample skipping), buffer size, and for hybrid3 the
+// beam tree's time, region faces and the pixels whose list overflowed.
 
 #include <memory>
 

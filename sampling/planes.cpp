@@ -8,11 +8,13 @@
 
 #include "analytic/region_pass.h"
 #include "beamtree/beam_tree.h"
+#include "beamtree/boundary.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
+#include "sampling/region_lists.h"
 #include "sampling/slices.h"
 
 namespace sl::sampling {
@@ -26,6 +28,9 @@ using gl::Parameter;
 constexpr GLint kDzLocation = 0;
 constexpr GLint kKnownLitLocation = 1;
 constexpr GLint kJitterLocation = 2;
+constexpr GLint kClassifyLocation = 3;
+// SSBO bindings of beamtree/shaders/classify.glsl.
+constexpr GLuint kTreeNodesBinding = 1, kTreePlanesBinding = 2;
 
 double ms_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -61,6 +66,15 @@ public:
                  .max = 1,
                  .description = "1: offset each pixel's sample within its slab (noise for bands)"});
         declare_shadow_parameters();
+        if (variant != PlanesVariant::planes) {
+            declare({.name = "partition",
+                     .type = Parameter::Type::choice,
+                     .default_value = 0,
+                     .description = "gpu: each plane sample classified by the beam tree on the "
+                                    "GPU (beamtree/shaders/classify.glsl); cpu: every plane cut "
+                                    "by the tree on the CPU each frame (Nilsson's method)",
+                     .choices = {"gpu", "cpu"}});
+        }
     }
 
     std::string name() const override {
@@ -83,10 +97,17 @@ public:
         if (variant_ != PlanesVariant::planes) {
             const auto start = std::chrono::steady_clock::now();
             tree_ = std::make_unique<bt::BeamTree>(bt::build_scene_beam_tree(scene));
+            const bt::Regions regions = bt::extract_regions(*tree_);
+            const bt::RegionMesh lit = bt::boundary_mesh(*tree_, regions, bt::Region::lit);
             if (variant_ == PlanesVariant::hybrid2) {
-                const bt::RegionMesh lit = bt::extract_regions(*tree_).mesh(bt::Region::lit);
                 analytic_.upload(scene, lit.positions, lit.triangles);
             }
+            lists_.upload(lit, bt::boundary_mesh(*tree_, regions, bt::Region::uncertain));
+            const bt::GpuTree gpu = tree_->gpu_tree();
+            tree_nodes_ =
+                gl::create_buffer(gpu.nodes.data(), gpu.nodes.size() * sizeof(gpu.nodes[0]));
+            tree_planes_ =
+                gl::create_buffer(gpu.planes.data(), gpu.planes.size() * sizeof(gpu.planes[0]));
             beamtree_ms_ = ms_since(start);
         }
         if (!program_) {
@@ -119,7 +140,8 @@ public:
         // Pieces drawn with the shadow lookup, then (hybrid1) the lit ones drawn without it.
         std::vector<PlaneVertex> vertices, lit;
         pieces_ = {};
-        if (!tree_) {
+        const bool classify_on_gpu = tree_ && parameter("partition") == 0;
+        if (!tree_ || classify_on_gpu) {
             for (const Slice& slice : slices)
                 append_fan(slice.polygon, slice.depth, vertices);
             pieces_[size_t(bt::Region::uncertain)] = slices.size();
@@ -150,20 +172,54 @@ public:
         const GLsizei shadowed_count = GLsizei(vertices.size());
         const GLsizei lit_count = GLsizei(lit.size());
         vertices.insert(vertices.end(), lit.begin(), lit.end());
-        partition_ms_ = tree_ ? ms_since(start) : 0.0;
+        partition_ms_ = tree_ && !classify_on_gpu ? ms_since(start) : 0.0;
         slice_count_ = slices.size();
         GL.NamedBufferData(vertex_buffer_.id(), GLsizeiptr(vertices.size() * sizeof(PlaneVertex)),
                            vertices.data(), GL_STREAM_DRAW);
 
+        GLint target = 0;
+        GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+        if (classify_on_gpu) {
+            // The planes go to a target of their own with a stencil: the region lists mark the
+            // pixels whose rays cross a region surface, and the planes are drawn only there.
+            allocate(inputs.width, inputs.height);
+            GL.BindFramebuffer(GL_FRAMEBUFFER, own_framebuffer_.id());
+            const float zero[4] = {0, 0, 0, 0};
+            GL.ClearNamedFramebufferfv(own_framebuffer_.id(), GL_COLOR, 0, zero);
+            GL.ClearNamedFramebufferfi(own_framebuffer_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
+            inputs.timeline.section("region lists");
+            lists_.build(inputs, true);
+        }
         if (variant_ == PlanesVariant::hybrid2) {
             inputs.timeline.section("analytic");
+            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
             analytic_.draw(inputs);
+            if (classify_on_gpu) {
+                GL.BindFramebuffer(GL_FRAMEBUFFER, own_framebuffer_.id());
+            }
         }
         inputs.timeline.section("planes");
+        if (classify_on_gpu) {
+            GL.Enable(GL_STENCIL_TEST);
+            GL.StencilMask(0);
+            const GLuint bits =
+                variant_ == PlanesVariant::hybrid1
+                    ? RegionLists::kLitStencilBit | RegionLists::kUncertainStencilBit
+                    : RegionLists::kUncertainStencilBit;
+            GL.StencilFunc(GL_NOTEQUAL, 0, bits);
+        }
         GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
         GL.UseProgram(program_.id());
         GL.ProgramUniform1f(program_.id(), kDzLocation, float(dz));
         GL.ProgramUniform1i(program_.id(), kJitterLocation, int(parameter("jitter")));
+        GL.ProgramUniform1i(program_.id(), kClassifyLocation,
+                            !classify_on_gpu                     ? 0
+                            : variant_ == PlanesVariant::hybrid1 ? 1
+                                                                 : 2);
+        if (classify_on_gpu) {
+            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreeNodesBinding, tree_nodes_.id());
+            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreePlanesBinding, tree_planes_.id());
+        }
         GL.BindTextureUnit(0, inputs.surface_depth);
         GL.Enable(GL_BLEND);
         GL.BlendFunc(GL_ONE, GL_ONE);
@@ -176,8 +232,37 @@ public:
             GL.DrawArrays(GL_TRIANGLES, shadowed_count, lit_count);
         }
         GL.Disable(GL_DEPTH_CLAMP);
-        GL.Disable(GL_BLEND);
         GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
+        if (classify_on_gpu) {
+            GL.StencilMask(0xff);
+            GL.Disable(GL_STENCIL_TEST);
+            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+            GL.UseProgram(copy_program_.id());
+            GL.BindTextureUnit(0, own_target_.id());
+            GL.BindVertexArray(empty_vertex_array_.id());
+            GL.DrawArrays(GL_TRIANGLES, 0, 3);  // added into the frame's I_s
+        }
+        GL.Disable(GL_BLEND);
+    }
+
+    void allocate(int width, int height) {
+        if (width == own_width_ && height == own_height_) {
+            return;
+        }
+        own_width_ = width;
+        own_height_ = height;
+        own_target_ = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
+        own_stencil_ = gl::create_texture_2d(GL_DEPTH24_STENCIL8, width, height, GL_NEAREST);
+        own_framebuffer_ = gl::create_framebuffer();
+        GL.NamedFramebufferTexture(own_framebuffer_.id(), GL_COLOR_ATTACHMENT0, own_target_.id(),
+                                   0);
+        GL.NamedFramebufferTexture(own_framebuffer_.id(), GL_DEPTH_STENCIL_ATTACHMENT,
+                                   own_stencil_.id(), 0);
+        if (!copy_program_) {
+            copy_program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                                {GL_FRAGMENT_SHADER, "gl/shaders/copy.frag"}});
+            empty_vertex_array_ = gl::create_vertex_array();
+        }
     }
 
     gl::TextureViews textures() const override { return analytic_.textures(name()); }
@@ -185,7 +270,9 @@ public:
     gl::MethodStatistics statistics() const override {
         GLuint64 fragments = 0;
         GL.GetQueryObjectui64v(fragments_.id(), GL_QUERY_RESULT, &fragments);
+        // cpu_ms_frame: the CPU work every frame (the volume cost's CPU part).
         gl::MethodStatistics stats = {{"cpu_ms_slicing", slicing_ms_},
+                                      {"cpu_ms_frame", slicing_ms_ + partition_ms_},
                                       {"slices", double(slice_count_)},
                                       {"fragments", double(fragments)}};
         if (tree_) {
@@ -209,6 +296,14 @@ private:
     analytic::AnalyticRegionPass analytic_;
     gl::Program program_;
     gl::Buffer vertex_buffer_;
+    gl::Buffer tree_nodes_, tree_planes_;  // the tree for the GPU's classify
+    RegionLists lists_;
+    // partition = gpu: the planes' own target and stencil, added into the frame's I_s.
+    gl::Texture own_target_, own_stencil_;
+    gl::Framebuffer own_framebuffer_;
+    gl::Program copy_program_;
+    gl::VertexArray empty_vertex_array_;
+    int own_width_ = 0, own_height_ = 0;
     gl::VertexArray vertex_array_;
     gl::Query fragments_;
     size_t slice_count_ = 0;

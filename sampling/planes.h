@@ -6,8 +6,13 @@
 //            drawn without the shadow lookup, uncertain pieces with it, unlit pieces dropped;
 //   hybrid2  Nilsson's Method 2 (§5.4): the lit regions integrated in closed form
 //            (analytic/region_pass.h) plus the planes' uncertain pieces only.
-// Parameters: dz, jitter, shadow, shadow_size. Statistics per frame: CPU time of slicing and
-// partitioning, slices, pieces of each kind, fragment-shader invocations of the planes.
+// The hybrids' `partition`: gpu (default) classifies each plane sample with the beam tree on
+// the GPU (beamtree/shaders/classify.glsl) and draws the planes whole; cpu is Nilsson's method,
+// every plane cut by the tree on the CPU each frame. hybrid2's lit regions are the boundary of
+// their union (beamtree/boundary.h).
+// Parameters: dz, jitter, shadow, shadow_size, partition. Statistics per frame: CPU time of
+// slicing and partitioning (and their sum, cpu_ms_frame), slices, pieces of each kind (cpu),
+// fragment-shader invocations of the planes.
 
 #include <memory>
 

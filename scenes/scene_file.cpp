@@ -443,8 +443,9 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
         const std::string count_text = name.substr(kMultiple.size());
         char* end = nullptr;
         const long count = std::strtol(count_text.c_str(), &end, 10);
-        if (count_text.empty() || *end != '\0' || count < 1 || count > 100000) {
-            fail("scene {}: N in multiple:N must be an integer in [1, 100000]", quote(name));
+        if (count_text.empty() || *end != '\0' || count < 1 || count > kMultipleMaxCount) {
+            fail("scene {}: N in multiple:N must be an integer in [1, {}]", quote(name),
+                 kMultipleMaxCount);
         }
         return {generate_multiple_scene(int(count)), name, paths.scenes};
     }

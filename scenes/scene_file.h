@@ -69,6 +69,8 @@ std::vector<std::string> effect_scene_names();
 // A scene of N objects on a jittered grid under one spot light (DESIGN.md §5), as TOML text,
 // deterministic in N. `multiple` is multiple:kMultipleDefaultCount.
 constexpr int kMultipleDefaultCount = 32;
+// The largest N: 10^4 objects (a beam tree of ~10^6 beams) is far past any scaling study here.
+constexpr int kMultipleMaxCount = 10000;
 std::string generate_multiple_scene(int count);
 
 // Resolves a canonical name ("toplight"), a generated name ("multiple:120") or a file path.

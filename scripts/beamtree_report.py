@@ -5,10 +5,37 @@ to partition 100 view-aligned planes."""
 import json
 import math
 import os
+import re
 import sys
 
+# The `regions` command's own targets (issue 25): whole command, seconds.
+REGIONS_TARGETS = {"ibl-spheres": 2.0, "multiple:4000": 10.0}
 
-def main(source, target):
+
+def regions_section(path):
+    """The whole `regions` command on big scenes: lines 'scene|wall seconds|its summary line'."""
+    out = ["", "## The `regions` command on big scenes", "",
+           "Wall time of `shaftlab regions --scene S` (volumes, tree, regions, the scene render and "
+           "the regions.png picture of tree walks per pixel, and the files: binary PLY, JSON, PNG), "
+           "all cores.", "",
+           "| scene | beams | wall s | target s | volumes ms | tree ms | regions ms | render ms | "
+           "picture ms | files ms |", "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    with open(path) as f:
+        for line in f:
+            scene, wall, summary = line.rstrip("\n").split("|", 2)
+            beams = re.search(r"(\d+) beams", summary)
+            stage = {k: re.search(k + r" (\d+) ms", summary) for k in
+                     ["volumes", "tree", "regions", "scene render", "picture", "files"]}
+            target = REGIONS_TARGETS.get(scene)
+            verdict = "" if target is None else (
+                f"{target:g} (met)" if float(wall) <= target else f"{target:g} (**not met**)")
+            out.append(f"| {scene} | {beams.group(1) if beams else '?'} | {float(wall):.1f} | "
+                       f"{verdict} | " + " | ".join(
+                           stage[k].group(1) if stage[k] else "?" for k in stage) + " |")
+    return out
+
+
+def main(source, target, regions=None):
     with open(source) as f:
         data = json.load(f)
     rows = {}
@@ -58,9 +85,15 @@ def main(source, target):
         if name.startswith("region_meshes_bench/"):
             out.append(f"| conforming lit + uncertain meshes, {name.split('/')[1]} objects | "
                        f"{b['real_time']:.2f} | {b['triangles']:.0f} triangles |")
+        if name.startswith("boundary_meshes_bench/"):
+            out.append(f"| boundary lit + uncertain meshes (regions as surfaces), "
+                       f"{name.split('/')[1]} objects | {b['real_time']:.2f} | "
+                       f"{b['triangles']:.0f} triangles |")
         if name.startswith("partition_view_planes/"):
             out.append(f"| partition 100 view-aligned planes, {b['polygons']:.0f} outer polygons | "
                        f"{b['real_time']:.2f} | {b['pieces']:.0f} pieces |")
+    if regions:
+        out += regions_section(regions)
     tmp = target + ".tmp"
     with open(tmp, "w") as f:
         f.write("\n".join(out) + "\n")
@@ -68,4 +101,4 @@ def main(source, target):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1], sys.argv[2])
+    main(*sys.argv[1:4])

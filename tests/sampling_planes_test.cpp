@@ -4,6 +4,7 @@
 // the reference).
 
 #include <cmath>
+#include <cstdio>
 
 #include <glm/geometric.hpp>
 
@@ -147,13 +148,21 @@ TEST_F(Sampling, PlanesConvergeAtLeastLinearlyWithoutOccluders) {
 // `hybrid1` changes nothing but visibility: against a CPU sum over the very same samples (slices
 // at (k + ½) dz, weights dz / (V·forward)) with exact visibility from a brute-force ray caster,
 // its error is at most that of `planes`, whose samples go through the shadow map; and the two
-// images agree to a few percent.
+// images agree to a few percent. With the regions found on the GPU (partition=gpu: each plane
+// fragment descends the uploaded tree) and on the CPU (partition=cpu: Nilsson's per-frame
+// partition of every plane), both are that close to the oracle, and to each other up to the
+// float round-off at piece edges; so is hybrid2.
 TEST_F(Sampling, Hybrid1RemovesOnlyShadowMapError) {
     const Scene scene = boxes_scene(MediumModel::simplified);
     const int size = 80;
     const double dz = 0.1;
     const gl::Frame planes = render(scene, "planes", size, {{"dz", "0.1"}, {"shadow", "hard"}});
     const gl::Frame hybrid1 = render(scene, "hybrid1", size, {{"dz", "0.1"}, {"shadow", "hard"}});
+    const gl::Frame hybrid1_cpu =
+        render(scene, "hybrid1", size, {{"dz", "0.1"}, {"shadow", "hard"}, {"partition", "cpu"}});
+    const gl::Frame hybrid2 = render(scene, "hybrid2", size, {{"dz", "0.1"}, {"shadow", "hard"}});
+    const gl::Frame hybrid2_cpu =
+        render(scene, "hybrid2", size, {{"dz", "0.1"}, {"shadow", "hard"}, {"partition", "cpu"}});
 
     const CpuRayCaster caster(scene);
     const PixelUnprojector unproject(scene.camera, size, size);
@@ -188,6 +197,18 @@ TEST_F(Sampling, Hybrid1RemovesOnlyShadowMapError) {
     EXPECT_LE(hybrid1_error, planes_error);
     EXPECT_LT(hybrid1_error, 0.01);
     EXPECT_LT(compare_images(hybrid1.in_scattering, planes.in_scattering).rel_rmse, 0.05);
+    const double hybrid1_cpu_error = compare_images(hybrid1_cpu.in_scattering, oracle).rel_rmse;
+    EXPECT_LT(hybrid1_cpu_error, 0.01);
+    const double gpu_vs_cpu1 =
+        compare_images(hybrid1.in_scattering, hybrid1_cpu.in_scattering).rel_rmse;
+    const double gpu_vs_cpu2 =
+        compare_images(hybrid2.in_scattering, hybrid2_cpu.in_scattering).rel_rmse;
+    std::printf(
+        "against the same-sample oracle: hybrid1 gpu %.2e cpu %.2e; planes %.2e; gpu vs "
+        "cpu: hybrid1 %.2e, hybrid2 %.2e\n",
+        hybrid1_error, hybrid1_cpu_error, planes_error, gpu_vs_cpu1, gpu_vs_cpu2);
+    EXPECT_LT(gpu_vs_cpu1, 2e-3);
+    EXPECT_LT(gpu_vs_cpu2, 2e-3);
 }
 
 // On `toplight` at 256², Method 2 is at least as accurate as `planes` at the same dz (0.5 and

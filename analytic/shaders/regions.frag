@@ -9,12 +9,8 @@
 #include "gl/shaders/lighting.glsl"
 #include "analytic/shaders/in_scattering.glsl"
 #include "gl/shaders/view.glsl"
-#include "gl/shaders/uncertain_interval.glsl"
 
 layout(binding = 0) uniform sampler2D surface_depth;
-// hybrid3: leave the lit parts inside the uncertain interval [a, b] to the ray marcher, whose
-// samples cover the whole interval: ∫ over lit \ [a, b] = Σ ±(G(z) - G(clamp(z, a, b))).
-layout(location = 0) uniform int exclude_interval;
 in vec3 world_position;
 layout(location = 0) out vec4 in_scattered;
 
@@ -27,12 +23,5 @@ void main() {
     // The ray's cone interval, up to the surface it hits (any z beyond it is clamped anyway).
     vec2 span = light_interval(origin, direction, 1e30);
     vec3 g = in_scattering_antiderivative(origin, direction, span, z);
-    if (exclude_interval != 0) {
-        vec2 excluded = uncertain_interval(ivec2(gl_FragCoord.xy));
-        if (excluded.y > excluded.x) {
-            g -= in_scattering_antiderivative(origin, direction, span,
-                                              clamp(z, excluded.x, excluded.y));
-        }
-    }
     in_scattered = vec4(gl_FrontFacing ? -g : g, 0.0);
 }

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "beamtree/beam_tree.h"
+#include "beamtree/boundary.h"
 #include "beamtree/regions.h"
 #include "scenes/scene_file.h"
 
@@ -69,6 +70,23 @@ void region_meshes_bench(benchmark::State& state) {
     state.counters["triangles"] = double(triangles);
 }
 BENCHMARK(region_meshes_bench)->Arg(16)->Arg(165)->Unit(benchmark::kMillisecond);
+
+// The regions as surfaces: the closed boundary meshes of the lit and uncertain unions
+// (beamtree/boundary.h: grouping by plane, cancellation, conforming, crack closing, fans), what
+// `beamtree` and the hybrids draw by default instead of the meshes above.
+void boundary_meshes_bench(benchmark::State& state) {
+    const Prepared p = prepare(int(state.range(0)));
+    const BeamTree tree(p.scene.light, p.volumes);
+    const Regions regions = extract_regions(tree);
+    size_t triangles = 0;
+    for (auto _ : state) {
+        triangles = boundary_mesh(tree, regions, Region::lit).triangles.size() +
+                    boundary_mesh(tree, regions, Region::uncertain).triangles.size();
+        benchmark::DoNotOptimize(triangles);
+    }
+    state.counters["triangles"] = double(triangles);
+}
+BENCHMARK(boundary_meshes_bench)->Arg(16)->Arg(165)->Unit(benchmark::kMillisecond);
 
 // 100 planes facing the camera, spaced evenly through the influence volume's depth range as
 // the sampling-plane methods will place them, partitioned into lit / uncertain / unlit.

@@ -4,7 +4,13 @@
 // far plane), clipped to the light (algorithm 4 on the influence pyramid, or the exact cone and
 // range), then N samples at the middle of N equal steps (or jittered within them), each adding
 // e(z) · visibility · step; samples the shadow map calls dark are skipped before e is evaluated
-// (algorithm 5). `hybrid3` marches only its uncertain interval instead (interval_mode).
+// (algorithm 5). `hybrid3` (interval_mode) marches only the pixel's uncertain intervals instead
+// (sampling/shaders/region_lists.glsl: where its ray is inside the uncertain union, in front of
+// the surface and inside the cone), with samples in proportion to their summed length:
+// N = clamp(ceil(density x length), min_samples, samples), spread over the intervals as one
+// stratified sequence; the lit parts between them are the analytic pass's. A pixel whose list
+// overflowed marches its whole cone interval at the same density (N from the cone interval's
+// length) and keeps the samples the tree calls uncertain (beamtree/shaders/classify.glsl).
 // Output: rgb = I_s, a = samples evaluated (for the method's statistics).
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
@@ -12,7 +18,8 @@
 #include "gl/shaders/shadow.glsl"
 #include "gl/shaders/view.glsl"
 #include "analytic/shaders/in_scattering.glsl"
-#include "gl/shaders/uncertain_interval.glsl"
+#include "beamtree/shaders/classify.glsl"
+#include "sampling/shaders/region_lists.glsl"
 #include "sampling/shaders/ray_clip.glsl"
 
 layout(binding = 0) uniform sampler2D surface_depth;
@@ -25,6 +32,7 @@ layout(location = 5) uniform float optical_thickness;
 layout(location = 6) uniform int animate_phase;
 layout(location = 7) uniform float time;
 layout(location = 8) uniform int interval_mode;
+layout(location = 9) uniform vec2 adaptive;  // hybrid3: x = density (samples per metre), y = min
 layout(location = 10) uniform vec4 clip_planes[6];
 
 layout(location = 0) out vec4 result;
@@ -46,6 +54,48 @@ vec3 moschos_density(vec3 origin, vec3 direction, float t, float g) {
            exp(-r / optical_thickness) * exp(-t / optical_thickness);
 }
 
+// hybrid3: the pixel's uncertain intervals, in front of `end` and inside [start, end], sorted;
+// returns their count (-1: the list overflowed).
+const int MAX_INTERVALS = REGION_LIST_SIZE / 2 + 1;
+int uncertain_intervals(ivec2 pixel, float start, float end, out vec2 intervals[MAX_INTERVALS]) {
+    int count = region_crossing_count(pixel, 1);
+    if (count < 0) return -1;
+    float crossings[REGION_LIST_SIZE];
+    int inside = 0;
+    for (int i = 0; i < count; ++i) {
+        crossings[i] = region_crossing(pixel, 1, i);
+        inside -= crossings[i] > 0.0 ? 1 : -1;  // exits minus entries: inside at t = 0
+    }
+    for (int i = 1; i < count; ++i) {  // insertion sort by distance
+        float c = crossings[i];
+        int j = i - 1;
+        while (j >= 0 && abs(crossings[j]) > abs(c)) {
+            crossings[j + 1] = crossings[j];
+            --j;
+        }
+        crossings[j + 1] = c;
+    }
+    int n = 0;
+    float open = 0.0;
+    for (int i = 0; i <= count; ++i) {
+        bool last = i == count;
+        float t = last ? 1e30 : abs(crossings[i]);
+        int next = last ? 0 : inside + (crossings[i] > 0.0 ? 1 : -1);
+        if (inside <= 0 && next > 0) open = t;
+        if (inside > 0 && (next <= 0 || last)) {
+            float a = max(open, start), b = min(t, end);
+            if (b > a && n < MAX_INTERVALS) intervals[n++] = vec2(a, b);
+        }
+        inside = next;
+    }
+    return n;
+}
+
+vec3 sample_density(vec3 origin, vec3 direction, float t, float g) {
+    return attenuation == 1 ? moschos_density(origin, direction, t, g)
+                            : scattering_density_g(origin, direction, t, g);
+}
+
 void main() {
     // The full-resolution pixel this texel stands for: its centre for a reduced buffer.
     vec2 fragment = (floor(gl_FragCoord.xy) + 0.5) / buffer_scale;
@@ -53,44 +103,83 @@ void main() {
     vec3 direction = eye_ray_direction(fragment);
     float trace_end = min(surface_distance(surface_depth, fragment), far_plane_distance(fragment));
     float start = 0.0, end = trace_end;
-    if (interval_mode != 0) {
-        vec2 interval = uncertain_interval(ivec2(fragment));
-        start = interval.x;
-        end = min(interval.y, trace_end);
+    if (interval_mode != 0 || clip_mode == 2) {
         vec2 cone = light_interval(origin, direction, trace_end);
-        start = max(start, cone.x);
-        end = min(end, cone.y);
+        start = cone.x;
+        end = cone.y;
     } else if (clip_mode == 1) {
         vec3 clipped = clip_trace(origin, direction, trace_end, clip_planes);
         start = clipped.x;
         end = clipped.y;
-    } else if (clip_mode == 2) {
-        vec2 cone = light_interval(origin, direction, trace_end);
-        start = cone.x;
-        end = cone.y;
     }
     if (!(end > start)) {
         result = vec4(0.0);
         return;
     }
-    float step_length = (end - start) / float(samples);
     float offset = jitter != 0 ? interleaved_gradient_noise(floor(gl_FragCoord.xy)) : 0.5;
+    float g = frame.medium_attenuation.w;
     vec3 sum = vec3(0.0);
     int taken = 0;
+    if (interval_mode != 0) {
+        vec2 intervals[MAX_INTERVALS];
+        int n = uncertain_intervals(ivec2(fragment), start, end, intervals);
+        if (n < 0) {
+            // The list overflowed: samples at the same density over the whole cone interval,
+            // each asking the tree, the uncertain ones kept.
+            int count = int(clamp(ceil(adaptive.x * (end - start)), adaptive.y, float(samples)));
+            float step_length = (end - start) / float(count);
+            for (int i = 0; i < count; ++i) {
+                float t = start + (float(i) + offset) * step_length;
+                vec3 p = origin + t * direction;
+                if (classify_region(p) != REGION_UNCERTAIN) continue;
+                float visibility = light_visibility(p);
+                if (visibility <= 0.0) continue;
+                ++taken;
+                sum += sample_density(origin, direction, t, g) * visibility * step_length;
+            }
+            result = vec4(sum, float(taken));
+            return;
+        }
+        float length_sum = 0.0;
+        for (int k = 0; k < n; ++k) length_sum += intervals[k].y - intervals[k].x;
+        if (!(length_sum > 0.0)) {
+            result = vec4(0.0);
+            return;
+        }
+        int count = int(clamp(ceil(adaptive.x * length_sum), adaptive.y, float(samples)));
+        float step_length = length_sum / float(count);
+        // Sample i at (i + offset) step lengths along the intervals laid end to end.
+        int k = 0;
+        float covered = 0.0;
+        for (int i = 0; i < count; ++i) {
+            float s = (float(i) + offset) * step_length;
+            while (k + 1 < n && s > covered + (intervals[k].y - intervals[k].x)) {
+                covered += intervals[k].y - intervals[k].x;
+                ++k;
+            }
+            float t = intervals[k].x + (s - covered);
+            vec3 p = origin + t * direction;
+            float visibility = light_visibility(p);
+            if (visibility <= 0.0) continue;
+            ++taken;
+            sum += sample_density(origin, direction, t, g) * visibility;
+        }
+        result = vec4(sum * step_length, float(taken));
+        return;
+    }
+    float step_length = (end - start) / float(samples);
     for (int i = 0; i < samples; ++i) {
         float t = start + (float(i) + offset) * step_length;
         vec3 p = origin + t * direction;
         float visibility = light_visibility(p);
         if (visibility <= 0.0) continue;  // dark-sample skipping
         ++taken;
-        float g = frame.medium_attenuation.w;
+        float gi = g;
         if (animate_phase != 0) {
             // Moschos §3.2.4: the asymmetry drifts with time and place, so the beam shimmers.
-            g = clamp(g + 0.3 * sin(2.0 * time + dot(p, vec3(1.3, 0.7, 1.1))), -0.9, 0.9);
+            gi = clamp(g + 0.3 * sin(2.0 * time + dot(p, vec3(1.3, 0.7, 1.1))), -0.9, 0.9);
         }
-        vec3 e = attenuation == 1 ? moschos_density(origin, direction, t, g)
-                                  : scattering_density_g(origin, direction, t, g);
-        sum += e * visibility;
+        sum += sample_density(origin, direction, t, gi) * visibility;
     }
     result = vec4(sum * step_length, float(taken));
 }

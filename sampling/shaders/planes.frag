@@ -8,11 +8,21 @@
 #include "gl/shaders/scattering.glsl"
 #include "gl/shaders/shadow.glsl"
 #include "gl/shaders/view.glsl"
+#include "beamtree/shaders/classify.glsl"
+#include "sampling/shaders/region_lists.glsl"
 
+// The hybrids' stencil (partition = gpu) rejects pixels without a region crossing before they
+// are shaded.
+layout(early_fragment_tests) in;
 layout(binding = 0) uniform sampler2D surface_depth;
 layout(location = 0) uniform float dz;
 layout(location = 1) uniform int known_lit;  // 1: the beam tree says lit, skip the lookup
 layout(location = 2) uniform int jitter;      // 1: per-pixel offset of the sample in its slab
+// The beam tree's regions, classified here per sample (partition = gpu) instead of by cutting
+// the planes on the CPU: 0 none (planes, or the CPU's pieces), 1 hybrid1 (lit: no shadow lookup,
+// unlit: nothing), 2 hybrid2 (only uncertain samples: the lit ones are the analytic pass's).
+// The pixel's region lists say where the sample is; where one overflowed, the tree does.
+layout(location = 3) uniform int classify_mode;
 
 flat in float slice_depth;
 layout(location = 0) out vec4 in_scattered;
@@ -23,6 +33,15 @@ float interleaved_gradient_noise(vec2 pixel) {
 }
 
 void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    int lit_count = 0, uncertain_count = 0;
+    if (classify_mode != 0) {
+        // A ray that crosses neither surface is outside both regions (they are bounded): the
+        // common case, settled before any other work.
+        lit_count = region_crossing_count(pixel, 0);
+        uncertain_count = region_crossing_count(pixel, 1);
+        if (uncertain_count == 0 && (lit_count == 0 || classify_mode == 2)) discard;
+    }
     vec3 origin = frame.camera_position.xyz;
     vec3 direction = eye_ray_direction(gl_FragCoord.xy);
     float cos_forward = dot(direction, frame.camera_forward.xyz);
@@ -32,8 +51,21 @@ void main() {
     }
     float t = depth / cos_forward;
     if (t >= surface_distance(surface_depth, gl_FragCoord.xy)) discard;  // behind the surface
+    bool lit = known_lit != 0;
+    if (classify_mode != 0) {
+        int region;
+        if (lit_count < 0 || uncertain_count < 0) {
+            region = classify_region(origin + t * direction);
+        } else {
+            region = inside_region(pixel, 0, lit_count, t)         ? REGION_LIT
+                     : inside_region(pixel, 1, uncertain_count, t) ? REGION_UNCERTAIN
+                                                                   : REGION_UNLIT;
+        }
+        if (region == REGION_UNLIT || (classify_mode == 2 && region == REGION_LIT)) discard;
+        lit = region == REGION_LIT;
+    }
     vec3 e = scattering_density(origin, direction, t);
     if (all(equal(e, vec3(0.0)))) discard;
-    float visibility = known_lit != 0 ? 1.0 : light_visibility(origin + t * direction);
+    float visibility = lit ? 1.0 : light_visibility(origin + t * direction);
     in_scattered = vec4(e * visibility * (dz / cos_forward), 0.0);
 }

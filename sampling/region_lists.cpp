@@ -1,0 +1,102 @@
+#include "sampling/region_lists.h"
+
+#include <algorithm>
+
+#include "gl/functions.h"
+#include "gl/shaders.h"
+
+namespace sl::sampling {
+
+namespace {
+
+using gl::GL;
+
+constexpr GLuint kCountsBinding = 3, kCrossingsBinding = 4;  // region_lists.glsl
+constexpr int kListSize = 16;                                // REGION_LIST_SIZE
+
+}  // namespace
+
+void RegionLists::upload(const bt::RegionMesh& lit, const bt::RegionMesh& uncertain) {
+    if (!program_) {
+        program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
+                                       {GL_FRAGMENT_SHADER, "sampling/shaders/region_lists.frag"}});
+    }
+    const bt::RegionMesh* meshes[2] = {&lit, &uncertain};
+    for (int s = 0; s < 2; ++s) {
+        const bt::RegionMesh& mesh = *meshes[s];
+        counts_[s] = GLsizei(mesh.triangles.size() * 3);
+        arrays_[s] = gl::create_vertex_array();
+        if (counts_[s] == 0) {
+            continue;
+        }
+        vertices_[s] =
+            gl::create_buffer(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
+        indices_[s] =
+            gl::create_buffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
+        const GLuint vao = arrays_[s].id();
+        GL.VertexArrayVertexBuffer(vao, 0, vertices_[s].id(), 0, sizeof(glm::vec3));
+        GL.VertexArrayElementBuffer(vao, indices_[s].id());
+        GL.EnableVertexArrayAttrib(vao, 0);
+        GL.VertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+        GL.VertexArrayAttribBinding(vao, 0, 0);
+    }
+}
+
+void RegionLists::build(const gl::VolumeInputs& inputs, bool mark_stencil) {
+    if (inputs.width != width_ || inputs.height != height_) {
+        width_ = inputs.width;
+        height_ = inputs.height;
+        const size_t slots = size_t(width_) * height_ * 2;
+        region_counts_ = gl::create_buffer(nullptr, slots * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT);
+        crossings_ =
+            gl::create_buffer(nullptr, slots * kListSize * sizeof(float), GL_DYNAMIC_STORAGE_BIT);
+        region_counts_.label("region list counts");
+        crossings_.label("region list crossings");
+    }
+    const GLuint zero = 0;
+    GL.ClearNamedBufferData(region_counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding, region_counts_.id());
+    GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossingsBinding, crossings_.id());
+    GL.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    GL.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    GL.Disable(GL_BLEND);
+    GL.Enable(GL_DEPTH_CLAMP);  // faces in front of the near plane still cross the ray
+    GL.UseProgram(program_.id());
+    if (mark_stencil) {
+        GL.Enable(GL_STENCIL_TEST);
+        GL.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    }
+    for (int s = 0; s < 2; ++s) {
+        if (counts_[s] == 0) {
+            continue;
+        }
+        if (mark_stencil) {
+            const GLuint bit = s == 0 ? kLitStencilBit : kUncertainStencilBit;
+            GL.StencilFunc(GL_ALWAYS, GLint(bit), bit);
+            GL.StencilMask(bit);
+        }
+        GL.ProgramUniform1i(program_.id(), 0, s);
+        GL.BindVertexArray(arrays_[s].id());
+        GL.DrawElements(GL_TRIANGLES, counts_[s], GL_UNSIGNED_INT, nullptr);
+    }
+    GL.Disable(GL_DEPTH_CLAMP);
+    GL.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    if (mark_stencil) {
+        GL.StencilMask(0xff);
+        GL.Disable(GL_STENCIL_TEST);
+    }
+    GL.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+size_t RegionLists::overflows() const {
+    if (!region_counts_) {
+        return 0;
+    }
+    std::vector<GLuint> counts(size_t(width_) * height_ * 2);
+    GL.GetNamedBufferSubData(region_counts_.id(), 0, GLsizeiptr(counts.size() * sizeof(GLuint)),
+                             counts.data());
+    return size_t(std::count_if(counts.begin(), counts.end(),
+                                [](GLuint n) { return n > GLuint(kListSize); }));
+}
+
+}  // namespace sl::sampling

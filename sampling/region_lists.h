@@ -1,0 +1,42 @@
+#pragma once
+// Per-pixel lists of region-surface crossings (sampling/shaders/region_lists.glsl): each frame
+// the lit and uncertain boundary meshes (beamtree/boundary.h) are rasterized once, every
+// fragment appending its signed distance along the eye ray to its pixel's list. The hybrids read
+// them: hybrid1 and hybrid2 to classify a plane sample (lit, uncertain, unlit) in a few compares,
+// hybrid3 to march only the uncertain intervals. A list that overflows falls back to the tree.
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "beamtree/regions.h"
+#include "gl/objects.h"
+#include "gl/volume_method.h"
+
+namespace sl::sampling {
+
+class RegionLists {
+public:
+    // The surfaces (float positions, outward triangles) of the lit and the uncertain union.
+    void upload(const bt::RegionMesh& lit, const bt::RegionMesh& uncertain);
+    // Clears and fills the lists for the frame's view into buffers of its size, then binds them
+    // at the readers' bindings (region_lists.glsl). The current framebuffer's colour writes are
+    // off while it draws; with `mark_stencil`, its stencil gets bit kLitStencilBit where a ray
+    // crosses the lit surface and kUncertainStencilBit where it crosses the uncertain one, so
+    // that a later pass can skip the pixels that have neither before shading them.
+    static constexpr GLuint kLitStencilBit = 1, kUncertainStencilBit = 2;
+    void build(const gl::VolumeInputs& inputs, bool mark_stencil = false);
+    // Pixels whose list of a surface overflowed in the last build (reads the counts back).
+    size_t overflows() const;
+    size_t triangle_count(int surface) const { return size_t(counts_[surface]) / 3; }
+
+private:
+    gl::Buffer vertices_[2], indices_[2];
+    gl::VertexArray arrays_[2];
+    GLsizei counts_[2] = {0, 0};
+    gl::Program program_;
+    gl::Buffer region_counts_, crossings_;
+    int width_ = 0, height_ = 0;
+};
+
+}  // namespace sl::sampling
