@@ -78,8 +78,8 @@ run() {
     done
     ((${#experiments[@]})) || experiments=(equal_error)
     [ -f "$package" ] || { echo "gpu_bench: no $package (run 'scripts/gpu_bench.sh package' first)" >&2; exit 2; }
-    local start=$SECONDS root
-    root=$(mktemp -d)
+    local start=$SECONDS
+    root=$(mktemp -d)  # global: the EXIT trap runs after this function has returned
     trap 'rm -rf "$root"' EXIT
     tar -C "$root" -xJf "$package"
     local p=$root/shaftlab
