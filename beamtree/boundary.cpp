@@ -409,16 +409,7 @@ RegionMesh boundary_mesh(const BeamTree& tree, const Regions& regions, Region re
     const std::vector<BoundaryFace> faces = closed_boundary(tree, regions, region, stats);
     RegionMesh mesh;
     for (const BoundaryFace& face : faces) {
-        const auto base = uint32_t(mesh.positions.size());
-        for (const dvec3& v : face.polygon.vertices) {
-            mesh.positions.emplace_back(v);
-        }
-        if (fan_triangles(face.polygon, [&](uint32_t a, uint32_t b, uint32_t c) {
-                mesh.triangles.emplace_back(base + a, base + b, base + c);
-                mesh.beams.push_back(face.beam);
-            })) {
-            mesh.positions.emplace_back(centroid(face.polygon));
-        }
+        mesh.add_fanned(face.polygon, face.beam);
     }
     if (stats) {
         stats->ms =

@@ -38,6 +38,22 @@ bool Regions::drawn(Region region, const RegionPiece& piece) const {
     return 2.0 * bt::volume(piece.polyhedron) >= 1e-5 * std::cbrt(influence_volume) * surface;
 }
 
+void RegionMesh::add_fanned(const Polygon& face, uint32_t beam) {
+    if (face.size() < 3) {
+        return;  // welded flat
+    }
+    const auto base = uint32_t(positions.size());
+    for (const dvec3& v : face.vertices) {
+        positions.emplace_back(v);
+    }
+    if (fan_triangles(face, [&](uint32_t a, uint32_t b, uint32_t c) {
+            triangles.emplace_back(base + a, base + b, base + c);
+            beams.push_back(beam);
+        })) {
+        positions.emplace_back(centroid(face));
+    }
+}
+
 RegionMesh Regions::mesh(Region region) const {
     std::vector<Polygon> faces;
     std::vector<uint32_t> beams;
@@ -57,20 +73,7 @@ RegionMesh Regions::mesh(Region region) const {
 
     RegionMesh mesh;
     for (size_t f = 0; f < faces.size(); ++f) {
-        const std::vector<dvec3>& vertices = faces[f].vertices;
-        if (vertices.size() < 3) {
-            continue;  // welded flat
-        }
-        const auto base = uint32_t(mesh.positions.size());
-        for (const dvec3& v : vertices) {
-            mesh.positions.emplace_back(v);
-        }
-        if (fan_triangles(faces[f], [&](uint32_t a, uint32_t b, uint32_t c) {
-                mesh.triangles.emplace_back(base + a, base + b, base + c);
-                mesh.beams.push_back(beams[f]);
-            })) {
-            mesh.positions.emplace_back(centroid(faces[f]));
-        }
+        mesh.add_fanned(faces[f], beams[f]);
     }
     return mesh;
 }

@@ -28,6 +28,10 @@ struct RegionMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::uvec3> triangles;
     std::vector<uint32_t> beams;  // per triangle
+
+    // Appends a conforming face, fanned (bt::fan_triangles: around its centroid where it has a
+    // T-vertex), its triangles bounding `beam`. Faces welded below three vertices add nothing.
+    void add_fanned(const Polygon& face, uint32_t beam);
 };
 
 struct Regions {

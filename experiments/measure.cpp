@@ -161,11 +161,12 @@ RegionStatistics region_statistics(const Scene& scene, int width, int height) {
             if (cone.empty()) {
                 continue;
             }
-            tree.trace(ray.origin, ray.direction, cone.begin, cone.end, intervals);
+            // The same walk clipped to the cone interval (which ends at the surface).
             double first = 0.0, last = 0.0;
             bool any = false;
             for (const bt::RegionInterval& interval : intervals) {
-                const double begin = interval.begin, end = std::min(interval.end, t_max);
+                const double begin = std::max(interval.begin, cone.begin);
+                const double end = std::min(interval.end, cone.end);
                 if (!(end > begin)) {
                     continue;
                 }
