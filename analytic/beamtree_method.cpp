@@ -27,6 +27,7 @@ public:
                  .choices = {"boundary", "cells"}});
     }
     std::string name() const override { return "beamtree"; }
+    std::string accepts() const override { return AnalyticRegionPass::accepts(); }
     void prepare(const Scene& scene) override {
         AnalyticRegionPass::require_closed_form(scene, name());
         auto start = std::chrono::steady_clock::now();

@@ -1,58 +1,141 @@
 #include "analytic/gpu_tables.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <numbers>
-#include <vector>
+#include <thread>
+#include <tuple>
 
 #include "analytic/phase_functions.h"
-#include "analytic/quadrature.h"
 
 namespace sl::analytic {
 
 using gl::GL;
 using gl::Texture;
 
-Texture create_sun_table() {
-    // 1024² keeps bilinear interpolation within 1e-4 of the closed form (tested); the data is
-    // computed once per process.
-    constexpr int kSize = 1024;
-    constexpr double kUMax = 32.0;  // SUN_TABLE_U_MAX in in_scattering.glsl
-    static const std::vector<float> table = [] {
-        std::vector<float> values(size_t(kSize) * kSize);
-        for (int iu = 0; iu < kSize; ++iu) {
-            const double u = kUMax * iu / (kSize - 1);
-            double previous_v = 0.0, sum = 0.0;
-            for (int iv = 0; iv < kSize; ++iv) {
-                const double v = 0.5 * std::numbers::pi * iv / (kSize - 1);
-                sum += integrate([&](double z) { return std::exp(-u * std::tan(z)); }, previous_v,
-                                 std::min(v, 0.5 * std::numbers::pi - 1e-12));
-                previous_v = v;
-                values[size_t(iv) * kSize + iu] = float(sum);
-            }
-        }
-        return values;
-    }();
-    Texture texture = gl::create_texture_2d(GL_R32F, kSize, kSize, GL_LINEAR);
-    GL.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    GL.TextureSubImage2D(texture.id(), 0, 0, 0, kSize, kSize, GL_RED, GL_FLOAT, table.data());
-    return texture;
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// ∫_a^b f by 3-point Gauss-Legendre on `pieces` equal sub-intervals.
+template <typename F>
+double gauss3(const F& f, double a, double b, int pieces) {
+    static constexpr double kNode = 0.774596669241483377, kOuter = 5.0 / 9.0, kInner = 8.0 / 9.0;
+    const double h = (b - a) / pieces;
+    double sum = 0.0;
+    for (int k = 0; k < pieces; ++k) {
+        const double c = a + (k + 0.5) * h, r = 0.5 * h * kNode;
+        sum += kOuter * (f(c - r) + f(c + r)) + kInner * f(c);
+    }
+    return 0.5 * h * sum;
 }
 
-Texture create_phase_table(const Medium& medium) {
-    constexpr int kSize = 1024;  // PHASE_TABLE_SIZE in in_scattering.glsl
-    std::vector<float> table(kSize);
-    double sum = 0.0, previous = -0.5 * std::numbers::pi;
-    for (int i = 0; i < kSize; ++i) {
-        const double theta = std::numbers::pi * (double(i) / (kSize - 1) - 0.5);
-        sum += integrate([&](double t) { return phase(medium.phase, medium.g, -std::sin(t)); },
-                         previous, theta);
-        previous = theta;
-        table[size_t(i)] = float(sum);
+// Column x of the physical table: H(s_x, v) cumulatively over v.
+void physical_column(const Medium& medium, int size, int x, float* values) {
+    const double s = double(x) / (size - 1);
+    const double p_forward = phase(medium.phase, medium.g, 1.0);
+    const double step = 0.5 * kPi / (size - 1);
+    values[x] = 0.0f;
+    if (x == size - 1) {
+        for (int y = 1; y < size; ++y)
+            values[size_t(y) * size + x] = float(p_forward);  // u = ∞
+        return;
     }
-    Texture texture = gl::create_texture_2d(GL_R32F, kSize, 1, GL_LINEAR);
+    const double u = s / (1.0 - s);
+    auto f = [&](double zeta) {
+        return std::exp(-u * std::tan(zeta)) * phase(medium.phase, medium.g, std::cos(2.0 * zeta));
+    };
+    double sum = 0.0;
+    for (int y = 1; y < size; ++y) {
+        const double a = step * (y - 1), b = std::min(step * y, 0.5 * kPi);
+        // The exponential decays at the rate u sec² ζ: a few Gauss points per decay length.
+        const double c = std::cos(b);
+        const double rate = u * step / std::max(c * c, 1e-12);
+        const int pieces = int(std::clamp(std::ceil(4.0 * rate), 1.0, 32.0));
+        sum += gauss3(f, a, b, pieces);
+        values[size_t(y) * size + x] = float((1.0 + u) * sum);
+    }
+}
+
+// Column x of the simplified table: R(κ_x, β) cumulatively over β.
+void simplified_column(const Medium& medium, int size, int x, float* values) {
+    const double kappa = double(x) / (size - 1);
+    const double step = kPi / (size - 1);
+    auto f = [&](double beta) {
+        const double sb = std::sin(beta), cb = std::cos(beta);
+        const double norm = std::sqrt(kappa * kappa * cb * cb + sb * sb);
+        return phase(medium.phase, medium.g, norm > 0.0 ? -sb / norm : 0.0);
+    };
+    // cos α turns from +1 to -1 over |β| of about κ around β = 0: split there, and resolve it.
+    auto piece = [&](double a, double b) {
+        const double scale = std::max(kappa, std::min(std::abs(a), std::abs(b)));
+        const int pieces =
+            int(std::clamp(std::ceil(4.0 * (b - a) / std::max(scale, 1e-9)), 1.0, 64.0));
+        return gauss3(f, a, b, pieces);
+    };
+    double sum = 0.0;
+    values[x] = 0.0f;
+    for (int y = 1; y < size; ++y) {
+        const double a = -0.5 * kPi + step * (y - 1), b = -0.5 * kPi + step * y;
+        sum += a < 0.0 && b > 0.0 ? piece(a, 0.0) + piece(0.0, b) : piece(a, b);
+        values[size_t(y) * size + x] = float(sum);
+    }
+}
+
+std::shared_ptr<const MediumTable> build(const Medium& medium, int size) {
+    const auto start = std::chrono::steady_clock::now();
+    auto table = std::make_shared<MediumTable>();
+    table->size = size;
+    table->values.assign(size_t(size) * size, 0.0f);
+    const bool physical = medium.model == MediumModel::physical;
+    // Columns are independent: spread them over the cores.
+    const int workers = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
+    std::vector<std::thread> threads;
+    for (int w = 0; w < workers; ++w) {
+        threads.emplace_back([&, w] {
+            for (int x = w; x < size; x += workers) {
+                if (physical)
+                    physical_column(medium, size, x, table->values.data());
+                else
+                    simplified_column(medium, size, x, table->values.data());
+            }
+        });
+    }
+    for (std::thread& thread : threads)
+        thread.join();
+    table->build_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return table;
+}
+
+}  // namespace
+
+std::shared_ptr<const MediumTable> medium_table(const Medium& medium, int size) {
+    const bool uses_g =
+        medium.phase == PhaseFunction::henyey_greenstein || medium.phase == PhaseFunction::schlick;
+    using Key = std::tuple<int, int, float, int>;
+    const Key key{int(medium.model), int(medium.phase), uses_g ? medium.g : 0.0f, size};
+    static std::mutex mutex;
+    static std::map<Key, std::shared_ptr<const MediumTable>> cache;
+    const std::lock_guard lock(mutex);
+    if (cache.size() >= 8 && !cache.contains(key)) {
+        cache.clear();  // a viewer dragging g would otherwise keep every table it passed
+    }
+    auto& slot = cache[key];
+    if (!slot) {
+        slot = build(medium, size);
+    }
+    return slot;
+}
+
+Texture create_medium_table(const Medium& medium, int size) {
+    const std::shared_ptr<const MediumTable> table = medium_table(medium, size);
+    Texture texture = gl::create_texture_2d(GL_R32F, size, size, GL_LINEAR);
     GL.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    GL.TextureSubImage2D(texture.id(), 0, 0, 0, kSize, 1, GL_RED, GL_FLOAT, table.data());
+    GL.TextureSubImage2D(texture.id(), 0, 0, 0, size, size, GL_RED, GL_FLOAT, table->values.data());
     return texture;
 }
 

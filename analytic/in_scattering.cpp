@@ -34,6 +34,19 @@ Closest closest_approach(const EyeRay& ray, const dvec3& light) {
     return {z_s, glm::length(off)};
 }
 
+// I(Ω) / I of Nilsson eq. 2.9 with the optional smooth edge, as SpotLight::cone_factor, in double.
+double cone_factor(const SpotLight& light, const dvec3& p) {
+    const dvec3 from_light = glm::normalize(p - dvec3(light.position));
+    const double angle = std::acos(std::clamp(glm::dot(from_light, axis(light)), -1.0, 1.0));
+    const double cone = glm::radians(double(light.cone_half_angle_degrees));
+    if (light.falloff_degrees <= 0.0f) {
+        return angle <= cone ? 1.0 : 0.0;
+    }
+    const double t =
+        std::clamp((cone - angle) / glm::radians(double(light.falloff_degrees)), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);  // smoothstep from the edge inwards
+}
+
 }  // namespace
 
 dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light,
@@ -45,7 +58,9 @@ dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light,
     if (!(r > 0.0) || axial < light.near || axial > light.far) {
         return dvec3(0.0);
     }
-    const double cone = light.cone_factor(glm::vec3(p));
+    // The cone factor in double precision (SpotLight::cone_factor's float would leave noise
+    // the quadrature cannot converge on).
+    const double cone = cone_factor(light, p);
     if (cone == 0.0) {
         return dvec3(0.0);
     }
@@ -64,9 +79,13 @@ dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light,
 }
 
 Interval light_interval(const EyeRay& ray, const SpotLight& light, double t_max) {
+    return cone_interval(ray, light, glm::radians(double(light.cone_half_angle_degrees)), t_max);
+}
+
+Interval cone_interval(const EyeRay& ray, const SpotLight& light, double half_angle, double t_max) {
     const dvec3 a = axis(light);
     const dvec3 w = ray.origin - dvec3(light.position);
-    const double cos_cone = std::cos(glm::radians(double(light.cone_half_angle_degrees)));
+    const double cos_cone = std::cos(half_angle);
     double lo = 0.0, hi = t_max;
     // Range along the axis: near <= dot(w + t V, a) <= far.
     const double da = glm::dot(ray.direction, a), wa = glm::dot(w, a);
@@ -80,7 +99,7 @@ Interval light_interval(const EyeRay& ray, const SpotLight& light, double t_max)
         lo = std::max(lo, t0);
         hi = std::min(hi, t1);
     }
-    if (!(hi > lo)) {
+    if (!(hi > lo) || !(half_angle > 0.0)) {
         return {};
     }
     // Inside the one-sided cone: f(t) = (dot(q, a))² - cos² |q|² >= 0 with dot(q, a) >= 0,
@@ -128,21 +147,20 @@ Interval light_interval(const EyeRay& ray, const SpotLight& light, double t_max)
     return {};
 }
 
-dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& light,
-                    const Medium& medium) {
-    const Interval lit = light_interval(ray, light, std::max(z0, z1));
-    z0 = std::max(z0, lit.begin);
-    z1 = std::min(z1, lit.end);
-    if (!(z1 > z0)) {
-        return dvec3(0.0);
-    }
+namespace {
+
+// The hard-edge closed forms per channel, or quadrature of e(z) where none holds. [z0, z1] lies
+// inside the cone interval already.
+dvec3 hard_edge_integral(const EyeRay& ray, double z0, double z1, const SpotLight& light,
+                         const Medium& medium) {
     const dvec3 L(light.position);
     const Closest closest = closest_approach(ray, L);
-    const double distance = glm::length(L - ray.origin);
-    const bool hard_edge = light.falloff_degrees <= 0.0f;
+    const double h = closest.h, z_s = closest.z_s;
+    // Below this distance from L (relative) the closed forms in 1/h lose their accuracy (γ → 0).
+    const double grazing = 1e-7 * std::max(glm::length(L - ray.origin), 1.0);
     const bool isotropic = medium.phase == PhaseFunction::isotropic;
-    // Below this distance from L (relative) the closed forms lose their accuracy (γ → 0).
-    const bool grazing = closest.h <= 1e-7 * std::max(distance, 1.0);
+    const double a0 = medium.a0, a1 = medium.a1;
+    auto p = [&](double cos_alpha) { return phase(medium.phase, medium.g, cos_alpha); };
     dvec3 result(0.0);
     for (int c = 0; c < 3; ++c) {
         const double sigma_s = medium.sigma_s[c];
@@ -150,52 +168,180 @@ dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& li
         if (sigma_s == 0.0 || intensity == 0.0) {
             continue;
         }
-        if (hard_edge && !grazing && medium.model == MediumModel::simplified && isotropic) {
-            const double a0 = medium.a0, a1 = medium.a1;
-            if (a1 == 0.0) {
-                result[c] = sigma_s * intensity / (4.0 * kPi * a0) * (z1 - z0);
-                continue;
-            }
+        if (medium.model == MediumModel::simplified && isotropic && a1 > 0.0 &&
+            (a0 > 0.0 || h > grazing)) {
             // Nilsson eq. 2.17.
-            const double C = std::sqrt(a1 * (a1 * closest.h * closest.h + a0));
-            result[c] =
-                sigma_s * intensity / (4.0 * kPi * C) *
-                (std::atan(a1 * (z1 - closest.z_s) / C) - std::atan(a1 * (z0 - closest.z_s) / C));
+            const double C = std::sqrt(a1 * (a1 * h * h + a0));
+            result[c] = sigma_s * intensity / (4.0 * kPi * C) *
+                        (std::atan(a1 * (z1 - z_s) / C) - std::atan(a1 * (z0 - z_s) / C));
             continue;
         }
-        if (hard_edge && !grazing && medium.model == MediumModel::physical && isotropic) {
-            const double sigma_t = medium.sigma_t()[c];
-            if (sigma_t > 0.0) {
-                // Sun et al. 2005: G(x) = A0 F(A1, ξ(x)), F(u, v) = ∫_0^v exp(-u tan ζ) dζ,
-                // Tsv = σt d, A0 = σs σt I e^(-Tsv cos γ) / (2π Tsv sin γ), A1 = Tsv sin γ,
-                // ξ(x) = π/4 + ½ atan((σt x - Tsv cos γ) / (Tsv sin γ)). d cos γ = z_s and
-                // d sin γ = h, so Tsv cos γ = σt z_s and Tsv sin γ = σt h.
-                const double a0 = sigma_s * sigma_t * intensity * std::exp(-sigma_t * closest.z_s) /
-                                  (2.0 * kPi * sigma_t * closest.h);
-                const double a1 = sigma_t * closest.h;
-                auto xi = [&](double x) {
-                    return 0.25 * kPi + 0.5 * std::atan((x - closest.z_s) / closest.h);
-                };
-                const double f =
-                    integrate([&](double zeta) { return std::exp(-a1 * std::tan(zeta)); }, xi(z0),
-                              xi(z1), 1e-14);
-                result[c] = a0 * f;
-                continue;
-            }
+        if (medium.model == MediumModel::simplified && isotropic && a1 == 0.0) {
+            result[c] = sigma_s * intensity / (4.0 * kPi * a0) * (z1 - z0);
+            continue;
         }
-        if (hard_edge && !grazing && medium.model == MediumModel::simplified && medium.a0 == 0.0f) {
-            // e = σs p(α) I / (a1 r²) with r = h / cos θ, z - z_s = h tan θ: dz / r² = dθ / h and
-            // cos α = -sin θ, so ∫ e dz = σs I / (a1 h) ∫ p(-sin θ) dθ.
-            auto theta = [&](double x) { return std::atan((x - closest.z_s) / closest.h); };
-            const double p_integral =
-                integrate([&](double t) { return phase(medium.phase, medium.g, -std::sin(t)); },
-                          theta(z0), theta(z1), 1e-14);
-            result[c] = sigma_s * intensity / (double(medium.a1) * closest.h) * p_integral;
+        const double H = a1 > 0.0 ? std::sqrt(h * h + a0 / a1) : 0.0;
+        if (medium.model == MediumModel::simplified && a1 > 0.0 && H > grazing) {
+            // e = σs p(α) I / (a1 r² + a0), r² = h² + x², x = z - z_s. With H² = h² + a0 / a1,
+            // a1 r² + a0 = a1 (x² + H²); x = H tan β gives dz / (a1 (x² + H²)) = dβ / (a1 H).
+            // The scattering angle between the light's travel (L to p) and the way to the eye
+            // (-V): cos α = -x / r = -sin β / sqrt(κ² cos² β + sin² β), κ = h / H. So
+            // ∫ e dz = σs I / (a1 H) ∫ p(cos α(κ, β)) dβ; κ = 1 when a0 = 0. For κ -> 0 (the
+            // ray passes near L) cos α turns from +1 to -1 around β = 0: split there.
+            const double kappa = h / H;
+            auto integrand = [&](double beta) {
+                const double sb = std::sin(beta), cb = std::cos(beta);
+                const double norm = std::sqrt(kappa * kappa * cb * cb + sb * sb);
+                return p(norm > 0.0 ? -sb / norm : 0.0);
+            };
+            const double b0 = std::atan((z0 - z_s) / H), b1 = std::atan((z1 - z_s) / H);
+            double sum = 0.0;
+            if (b0 < 0.0 && b1 > 0.0) {
+                sum = integrate(integrand, b0, 0.0, 1e-14) + integrate(integrand, 0.0, b1, 1e-14);
+            } else {
+                sum = integrate(integrand, b0, b1, 1e-14);
+            }
+            result[c] = sigma_s * intensity / (a1 * H) * sum;
+            continue;
+        }
+        if (medium.model == MediumModel::physical && h > grazing) {
+            // Sun et al. 2005, with a phase function. e = σs p(α) I e^(-σt (z + r)) / r². With
+            // z - z_s = h tan θ (θ the angle at L from the ray's closest point), r = h / cos θ
+            // and dz / r² = dθ / h. Sun's angle variable is ξ = π/4 + θ / 2, so dθ = 2 dξ and
+            // z + r = z_s + h (tan θ + sec θ) = z_s + h tan ξ (tan θ + sec θ = tan(π/4 + θ/2)).
+            // The scattering angle: cos α = -x / r = -sin θ = -sin(2ξ - π/2) = cos 2ξ, so
+            // α = θ(ζ) = 2ζ along the ray, a function of the angle variable alone, and
+            // ∫ e dz = 2 σs I / h ∫_{ξ0}^{ξ1} e^(-σt (z_s + h tan ζ)) p(cos 2ζ) dζ
+            //        = 2 σs I e^(-σt z_s) / h (F_p(σt h, ξ1) - F_p(σt h, ξ0)),
+            // with F_p(u, v) = ∫_0^v e^(-u tan ζ) p(cos 2ζ) dζ; for p = 1/4π this is Sun's
+            // A0 F(A1, ξ). The exponent is kept whole here: z + r >= 0 on the ray, so nothing
+            // overflows however dense the medium.
+            const double sigma_t = medium.sigma_t()[c];
+            auto xi = [&](double x) { return 0.25 * kPi + 0.5 * std::atan((x - z_s) / h); };
+            const double f = integrate(
+                [&](double zeta) {
+                    return std::exp(-sigma_t * (z_s + h * std::tan(zeta))) *
+                           p(std::cos(2.0 * zeta));
+                },
+                xi(z0), xi(z1), 1e-14);
+            result[c] = 2.0 * sigma_s * intensity / h * f;
             continue;
         }
         // No closed form: adaptive quadrature of e(z) itself.
-        result[c] = integrate(
-            [&](double z) { return scattering_density(ray, z, light, medium)[c]; }, z0, z1, 1e-12);
+        SpotLight hard = light;
+        hard.falloff_degrees = 0.0f;
+        result[c] = integrate([&](double z) { return scattering_density(ray, z, hard, medium)[c]; },
+                              z0, z1, 1e-12);
+    }
+    return result;
+}
+
+// The ray's cone interval (from t = 0 on) and, for a smooth falloff, its inner cone's.
+struct FalloffSpans {
+    Interval outer, inner;
+};
+
+FalloffSpans falloff_spans(const EyeRay& ray, const SpotLight& light) {
+    constexpr double kUnbounded = 1e30;  // the range's far plane bounds the interval
+    const double cone = glm::radians(double(light.cone_half_angle_degrees));
+    const double inner = cone - glm::radians(double(light.falloff_degrees));
+    FalloffSpans spans{cone_interval(ray, light, cone, kUnbounded), {}};
+    if (inner > 0.0) {
+        spans.inner = cone_interval(ray, light, inner, kUnbounded);
+        spans.inner.begin = std::max(spans.inner.begin, spans.outer.begin);
+        spans.inner.end = std::min(spans.inner.end, spans.outer.end);
+    }
+    if (spans.inner.empty()) {
+        spans.inner = {spans.outer.end, spans.outer.end};
+    }
+    return spans;
+}
+
+}  // namespace
+
+dvec3 in_scattering_hard_edge(const EyeRay& ray, double z0, double z1, const SpotLight& light,
+                              const Medium& medium) {
+    const Interval lit = light_interval(ray, light, std::max(z0, z1));
+    z0 = std::max(z0, lit.begin);
+    z1 = std::min(z1, lit.end);
+    if (!(z1 > z0)) {
+        return dvec3(0.0);
+    }
+    return hard_edge_integral(ray, z0, z1, light, medium);
+}
+
+dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& light,
+                    const Medium& medium) {
+    if (light.falloff_degrees <= 0.0f) {
+        return in_scattering_hard_edge(ray, z0, z1, light, medium);
+    }
+    // Smooth falloff: the inner cone in closed form, the shell by quadrature of e(z), cut where
+    // the cone factor has its kinks (the inner and outer cones).
+    const FalloffSpans spans = falloff_spans(ray, light);
+    dvec3 result = in_scattering_hard_edge(ray, std::max(z0, spans.inner.begin),
+                                           std::min(z1, spans.inner.end), light, medium);
+    for (const Interval shell : {Interval{spans.outer.begin, spans.inner.begin},
+                                 Interval{spans.inner.end, spans.outer.end}}) {
+        const double a = std::max(z0, shell.begin), b = std::min(z1, shell.end);
+        if (!(b > a))
+            continue;
+        // In the angle at L, z = z_s + h tan θ: e dz = e(z(θ)) h sec² θ dθ has no 1/r² peak
+        // (e r² is bounded), so the quadrature converges in a few pieces.
+        const Closest closest = closest_approach(ray, dvec3(light.position));
+        const bool grazing =
+            closest.h <= 1e-7 * std::max(glm::length(dvec3(light.position) - ray.origin), 1.0);
+        for (int c = 0; c < 3; ++c) {
+            if (grazing) {
+                result[c] += integrate(
+                    [&](double z) { return scattering_density(ray, z, light, medium)[c]; }, a, b,
+                    1e-12);
+                continue;
+            }
+            const double h = closest.h, z_s = closest.z_s;
+            result[c] += integrate(
+                [&](double t) {
+                    const double cos_t = std::cos(t);
+                    return scattering_density(ray, z_s + h * std::tan(t), light, medium)[c] * h /
+                           (cos_t * cos_t);
+                },
+                std::atan((a - z_s) / h), std::atan((b - z_s) / h), 1e-12);
+        }
+    }
+    return result;
+}
+
+dvec3 in_scattering_pieces(const EyeRay& ray, double z0, double z1, const SpotLight& light,
+                           const Medium& medium) {
+    if (light.falloff_degrees <= 0.0f) {
+        return in_scattering_hard_edge(ray, z0, z1, light, medium);
+    }
+    const FalloffSpans spans = falloff_spans(ray, light);
+    dvec3 result = in_scattering_hard_edge(ray, std::max(z0, spans.inner.begin),
+                                           std::min(z1, spans.inner.end), light, medium);
+    Closest closest = closest_approach(ray, dvec3(light.position));
+    closest.h = std::max(closest.h, 1e-9);
+    for (const Interval shell : {Interval{spans.outer.begin, spans.inner.begin},
+                                 Interval{spans.inner.end, spans.outer.end}}) {
+        if (shell.empty())
+            continue;
+        // Equal pieces of the angle at L, θ = atan((z - z_s) / h): e dz is nearly uniform in θ
+        // (exactly so for 1/r² alone), so each piece carries a like share of the integral.
+        const double t0 = std::atan((shell.begin - closest.z_s) / closest.h);
+        const double t1 = std::atan((shell.end - closest.z_s) / closest.h);
+        auto z_at = [&](double t) { return closest.z_s + closest.h * std::tan(t); };
+        for (int k = 0; k < kFalloffPieces; ++k) {
+            const double ta = t0 + (t1 - t0) * k / kFalloffPieces;
+            const double tb = t0 + (t1 - t0) * (k + 1) / kFalloffPieces;
+            const double a = k == 0 ? shell.begin : z_at(ta);
+            const double b = k + 1 == kFalloffPieces ? shell.end : z_at(tb);
+            const double lo = std::max(z0, a), hi = std::min(z1, b);
+            if (!(hi > lo))
+                continue;
+            const double weight =
+                cone_factor(light, ray.origin + z_at(0.5 * (ta + tb)) * ray.direction);
+            if (weight > 0.0)
+                result += weight * hard_edge_integral(ray, lo, hi, light, medium);
+        }
     }
     return result;
 }

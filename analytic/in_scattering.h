@@ -1,11 +1,17 @@
 #pragma once
 // The in-scattered radiance I_s along an eye ray (Nilsson eq. 2.7, DESIGN.md §1), in C++: the
 // integrand e(z), the part of a ray inside the spot light's exact cone and range, and the integral
-// of e over a lit interval in closed form where one exists:
+// of e over a lit interval in closed form (in_scattering.cpp derives each):
 //   simplified, isotropic       Nilsson eq. 2.17
-//   physical, isotropic         Sun, Ramamoorthi, Narasimhan & Nayar 2005: A0 F(A1, ξ)
-//   anisotropic, pure 1/(a1 r²) (σs I / (a1 h)) ∫ p dθ  (simplified with a0 = 0)
-// and by adaptive quadrature otherwise (a smooth cone edge, anisotropic physical, ...).
+//   simplified, anisotropic     σs I / (a1 H) R(κ, β): the phase function's integral in one angle
+//                               β, with H² = h² + a0/a1 and κ = h / H
+//   physical, any phase         Sun, Ramamoorthi, Narasimhan & Nayar 2005 generalised:
+//                               2 σs I e^(-σt z_s) / h · F_p(σt h, ξ), F_p(u, v) =
+//                               ∫_0^v exp(-u tan ζ) p(cos 2ζ) dζ (the scattering angle is 2ζ)
+// and by adaptive quadrature of e(z) where none holds (a ray through the light, a1 = 0 with an
+// anisotropic phase function). A smooth cone edge (eq. 2.9's falloff option) multiplies e by the
+// cone factor, which depends on the angle to the axis, not on the angle variable: in_scattering
+// integrates it by quadrature, and in_scattering_pieces gives the GPU's approximation of it.
 // Visibility is the caller's: the interval given is taken as unshadowed.
 
 #include <glm/vec3.hpp>
@@ -33,9 +39,29 @@ dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light, co
 // The points of the ray within [0, t_max] inside the light's exact (convex) cone and between its
 // near and far range along the axis: one interval, possibly empty.
 Interval light_interval(const EyeRay& ray, const SpotLight& light, double t_max);
+// The same for a cone of another half-angle (radians) about the light's axis.
+Interval cone_interval(const EyeRay& ray, const SpotLight& light, double half_angle, double t_max);
+
+// Pieces of the smooth falloff's shell (the cone minus its inner cone of half-angle
+// cone - falloff, where the factor is 1) along a ray, each shell interval cut into this many
+// equal parts in z. in_scattering_pieces weights each part's closed form by the cone factor at its
+// middle (analytic/shaders/in_scattering.glsl does the same).
+constexpr int kFalloffPieces = 16;
 
 // ∫ e(z) dz over [z0, z1] ∩ light_interval, the whole of it taken as visible.
 dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& light,
                     const Medium& medium);
+
+// The closed forms above for a hard cone edge (the scene's falloff ignored), over [z0, z1] ∩
+// light_interval.
+dvec3 in_scattering_hard_edge(const EyeRay& ray, double z0, double z1, const SpotLight& light,
+                              const Medium& medium);
+
+// in_scattering with a smooth falloff approximated as the GPU does: the closed form of the hard
+// edge over the inner cone, and over each of the shell's pieces times the cone factor at the
+// piece's middle (midpoint product rule, error O(kFalloffPieces^-2), measured in
+// results/analytic_media.md). Equals in_scattering for a hard edge.
+dvec3 in_scattering_pieces(const EyeRay& ray, double z0, double z1, const SpotLight& light,
+                           const Medium& medium);
 
 }  // namespace sl::analytic

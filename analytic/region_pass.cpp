@@ -9,17 +9,20 @@ namespace sl::analytic {
 using gl::GL;
 
 void AnalyticRegionPass::require_closed_form(const Scene& scene, const std::string& method) {
-    const bool anisotropic = scene.medium.phase != PhaseFunction::isotropic;
-    const bool physical = scene.medium.model == MediumModel::physical;
-    const bool pure_inverse_square = scene.medium.a0 == 0.0f;
-    if ((anisotropic && (physical || !pure_inverse_square)) || scene.light.falloff_degrees > 0.0f) {
+    const Medium& m = scene.medium;
+    if (m.model == MediumModel::simplified && m.phase != PhaseFunction::isotropic && m.a1 == 0.0f) {
         fail(
-            "method '{}' integrates the lit regions in closed form, which needs a hard cone edge "
-            "and either the isotropic phase function or the simplified model with a0 = 0; the "
-            "scene has phase '{}', model '{}', a0 {} and falloff {}",
-            method, to_string(scene.medium.phase), physical ? "physical" : "simplified",
-            scene.medium.a0, scene.light.falloff_degrees);
+            "method '{}' integrates the lit regions in closed form, which covers every medium but "
+            "the simplified model with a1 = 0 (no 1/r² falloff) and an anisotropic phase function "
+            "('{}'): use 'march', 'planes' or 'reference', or set a1 > 0 or phase = 'isotropic'",
+            method, to_string(m.phase));
     }
+}
+
+std::string AnalyticRegionPass::accepts() {
+    return "both medium models, all seven phase functions (HG and Schlick at any |g| < 1), "
+           "absorption, a smooth cone edge (within 1% of the exact, results/analytic_media.md); "
+           "not the simplified model with a1 = 0 and an anisotropic phase function";
 }
 
 void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>& positions,
@@ -40,10 +43,9 @@ void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>
     if (!program_) {
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
                                        {GL_FRAGMENT_SHADER, "analytic/shaders/regions.frag"}});
-        sun_table_ = create_sun_table();
         fragments_ = gl::create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
     }
-    phase_table_ = create_phase_table(scene.medium);
+    medium_table_ = create_medium_table(scene.medium);
 }
 
 void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
@@ -51,8 +53,7 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
         return;
     GL.UseProgram(program_.id());
     GL.BindTextureUnit(0, inputs.surface_depth);
-    GL.BindTextureUnit(kSunTableUnit, sun_table_.id());
-    GL.BindTextureUnit(kPhaseTableUnit, phase_table_.id());
+    GL.BindTextureUnit(kMediumTableUnit, medium_table_.id());
     GL.Enable(GL_BLEND);
     GL.BlendFunc(GL_ONE, GL_ONE);  // signed sums in the float target
     GL.Enable(GL_DEPTH_CLAMP);     // faces in front of the near plane still count
@@ -73,11 +74,10 @@ double AnalyticRegionPass::fragments() const {
 }
 
 TextureViews AnalyticRegionPass::textures(const std::string& owner) const {
-    if (!sun_table_) {
+    if (!medium_table_) {
         return {};
     }
-    return {{owner + "/G(z) table (Sun et al.)", sun_table_.id()},
-            {owner + "/phase CDF table", phase_table_.id()}};
+    return {{owner + "/G(z) table of the medium", medium_table_.id()}};
 }
 
 }  // namespace sl::analytic

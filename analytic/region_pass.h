@@ -24,9 +24,12 @@ using gl::VolumeInputs;
 
 class AnalyticRegionPass {
 public:
-    // Throws sl::Error when the closed forms do not cover the scene's light model (an
-    // anisotropic phase function in the physical model, or a smooth cone edge).
+    // Throws sl::Error when the closed forms do not cover the scene's light model: only the
+    // simplified model with a1 = 0 and an anisotropic phase function (every other medium, and a
+    // smooth cone edge, is integrated: analytic/shaders/in_scattering.glsl).
     static void require_closed_form(const Scene& scene, const std::string& method);
+    // What the methods built on this pass accept (VolumeMethod::accepts).
+    static std::string accepts();
 
     // Uploads the region faces (closed, outward-wound) and the scene's tables.
     void upload(const Scene& scene, const std::vector<glm::vec3>& positions,
@@ -43,8 +46,7 @@ private:
     Buffer vertices_, indices_;
     VertexArray vertex_array_;
     Program program_;
-    Texture sun_table_;
-    Texture phase_table_;
+    Texture medium_table_;
     Query fragments_;
     GLsizei index_count_ = 0;
 };

@@ -54,7 +54,7 @@ Command add_methods_command(CLI::App& app) {
     return [] {
         for (const std::string& name : methods::volume_method_names()) {
             const auto method = methods::create_volume_method(name);
-            fmt::print("{}\n", name);
+            fmt::print("{}\n  accepts: {}\n", name, method->accepts());
             for (const gl::Parameter& p : method->parameters()) {
                 if (p.type == gl::Parameter::Type::choice) {
                     fmt::print("  {:<22} {:<8} default {:<8} one of {}  {}\n", p.name, "choice",

@@ -17,6 +17,7 @@ const std::vector<std::string> kShadowFilterNames = {"hard", "pcf", "vsm"};
 class NoVolume final : public VolumeMethod {
 public:
     std::string name() const override { return "none"; }
+    std::string accepts() const override { return "every scene (it renders no medium)"; }
     void prepare(const Scene&) override {}
     void render(const VolumeInputs&) override {}
 };

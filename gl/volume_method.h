@@ -91,6 +91,11 @@ public:
     // the name is unknown, the text is not a number of its type, or it is out of range.
     void set(const std::string& name, const std::string& text);
     virtual std::string name() const = 0;
+    // The media and lights the method integrates (`shaftlab methods`, README): every one the
+    // scene format allows unless it says otherwise; prepare() refuses the others by name.
+    virtual std::string accepts() const {
+        return "every medium and light (it samples e(z) itself)";
+    }
     // Called once per scene before the first frame (CPU work such as building regions).
     virtual void prepare(const Scene& scene) = 0;
     // Adds I_s (linear RGB, alpha ignored) into the bound framebuffer, which is cleared to zero

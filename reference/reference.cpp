@@ -189,7 +189,7 @@ uint64_t reference_key(const Scene& scene, int width, int height, const Referenc
         }
     };
     auto mix_value = [&](const auto& value) { mix(&value, sizeof(value)); };
-    const char version[] = "shaftlab-reference-1";
+    const char version[] = "shaftlab-reference-2";
     mix(version, sizeof(version));
     mix_value(width);
     mix_value(height);

@@ -36,6 +36,10 @@ public:
                  .description = "metres: bisection of each light/shadow transition"});
     }
     std::string name() const override { return "reference"; }
+    std::string accepts() const override {
+        return "every medium and light (closed forms per visible interval, quadrature for a "
+               "smooth cone edge)";
+    }
     void prepare(const Scene&) override {}
     void render(const gl::VolumeInputs& inputs) override {
         // Recomputed (or loaded from the cache) whenever anything it depends on changes: the

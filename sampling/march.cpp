@@ -106,6 +106,10 @@ public:
     std::string name() const override {
         return variant_ == MarchVariant::march ? "march" : "hybrid3";
     }
+    std::string accepts() const override {
+        return variant_ == MarchVariant::hybrid3 ? analytic::AnalyticRegionPass::accepts()
+                                                 : VolumeMethod::accepts();
+    }
 
     void prepare(const Scene& scene) override {
         if (variant_ == MarchVariant::hybrid3) {

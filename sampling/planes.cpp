@@ -88,6 +88,10 @@ public:
         }
         return "?";
     }
+    std::string accepts() const override {
+        return variant_ == PlanesVariant::hybrid2 ? analytic::AnalyticRegionPass::accepts()
+                                                  : VolumeMethod::accepts();
+    }
 
     void prepare(const Scene& scene) override {
         if (variant_ == PlanesVariant::hybrid2) {

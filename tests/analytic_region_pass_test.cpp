@@ -7,9 +7,12 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <fmt/format.h>
+
 #include "analytic/gpu_tables.h"
 #include "analytic/in_scattering.h"
 #include "analytic/region_pass.h"
+#include "core/error.h"
 #include "core/metrics.h"
 #include "gl/debug.h"
 #include "gl/renderer.h"
@@ -31,50 +34,126 @@ gl::Frame render(const Scene& scene, const std::string& method_name, int width, 
     return renderer.render(*method);
 }
 
-// The GLSL antiderivative (analytic/shaders/in_scattering.glsl) integrates the same E(0, t) as the
-// C++ closed forms (analytic/in_scattering.cpp) on every pixel's ray, to 1e-4 relative, for both
-// models; the physical one goes through the Sun et al. F(u, v) table.
-TEST_F(GpuMethod, GlslAntiderivativeMatchesCpp) {
-    for (const int variant : {0, 1, 2}) {
-        // Simplified isotropic, physical isotropic, and simplified (a0 = 0) Henyey-Greenstein.
-        const MediumModel model = variant == 1 ? MediumModel::physical : MediumModel::simplified;
-        Scene scene = boxes_scene(model);
-        if (variant == 2) {
-            scene.medium.phase = PhaseFunction::henyey_greenstein;
-            scene.medium.g = 0.6f;
-            scene.medium.a0 = 0.0f;
-        }
-        const int width = 96, height = 54;
-        const gl::RenderOptions options{.width = width, .height = height};
-        const gl::shared::FrameUniforms uniforms = gl::make_frame_uniforms(scene, options);
-        const gl::Texture sun_table = analytic::create_sun_table();
-        const gl::Texture phase_table = analytic::create_phase_table(scene.medium);
-        gl::GL.BindTextureUnit(analytic::kPhaseTableUnit, phase_table.id());
-        gl::GL.BindTextureUnit(analytic::kSunTableUnit, sun_table.id());
-        const std::vector<float> rgba =
-            render_test_pattern(uniforms, "tests/shaders/in_scattering.frag", width, height);
+// The largest difference between the GLSL integral (analytic/shaders/in_scattering.glsl) and the
+// C++ one (in_scattering_pieces, which is the closed form for a hard edge) over the test
+// pattern's pixel rays, each E(0, t) with t = 1 + 24 x / width, relative to max(|C++|, the
+// image's peak) (float32's cancellation in G(t) - G(0) sets that floor: Nilsson eq. 2.17 itself
+// reaches 4.5e-3 relative at 1e-2 of the peak), and relative to max(|C++|, 1e-2 of the peak); and
+// how many pixels see a value above 1e-2 of the peak.
+struct TwinError {
+    double worst = 0.0;
+    double worst_dim = 0.0;
+    int compared = 0;
+    int pixels = 0;
+};
 
-        const double peak = red_peak(rgba);
-        ASSERT_GT(peak, 0.0);
-        int compared = 0;
-        for (int y = 0; y < height; ++y) {
-            for (int x = 0; x < width; ++x) {
-                const TestRay r = test_pattern_ray(uniforms, x, y, width, height);
-                const analytic::EyeRay ray{r.origin, r.direction};
-                const double t = 1.0 + 24.0 * (x + 0.5) / width;
-                const glm::dvec3 cpu =
-                    analytic::in_scattering(ray, 0.0, t, scene.light, scene.medium);
-                for (int c = 0; c < 3; ++c) {
-                    const double gpu = rgba[(size_t(y) * width + x) * 4 + size_t(c)];
-                    // Relative where the value matters; float32 and the table's bilinear
-                    // interpolation set the floor at 1e-4 of the image's peak.
-                    EXPECT_NEAR(gpu, cpu[c], 1e-4 * std::max(std::abs(cpu[c]), peak))
-                        << to_string(model) << " pixel " << x << ", " << y;
-                }
-                compared += cpu.x > 1e-3 * peak;
+TwinError glsl_against_cpp(const Scene& scene, int table_size = analytic::kMediumTableSize) {
+    const int width = 96, height = 54;
+    const gl::RenderOptions options{.width = width, .height = height};
+    const gl::shared::FrameUniforms uniforms = gl::make_frame_uniforms(scene, options);
+    const gl::Texture table = analytic::create_medium_table(scene.medium, table_size);
+    gl::GL.BindTextureUnit(analytic::kMediumTableUnit, table.id());
+    const std::vector<float> rgba =
+        render_test_pattern(uniforms, "tests/shaders/in_scattering.frag", width, height);
+    const double peak = red_peak(rgba);
+    TwinError error{.pixels = width * height};
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const TestRay r = test_pattern_ray(uniforms, x, y, width, height);
+            const analytic::EyeRay ray{r.origin, r.direction};
+            const double t = 1.0 + 24.0 * (x + 0.5) / width;
+            const glm::dvec3 cpu =
+                analytic::in_scattering_pieces(ray, 0.0, t, scene.light, scene.medium);
+            for (int c = 0; c < 3; ++c) {
+                const double gpu = rgba[(size_t(y) * width + x) * 4 + size_t(c)];
+                const double difference = std::abs(gpu - cpu[c]);
+                error.worst = std::max(error.worst, difference / std::max(std::abs(cpu[c]), peak));
+                error.worst_dim =
+                    std::max(error.worst_dim, difference / std::max(std::abs(cpu[c]), 1e-2 * peak));
+                if (!std::isfinite(gpu))
+                    error.worst = HUGE_VAL;
+            }
+            error.compared += cpu.x > 1e-2 * peak;
+        }
+    }
+    return error;
+}
+
+// A variant of the boxes scene: 0 simplified isotropic, 1 physical isotropic, 2 simplified
+// (a0 = 0) Henyey-Greenstein, 3 simplified (a0 > 0) HG, 4 physical HG with absorption; `g` for
+// the anisotropic ones.
+Scene medium_variant(int variant, float g) {
+    Scene scene =
+        boxes_scene(variant == 1 || variant == 4 ? MediumModel::physical : MediumModel::simplified);
+    if (variant >= 2) {
+        scene.medium.phase = PhaseFunction::henyey_greenstein;
+        scene.medium.g = g;
+    }
+    if (variant == 2)
+        scene.medium.a0 = 0.0f;
+    if (variant == 4)
+        scene.medium.sigma_a = glm::vec3(0.02f, 0.04f, 0.08f);
+    return scene;
+}
+
+// The GLSL integral equals the C++ closed forms on every pixel's ray of a test pattern to 1e-4
+// relative (floored at the peak, as TwinError says), and to 1e-2 relative down to 1e-2 of the
+// peak, for every model, HG g = -0.5, 0.3, 0.6, 0.9, and with a smooth cone edge.
+TEST_F(GpuMethod, GlslAntiderivativeMatchesCpp) {
+    for (const int variant : {0, 1, 2, 3, 4}) {
+        for (const float g : {-0.5f, 0.3f, 0.6f, 0.9f}) {
+            if (variant < 2 && g != 0.3f)
+                continue;  // isotropic: g is not read
+            for (const float falloff : {0.0f, 0.6f}) {
+                Scene scene = medium_variant(variant, g);
+                scene.light.falloff_degrees = falloff * scene.light.cone_half_angle_degrees;
+                const TwinError error = glsl_against_cpp(scene);
+                EXPECT_LE(error.worst, 1e-4) << "variant " << variant << " g " << g << " falloff "
+                                             << scene.light.falloff_degrees;
+                EXPECT_LE(error.worst_dim, 1e-2) << "variant " << variant << " g " << g;
+                std::printf(
+                    "variant %d g %.1f falloff %.1f: worst %.2e, down to 1%% of the peak %.2e\n",
+                    variant, g, scene.light.falloff_degrees, error.worst, error.worst_dim);
+                EXPECT_GT(error.compared, error.pixels / 10) << "variant " << variant;
             }
         }
-        EXPECT_GT(compared, width * height / 10) << to_string(model);
+    }
+}
+
+// A measurement, not a test (run by scripts/analytic_media.sh into results/analytic_media.md):
+// each table's size and build time, and the GLSL integral's largest error against C++ per table
+// resolution, for every phase function in both models.
+TEST_F(GpuMethod, DISABLED_MediumTableResolution) {
+    std::printf(
+        "| model | phase | g | size | MiB | build ms | worst GPU vs C++ | down to 1%% of the peak "
+        "|\n");
+    std::printf("|---|---|---|---|---|---|---|---|\n");
+    for (const int variant : {2, 3, 4}) {
+        for (const PhaseFunction phase :
+             {PhaseFunction::henyey_greenstein, PhaseFunction::schlick, PhaseFunction::rayleigh,
+              PhaseFunction::mie_hazy, PhaseFunction::mie_murky, PhaseFunction::isotropic}) {
+            for (const float g : {-0.5f, 0.6f, 0.9f}) {
+                const bool uses_g =
+                    phase == PhaseFunction::henyey_greenstein || phase == PhaseFunction::schlick;
+                if (!uses_g && g != 0.6f)
+                    continue;
+                for (const int size : {256, 512, 1024, 2048}) {
+                    Scene scene = medium_variant(variant, g);
+                    scene.medium.phase = phase;
+                    const double ms = analytic::medium_table(scene.medium, size)->build_ms;
+                    const TwinError error = glsl_against_cpp(scene, size);
+                    std::printf(
+                        "%s",
+                        fmt::format(
+                            "| {}{} | {} | {} | {}² | {:.1f} | {:.0f} | {:.2e} | {:.2e} |\n",
+                            to_string(scene.medium.model),
+                            variant == 2 ? " a0 = 0" : (variant == 3 ? " a0 > 0" : ""),
+                            to_string(phase), uses_g ? fmt::format("{}", g) : "–", size,
+                            double(size) * size * 4 / (1 << 20), ms, error.worst, error.worst_dim)
+                            .c_str());
+                }
+            }
+        }
     }
 }
 
@@ -89,6 +168,45 @@ TEST_F(GpuMethod, BeamtreeMatchesTheReferenceOnBoxes) {
         const ErrorMetrics error = compare_images(frame.in_scattering, exact);
         EXPECT_LE(error.rel_rmse, 0.01) << to_string(model) << ": max_abs " << error.max_abs;
     }
+}
+
+// Every medium the closed forms cover, through the whole method: in a physical medium with
+// absorption and Henyey-Greenstein g = 0.6 or Schlick g = -0.5, in the simplified model with
+// a0 > 0 and HG, and with a smooth cone edge, `beamtree` and `hybrid3` equal the reference where
+// the objects are their own bounding volumes: relative RMSE <= 1% at 160x90.
+TEST_F(GpuMethod, AnalyticMethodsMatchTheReferenceOnAnisotropicMedia) {
+    for (int variant = 0; variant < 4; ++variant) {
+        Scene scene = medium_variant(variant == 2 ? 3 : 4, variant == 1 ? -0.5f : 0.6f);
+        if (variant == 1)
+            scene.medium.phase = PhaseFunction::schlick;
+        if (variant == 3)
+            scene.light.falloff_degrees = 10.0f;
+        const reference::ReferenceRenderer reference(scene);
+        const Image exact = reference.render(160, 90, {});
+        for (const char* method : {"beamtree", "hybrid3"}) {
+            const gl::Frame frame = render(scene, method, 160, 90);
+            const ErrorMetrics error = compare_images(frame.in_scattering, exact);
+            EXPECT_LE(error.rel_rmse, 0.01) << method << " variant " << variant;
+        }
+    }
+}
+
+// The one medium the closed forms leave out is refused by name, with the methods that take it.
+TEST_F(GpuMethod, AnalyticMethodsRefuseOnlyTheSimplifiedModelWithoutInverseSquare) {
+    Scene scene = medium_variant(3, 0.6f);
+    scene.medium.a1 = 0.0f;
+    for (const char* method : {"beamtree", "hybrid2", "hybrid3"}) {
+        const auto m = methods::create_volume_method(method);
+        try {
+            m->prepare(scene);
+            ADD_FAILURE() << method << " accepted a1 = 0 with an anisotropic phase function";
+        } catch (const sl::Error& error) {
+            EXPECT_NE(std::string(error.what()).find("use 'march'"), std::string::npos)
+                << error.what();
+        }
+    }
+    scene.medium.phase = PhaseFunction::isotropic;  // eq. 2.17 with a1 = 0 is linear in z
+    EXPECT_NO_THROW(methods::create_volume_method("beamtree")->prepare(scene));
 }
 
 // Regions as surfaces: drawing the boundary of the lit union (surfaces=boundary, the default)

@@ -1,16 +1,15 @@
 // The in-scattering antiderivative G(z) along an eye ray, GLSL twin of analytic/in_scattering.cpp
 // (tested against it): E(z0, z1) = G(z1) - G(z0) over the part of the ray inside the exact cone
 // and range (Nilsson §3.2.2 adds G on back faces and subtracts it on front faces).
-//   simplified, isotropic: Nilsson eq. 2.17
-//   physical, isotropic:   Sun et al. 2005, A0 F(A1, ξ) with F(u, v) = ∫_0^v exp(-u tan ζ) dζ
-//                          tabulated in `sun_table` (u in [0, SUN_TABLE_U_MAX], v in [0, π/2])
-//   simplified, a0 = 0, anisotropic: σs I / (a1 h) P(θ), P(θ) = ∫_{-π/2}^θ p(-sin t) dt
-//                          tabulated per scene in `phase_table` (θ in [-π/2, π/2])
-const float SUN_TABLE_U_MAX = 32.0;
-const float SUN_TABLE_SIZE = 1024.0;  // samples at u, v = i / (SIZE - 1) of the range, on texel centres
-layout(binding = 7) uniform sampler2D sun_table;
-const float PHASE_TABLE_SIZE = 1024.0;
-layout(binding = 6) uniform sampler2D phase_table;  // 1 row
+//   simplified, isotropic:   Nilsson eq. 2.17
+//   simplified, anisotropic: σs I / (a1 H) R(κ, β), H² = h² + a0/a1, κ = h / H,
+//                            β = atan((z - z_s) / H)
+//   physical, any phase:     2 σs I e^(-σt z_s) / h · F_p(σt h, ξ), ξ = π/4 + θ/2
+// R and F_p are the scene's `medium_table` (analytic/gpu_tables.h: F_p stored as (1 + u) F_p over
+// s = u / (1 + u)). A smooth cone edge multiplies the closed form of each of the shell's
+// FALLOFF_PIECES pieces by the cone factor at its middle (in_scattering_integral, below).
+layout(binding = 7) uniform sampler2D medium_table;
+const int FALLOFF_PIECES = 16;  // kFalloffPieces in analytic/in_scattering.h
 
 // Bilinear interpolation of a table in float arithmetic at `texel` (texel units, 0 at the first
 // sample's centre). The texture unit's own GL_LINEAR filter is not used: GPUs interpolate with
@@ -27,8 +26,9 @@ float table_lookup(sampler2D table, vec2 texel) {
     return mix(a, b, f.y);
 }
 
-// The ray's interval inside the light's exact cone and its near/far range (as light_interval).
-vec2 light_interval(vec3 origin, vec3 direction, float t_max) {
+// The ray's interval inside a cone of the given half-angle about the light's axis and inside its
+// near/far range (as cone_interval).
+vec2 cone_interval(vec3 origin, vec3 direction, float t_max, float half_angle) {
     vec3 a = frame.light_direction.xyz;
     vec3 w = origin - frame.light_position.xyz;
     float near = frame.light_position.w, far = frame.light_direction.w;
@@ -41,8 +41,8 @@ vec2 light_interval(vec3 origin, vec3 direction, float t_max) {
         lo = max(lo, min(t0, t1));
         hi = min(hi, max(t0, t1));
     }
-    if (!(hi > lo)) return vec2(1.0, 0.0);
-    float c = cos(frame.light_cone.x), c2 = c * c;
+    if (!(hi > lo) || !(half_angle > 0.0)) return vec2(1.0, 0.0);
+    float c = cos(half_angle), c2 = c * c;
     float A = da * da - c2;
     float B = 2.0 * (da * wa - c2 * dot(direction, w));
     float C = wa * wa - c2 * dot(w, w);
@@ -68,8 +68,13 @@ vec2 light_interval(vec3 origin, vec3 direction, float t_max) {
     return vec2(1.0, 0.0);
 }
 
-// G(z) for the ray (origin, direction), per channel; z is clamped to the cone interval `span`
-// so that G(z1) - G(z0) integrates over [z0, z1] ∩ span only.
+// The ray's interval inside the light's exact cone and its near/far range (as light_interval).
+vec2 light_interval(vec3 origin, vec3 direction, float t_max) {
+    return cone_interval(origin, direction, t_max, frame.light_cone.x);
+}
+
+// G(z) of the hard edge for the ray (origin, direction), per channel; z is clamped to the cone
+// interval `span` so that G(z1) - G(z0) integrates over [z0, z1] ∩ span only.
 vec3 in_scattering_antiderivative(vec3 origin, vec3 direction, vec2 span, float z) {
     if (!(span.y > span.x)) return vec3(0.0);
     z = clamp(z, span.x, span.y);
@@ -77,33 +82,89 @@ vec3 in_scattering_antiderivative(vec3 origin, vec3 direction, vec2 span, float 
     float z_s = dot(delta, direction);
     float h = length(delta - z_s * direction);
     vec3 sigma_s = frame.medium_sigma_s.rgb, intensity = frame.light_intensity.rgb;
-    if (frame.medium_sigma_t.w < 0.5 && frame.medium_attenuation.z > 0.5) {
-        // dz / r² = dθ / h and cos α = -sin θ: the phase function's integral over θ, tabulated.
-        float theta = atan((z - z_s) / max(h, 1e-6));
-        float at = clamp(theta / PI + 0.5, 0.0, 1.0);
-        float p = table_lookup(phase_table, vec2(at * (PHASE_TABLE_SIZE - 1.0), 0.0));
-        return sigma_s * intensity / (frame.medium_attenuation.y * max(h, 1e-6)) * p;
-    }
+    ivec2 last = textureSize(medium_table, 0) - 1;
     if (frame.medium_sigma_t.w < 0.5) {
-        // Nilsson eq. 2.17 (as an antiderivative).
         float a0 = frame.medium_attenuation.x, a1 = frame.medium_attenuation.y;
+        if (frame.medium_attenuation.z > 0.5) {
+            // The phase function's integral in β, tabulated (a1 > 0: require_closed_form).
+            float H = max(sqrt(h * h + a0 / a1), 1e-6);
+            float beta = atan((z - z_s) / H);
+            vec2 at = vec2(clamp(h / H, 0.0, 1.0), clamp(beta / PI + 0.5, 0.0, 1.0));
+            return sigma_s * intensity / (a1 * H) * table_lookup(medium_table, at * vec2(last));
+        }
+        // Nilsson eq. 2.17 (as an antiderivative).
         if (a1 == 0.0) return sigma_s * intensity / (4.0 * PI * a0) * z;
         float C = sqrt(a1 * (a1 * h * h + a0));
         return sigma_s * intensity / (4.0 * PI * C) * atan(a1 * (z - z_s) / C);
     }
-    // Sun et al. 2005: A0 F(A1, ξ(z)); σt per channel. h > 0 away from the light's axis line.
+    // Sun et al. 2005 with the phase function: σt per channel. h > 0 away from the light's axis
+    // line. Every point of the ray has z + r >= d (the eye-light distance), so where σt d > 50
+    // nothing reaches the eye (e^-50), and e^(-σt z_s) alone could overflow: return 0.
     h = max(h, 1e-6);
+    float d = length(delta);
     vec3 sigma_t = frame.medium_sigma_t.rgb;
     float xi = 0.25 * PI + 0.5 * atan((z - z_s) / h);
     vec3 result;
     for (int c = 0; c < 3; ++c) {
         float st = sigma_t[c];
-        if (st <= 0.0) { result[c] = 0.0; continue; }
-        float A0 = sigma_s[c] * intensity[c] * exp(-st * z_s) / (2.0 * PI * h);
-        float A1 = st * h;
-        vec2 at = vec2(clamp(A1 / SUN_TABLE_U_MAX, 0.0, 1.0), clamp(xi / (0.5 * PI), 0.0, 1.0));
-        float f = table_lookup(sun_table, at * (SUN_TABLE_SIZE - 1.0));
-        result[c] = A0 * f;
+        if (st <= 0.0 || st * d > 50.0) { result[c] = 0.0; continue; }
+        float u = st * h;
+        vec2 at = vec2(u / (1.0 + u), clamp(xi / (0.5 * PI), 0.0, 1.0));
+        float f = table_lookup(medium_table, at * vec2(last)) / (1.0 + u);
+        result[c] = 2.0 * sigma_s[c] * intensity[c] * exp(-st * z_s) / h * f;
     }
     return result;
+}
+
+// The ray's cone interval and, for a smooth falloff, its inner cone's (half-angle cone -
+// falloff, where the factor is 1): `inner` is empty (x = y = outer.y) when there is none.
+struct LightSpans {
+    vec2 outer, inner;
+};
+
+LightSpans light_spans(vec3 origin, vec3 direction) {
+    LightSpans spans;
+    spans.outer = light_interval(origin, direction, 1e30);
+    spans.inner = vec2(spans.outer.y);
+    float falloff = frame.light_cone.y;
+    if (falloff > 0.0 && spans.outer.y > spans.outer.x) {
+        vec2 inner = cone_interval(origin, direction, 1e30, frame.light_cone.x - falloff);
+        inner = vec2(max(inner.x, spans.outer.x), min(inner.y, spans.outer.y));
+        if (inner.y > inner.x) spans.inner = inner;
+    }
+    return spans;
+}
+
+// ∫ of e times the cone factor over one shell interval up to z, in FALLOFF_PIECES pieces equal
+// in the angle at L (as in_scattering_pieces).
+vec3 shell_integral(vec3 origin, vec3 direction, vec2 span, vec2 shell, float z) {
+    if (!(shell.y > shell.x) || z <= shell.x) return vec3(0.0);
+    vec3 delta = frame.light_position.xyz - origin;
+    float z_s = dot(delta, direction);
+    float h = max(length(delta - z_s * direction), 1e-6);
+    float t0 = atan((shell.x - z_s) / h), t1 = atan((shell.y - z_s) / h);
+    vec3 sum = vec3(0.0);
+    vec3 previous = in_scattering_antiderivative(origin, direction, span, shell.x);
+    for (int k = 0; k < FALLOFF_PIECES; ++k) {
+        float ta = t0 + (t1 - t0) * float(k) / float(FALLOFF_PIECES);
+        float tb = t0 + (t1 - t0) * float(k + 1) / float(FALLOFF_PIECES);
+        float b = k + 1 == FALLOFF_PIECES ? shell.y : z_s + h * tan(tb);
+        float end = min(z, b);
+        vec3 current = in_scattering_antiderivative(origin, direction, span, end);
+        float middle = z_s + h * tan(0.5 * (ta + tb));
+        sum += cone_factor(origin + middle * direction - frame.light_position.xyz) *
+               (current - previous);
+        previous = current;
+        if (z <= b) break;
+    }
+    return sum;
+}
+
+// G(z) of the scene's light, the smooth falloff included: G(z1) - G(z0) = ∫ e c over [z0, z1].
+vec3 in_scattering_integral(vec3 origin, vec3 direction, LightSpans spans, float z) {
+    if (frame.light_cone.y <= 0.0) return in_scattering_antiderivative(origin, direction, spans.outer, z);
+    vec3 inner = in_scattering_antiderivative(origin, direction, spans.inner, z) -
+                 in_scattering_antiderivative(origin, direction, spans.inner, spans.inner.x);
+    return inner + shell_integral(origin, direction, spans.outer, vec2(spans.outer.x, spans.inner.x), z) +
+           shell_integral(origin, direction, spans.outer, vec2(spans.inner.y, spans.outer.y), z);
 }

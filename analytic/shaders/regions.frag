@@ -20,8 +20,9 @@ void main() {
     // faces of a pair hidden behind a surface cancel exactly.
     vec3 direction = eye_ray_direction(gl_FragCoord.xy);
     float z = min(length(world_position - origin), surface_distance(surface_depth, gl_FragCoord.xy));
-    // The ray's cone interval, up to the surface it hits (any z beyond it is clamped anyway).
-    vec2 span = light_interval(origin, direction, 1e30);
-    vec3 g = in_scattering_antiderivative(origin, direction, span, z);
+    // The ray's cone interval (and inner cone, for a smooth edge): any z beyond the surface it
+    // hits is clamped anyway.
+    LightSpans spans = light_spans(origin, direction);
+    vec3 g = in_scattering_integral(origin, direction, spans, z);
     in_scattered = vec4(gl_FrontFacing ? -g : g, 0.0);
 }

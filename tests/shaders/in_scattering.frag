@@ -12,7 +12,7 @@ void main() {
     vec3 origin = frame.camera_position.xyz;
     vec3 direction = normalize(far.xyz / far.w - origin);
     float t = 1.0 + 24.0 * gl_FragCoord.x / size.x;
-    vec2 span = light_interval(origin, direction, t);
-    result = vec4(in_scattering_antiderivative(origin, direction, span, t) -
-                  in_scattering_antiderivative(origin, direction, span, 0.0), 1.0);
+    LightSpans spans = light_spans(origin, direction);
+    result = vec4(in_scattering_integral(origin, direction, spans, t) -
+                  in_scattering_integral(origin, direction, spans, 0.0), 1.0);
 }
