@@ -311,7 +311,7 @@ dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& li
 }
 
 dvec3 in_scattering_pieces(const EyeRay& ray, double z0, double z1, const SpotLight& light,
-                           const Medium& medium) {
+                           const Medium& medium, int pieces) {
     if (light.falloff_degrees <= 0.0f) {
         return in_scattering_hard_edge(ray, z0, z1, light, medium);
     }
@@ -329,11 +329,11 @@ dvec3 in_scattering_pieces(const EyeRay& ray, double z0, double z1, const SpotLi
         const double t0 = std::atan((shell.begin - closest.z_s) / closest.h);
         const double t1 = std::atan((shell.end - closest.z_s) / closest.h);
         auto z_at = [&](double t) { return closest.z_s + closest.h * std::tan(t); };
-        for (int k = 0; k < kFalloffPieces; ++k) {
-            const double ta = t0 + (t1 - t0) * k / kFalloffPieces;
-            const double tb = t0 + (t1 - t0) * (k + 1) / kFalloffPieces;
+        for (int k = 0; k < pieces; ++k) {
+            const double ta = t0 + (t1 - t0) * k / pieces;
+            const double tb = t0 + (t1 - t0) * (k + 1) / pieces;
             const double a = k == 0 ? shell.begin : z_at(ta);
-            const double b = k + 1 == kFalloffPieces ? shell.end : z_at(tb);
+            const double b = k + 1 == pieces ? shell.end : z_at(tb);
             const double lo = std::max(z0, a), hi = std::min(z1, b);
             if (!(hi > lo))
                 continue;

@@ -62,6 +62,6 @@ dvec3 in_scattering_hard_edge(const EyeRay& ray, double z0, double z1, const Spo
 // piece's middle (midpoint product rule, error O(kFalloffPieces^-2), measured in
 // results/analytic_media.md). Equals in_scattering for a hard edge.
 dvec3 in_scattering_pieces(const EyeRay& ray, double z0, double z1, const SpotLight& light,
-                           const Medium& medium);
+                           const Medium& medium, int pieces = kFalloffPieces);
 
 }  // namespace sl::analytic

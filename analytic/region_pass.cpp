@@ -25,6 +25,13 @@ std::string AnalyticRegionPass::accepts() {
            "not the simplified model with a1 = 0 and an anisotropic phase function";
 }
 
+std::vector<std::string> edge_defines(const SpotLight& light) {
+    if (light.falloff_degrees > 0.0f) {
+        return {"SL_SMOOTH_CONE_EDGE 1"};
+    }
+    return {};
+}
+
 void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>& positions,
                                 const std::vector<glm::uvec3>& triangles) {
     index_count_ = GLsizei(triangles.size() * 3);
@@ -40,9 +47,14 @@ void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>
     GL.VertexArrayAttribFormat(vertex_array_.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
     GL.VertexArrayAttribBinding(vertex_array_.id(), 0, 0);
     vertex_array_.label("lit regions");
-    if (!program_) {
+    const bool smooth_edge = scene.light.falloff_degrees > 0.0f;
+    if (!program_ || smooth_edge != smooth_edge_) {
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
-                                       {GL_FRAGMENT_SHADER, "analytic/shaders/regions.frag"}});
+                                       {GL_FRAGMENT_SHADER, "analytic/shaders/regions.frag"}},
+                                      edge_defines(scene.light));
+        smooth_edge_ = smooth_edge;
+    }
+    if (!fragments_) {
         fragments_ = gl::create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
     }
     medium_table_ = create_medium_table(scene.medium);

@@ -22,6 +22,10 @@ using gl::TextureViews;
 using gl::VertexArray;
 using gl::VolumeInputs;
 
+// The defines of a program that includes analytic/shaders/in_scattering.glsl for this light:
+// SL_SMOOTH_CONE_EDGE where it has a smooth edge.
+std::vector<std::string> edge_defines(const SpotLight& light);
+
 class AnalyticRegionPass {
 public:
     // Throws sl::Error when the closed forms do not cover the scene's light model: only the
@@ -49,6 +53,7 @@ private:
     Texture medium_table_;
     Query fragments_;
     GLsizei index_count_ = 0;
+    bool smooth_edge_ = false;  // what program_ was made for
 };
 
 }  // namespace sl::analytic

@@ -319,5 +319,37 @@ TEST(InScattering, FalloffPiecesStayWithinTheirBound) {
                 worst, sum / counted, counted);
 }
 
+// A measurement, not a test (scripts/analytic_media.sh writes it into results/analytic_media.md):
+// the falloff approximation's error against the exact integral per piece count, on the rays of
+// FalloffPiecesStayWithinTheirBound.
+TEST(InScattering, DISABLED_FalloffPiecesPerCount) {
+    std::printf(
+        "| pieces per shell interval | worst, of the hard edge's I_s | worst, relative | mean, "
+        "relative |\n");
+    std::printf("|---:|---:|---:|---:|\n");
+    for (const int count : {2, 4, 8, 16, 32, 64}) {
+        std::mt19937 rng(15);
+        double worst_hard = 0.0, worst = 0.0, sum = 0.0;
+        int counted = 0;
+        for (int i = 0; i < 400; ++i) {
+            const SpotLight light = random_falloff_light(rng);
+            const Medium medium = random_medium(rng, i % kCases);
+            const analytic::EyeRay ray = random_ray(rng, light, (i / kCases) % 5);
+            const double z1 = uniform(rng, 2.0, 30.0);
+            const dvec3 exact = analytic::in_scattering(ray, 0.0, z1, light, medium);
+            if (!(exact.x > 0.0))
+                continue;
+            const dvec3 pieces = analytic::in_scattering_pieces(ray, 0.0, z1, light, medium, count);
+            const dvec3 hard = analytic::in_scattering_hard_edge(ray, 0.0, z1, light, medium);
+            const double error = std::abs(pieces.x - exact.x);
+            worst_hard = std::max(worst_hard, error / hard.x);
+            worst = std::max(worst, error / exact.x);
+            sum += error / exact.x;
+            ++counted;
+        }
+        std::printf("| %d | %.2e | %.2e | %.2e |\n", count, worst_hard, worst, sum / counted);
+    }
+}
+
 }  // namespace
 }  // namespace sl::test

@@ -184,14 +184,16 @@ Scene boxes_scene(MediumModel model) {
 }
 
 std::vector<float> render_test_pattern(const gl::shared::FrameUniforms& uniforms,
-                                       const char* fragment_shader, int width, int height) {
+                                       const char* fragment_shader, int width, int height,
+                                       const std::vector<std::string>& defines) {
     const gl::Buffer ubo = gl::create_buffer(&uniforms, sizeof(uniforms));
     gl::GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, ubo.id());
     const gl::Texture target = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
     const gl::Framebuffer framebuffer = gl::create_framebuffer();
     gl::GL.NamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
     const gl::Program program = gl::create_program(
-        {{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment_shader}});
+        {{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment_shader}},
+        defines);
     gl::GL.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
     gl::GL.Viewport(0, 0, width, height);
     gl::GL.UseProgram(program.id());

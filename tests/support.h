@@ -71,7 +71,8 @@ private:
 // uniforms into an RGBA32F target; returns its pixels, rows bottom to top. Textures the shader
 // reads are the caller's to bind.
 std::vector<float> render_test_pattern(const gl::shared::FrameUniforms& uniforms,
-                                       const char* fragment_shader, int width, int height);
+                                       const char* fragment_shader, int width, int height,
+                                       const std::vector<std::string>& defines = {});
 
 // The eye ray of test-pattern pixel (x, y) (GL rows, bottom to top) made from the very float
 // matrix the shader reads, not PixelUnprojector's double inverse: comparisons must be on identical
