@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -46,6 +47,20 @@ bool value_less(const std::string& a, const std::string& b) {
 template <typename T>
 size_t rank(const std::vector<T>& list, const T& value) {
     return size_t(std::find(list.begin(), list.end(), value) - list.begin());
+}
+
+// A scene as the tables print it: a scene file by its stem without ".scene"
+// ("/…/experiments/toplight-hg.scene.toml" is "toplight-hg"), a name as it is. The CSV and the
+// cells keep the sweep's own spelling.
+std::string scene_label(const std::string& scene) {
+    if (!scene.ends_with(".toml")) {
+        return scene;
+    }
+    std::string stem = std::filesystem::path(scene).stem().string();
+    if (stem.ends_with(".scene")) {
+        stem.resize(stem.size() - 6);
+    }
+    return stem;
 }
 
 std::string csv_field(const Json& value) {
@@ -238,7 +253,7 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
                 const SearchOutcome* baseline_volume = best_of(best_volume, volume, true);
                 baselines[{scene, w, h}] = baseline;
                 volume_baselines[{scene, w, h}] = baseline_volume;
-                md += fmt::format("| {} | {}x{} |", scene, w, h);
+                md += fmt::format("| {} | {}x{} |", scene_label(scene), w, h);
                 for (const std::string& method : x.methods) {
                     if (!best.contains(method)) {
                         md += " not reached |";
@@ -267,10 +282,11 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
                     headlines.push_back(fmt::format(
                         "- {:.3g}% on {} {}x{}: frame **{}** {:.1f} ms vs **{}** {:.1f} ms: "
                         "×{:.2f}; volume cost **{}** {:.1f} ms vs **{}** {:.1f} ms: ×{:.2f}",
-                        100 * target, scene, w, h, hybrid->group.method, frame(*hybrid),
-                        baseline->group.method, frame(*baseline), frame(*baseline) / frame(*hybrid),
-                        hybrid_volume->group.method, volume(*hybrid_volume),
-                        baseline_volume->group.method, volume(*baseline_volume),
+                        100 * target, scene_label(scene), w, h, hybrid->group.method,
+                        frame(*hybrid), baseline->group.method, frame(*baseline),
+                        frame(*baseline) / frame(*hybrid), hybrid_volume->group.method,
+                        volume(*hybrid_volume), baseline_volume->group.method,
+                        volume(*baseline_volume),
                         volume(*baseline_volume) / volume(*hybrid_volume)));
                 }
             }
@@ -329,12 +345,13 @@ std::string regions_table(const std::vector<StoredRow>& rows) {
         md += fmt::format(
             "| {} | {} | {} | {} | {:.1f}% / {:.1f}% / {:.1f}% | {:.1f}% / {:.1f}% / {:.1f}% | "
             "{:.2f} / {:.2f} | {:.2f}x | {:.1f} |\n",
-            r.cell.scene, r.cell.size(), v.value("beams", 0), v.value("region_faces", 0),
-            100 * v.value("ray_frac_lit", 0.0), 100 * v.value("ray_frac_uncertain", 0.0),
-            100 * v.value("ray_frac_unlit", 0.0), 100 * v.value("volume_frac_lit", 0.0),
-            100 * v.value("volume_frac_uncertain", 0.0), 100 * v.value("volume_frac_unlit", 0.0),
-            v.value("lit_crossings", 0.0), v.value("lit_crossings_visible", 0.0),
-            v.value("uncertain_span_ratio", 0.0), v.value("cpu_ms_beamtree_regions", 0.0));
+            scene_label(r.cell.scene), r.cell.size(), v.value("beams", 0),
+            v.value("region_faces", 0), 100 * v.value("ray_frac_lit", 0.0),
+            100 * v.value("ray_frac_uncertain", 0.0), 100 * v.value("ray_frac_unlit", 0.0),
+            100 * v.value("volume_frac_lit", 0.0), 100 * v.value("volume_frac_uncertain", 0.0),
+            100 * v.value("volume_frac_unlit", 0.0), v.value("lit_crossings", 0.0),
+            v.value("lit_crossings_visible", 0.0), v.value("uncertain_span_ratio", 0.0),
+            v.value("cpu_ms_beamtree_regions", 0.0));
     }
     return md;
 }
@@ -353,8 +370,8 @@ std::string fragments_table(const std::vector<StoredRow>& rows) {
         const double pixels = v.value("width", 1.0) * v.value("height", 1.0);
         const double per_pixel = v["stat_fragments_analytic"].get<double>() / pixels;
         const double minimum = v.value("lit_crossings", 0.0);
-        md += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {} |\n", r.cell.method, r.cell.scene,
-                          r.cell.size(), per_pixel, minimum,
+        md += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {} |\n", r.cell.method,
+                          scene_label(r.cell.scene), r.cell.size(), per_pixel, minimum,
                           minimum > 0.0 ? fmt::format("{:.2f}x", per_pixel / minimum) : "");
     }
     if (md.empty()) {
@@ -718,7 +735,13 @@ std::string sweep_table(const Experiment& x, const std::vector<StoredRow>& rows)
         for (const Entry* e : cells) {
             fastest = e ? std::min(fastest, e->frame_ms) : fastest;
         }
-        md += fmt::format("| {} |", fmt::join(key, " | "));
+        std::vector<std::string> shown = key;
+        for (size_t d = 0; d < dims.size(); ++d) {
+            if (dims[d] == "scene") {
+                shown[d] = scene_label(shown[d]);
+            }
+        }
+        md += fmt::format("| {} |", fmt::join(shown, " | "));
         for (const Entry* e : cells) {
             if (!e) {
                 md += " – |";
