@@ -286,68 +286,63 @@ TEST(InScattering, SmoothFalloffIsIntegrated) {
     }
 }
 
-// The GPU's approximation of the smooth falloff (kFalloffPieces midpoint pieces per shell
-// interval, equal in the angle at L) stays within its stated bound of the exact integral: 1% of
-// the ray's hard-edge in-scattering on every ray, 0.2% of its own value in the mean
-// (results/analytic_media.md measures it per piece count).
-TEST(InScattering, FalloffPiecesStayWithinTheirBound) {
-    std::mt19937 rng(15);
-    double worst = 0.0, sum = 0.0;
+// The smooth falloff's approximation with `count` pieces per shell interval against the exact
+// integral, on 400 random lights, media and rays that see the light: the worst error relative to
+// the ray's hard-edge I_s (every channel), the worst and the mean relative to the exact value
+// (red).
+struct PiecesError {
+    double worst_of_hard = 0.0, worst = 0.0, mean = 0.0;
     int counted = 0;
+    bool finite = true;
+};
+
+PiecesError falloff_pieces_error(int count) {
+    std::mt19937 rng(15);
+    PiecesError e;
     for (int i = 0; i < 400; ++i) {
         const SpotLight light = random_falloff_light(rng);
         const Medium medium = random_medium(rng, i % kCases);
         const analytic::EyeRay ray = random_ray(rng, light, (i / kCases) % 5);
         const double z1 = uniform(rng, 2.0, 30.0);
         const dvec3 exact = analytic::in_scattering(ray, 0.0, z1, light, medium);
-        const dvec3 pieces = analytic::in_scattering_pieces(ray, 0.0, z1, light, medium);
-        const dvec3 hard = analytic::in_scattering_hard_edge(ray, 0.0, z1, light, medium);
         if (!(exact.x > 0.0))
             continue;
+        const dvec3 pieces = analytic::in_scattering_pieces(ray, 0.0, z1, light, medium, count);
+        const dvec3 hard = analytic::in_scattering_hard_edge(ray, 0.0, z1, light, medium);
         for (int c = 0; c < 3; ++c) {
-            ASSERT_TRUE(std::isfinite(pieces[c]));
-            EXPECT_LE(std::abs(pieces[c] - exact[c]), 1e-2 * hard[c]) << i;
+            e.finite = e.finite && std::isfinite(pieces[c]);
+            e.worst_of_hard = std::max(e.worst_of_hard, std::abs(pieces[c] - exact[c]) / hard[c]);
         }
-        const double error = std::abs(pieces.x - exact.x);
-        worst = std::max(worst, error / hard.x);
-        sum += error / exact.x;
-        ++counted;
+        const double error = std::abs(pieces.x - exact.x) / exact.x;
+        e.worst = std::max(e.worst, error);
+        e.mean += error;
+        ++e.counted;
     }
-    ASSERT_GT(counted, 100);
-    EXPECT_LE(sum / counted, 2e-3);
-    std::printf("falloff pieces: worst %.3g of the hard edge's, mean %.3g relative, %d rays\n",
-                worst, sum / counted, counted);
+    e.mean /= std::max(e.counted, 1);
+    return e;
+}
+
+// The GPU's approximation of the smooth falloff (kFalloffPieces midpoint pieces per shell
+// interval, equal in the angle at L) stays within its stated bound of the exact integral: 1% of
+// the ray's hard-edge in-scattering on every ray, 0.2% of its own value in the mean
+// (results/analytic_media.md measures it per piece count).
+TEST(InScattering, FalloffPiecesStayWithinTheirBound) {
+    const PiecesError e = falloff_pieces_error(analytic::kFalloffPieces);
+    ASSERT_GT(e.counted, 100);
+    EXPECT_TRUE(e.finite);
+    EXPECT_LE(e.worst_of_hard, 1e-2);
+    EXPECT_LE(e.mean, 2e-3);
 }
 
 // A measurement, not a test (scripts/analytic_media.sh writes it into results/analytic_media.md):
-// the falloff approximation's error against the exact integral per piece count, on the rays of
-// FalloffPiecesStayWithinTheirBound.
+// the falloff approximation's error against the exact integral per piece count.
 TEST(InScattering, DISABLED_FalloffPiecesPerCount) {
     std::printf(
-        "| pieces per shell interval | worst, of the hard edge's I_s | worst, relative | mean, "
-        "relative |\n");
-    std::printf("|---:|---:|---:|---:|\n");
+        "| pieces per shell interval | worst, of the hard edge's I_s | worst, relative | "
+        "mean, relative |\n|---:|---:|---:|---:|\n");
     for (const int count : {2, 4, 8, 16, 32, 64}) {
-        std::mt19937 rng(15);
-        double worst_hard = 0.0, worst = 0.0, sum = 0.0;
-        int counted = 0;
-        for (int i = 0; i < 400; ++i) {
-            const SpotLight light = random_falloff_light(rng);
-            const Medium medium = random_medium(rng, i % kCases);
-            const analytic::EyeRay ray = random_ray(rng, light, (i / kCases) % 5);
-            const double z1 = uniform(rng, 2.0, 30.0);
-            const dvec3 exact = analytic::in_scattering(ray, 0.0, z1, light, medium);
-            if (!(exact.x > 0.0))
-                continue;
-            const dvec3 pieces = analytic::in_scattering_pieces(ray, 0.0, z1, light, medium, count);
-            const dvec3 hard = analytic::in_scattering_hard_edge(ray, 0.0, z1, light, medium);
-            const double error = std::abs(pieces.x - exact.x);
-            worst_hard = std::max(worst_hard, error / hard.x);
-            worst = std::max(worst, error / exact.x);
-            sum += error / exact.x;
-            ++counted;
-        }
-        std::printf("| %d | %.2e | %.2e | %.2e |\n", count, worst_hard, worst, sum / counted);
+        const PiecesError e = falloff_pieces_error(count);
+        std::printf("| %d | %.2e | %.2e | %.2e |\n", count, e.worst_of_hard, e.worst, e.mean);
     }
 }
 

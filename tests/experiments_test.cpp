@@ -281,6 +281,28 @@ dz = [0.5, 0.1]
     EXPECT_LT(first, second) << "dz rows in the file's order";
 }
 
+// A scene file in a sweep appears in the table by its stem ("toplight-hg"), not by its path.
+TEST(Report, TableNamesSceneFilesByTheirStem) {
+    const std::string file =
+        std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/toplight-hg.scene.toml";
+    const Experiment x = parse_experiment(fmt::format(R"(
+name = "t"
+[sweep]
+scenes = ["toplight", "{}"]
+methods = ["beamtree"]
+sizes = ["32x16"]
+)",
+                                                      file),
+                                          "t.toml");
+    std::vector<experiments::StoredRow> rows;
+    for (const Cell& cell : x.cells()) {
+        rows.push_back({cell, 0, {{"frame_ms_median", 10.0}, {"rel_rmse", 0.01}}});
+    }
+    const std::string table = experiments::sweep_table(x, rows);
+    EXPECT_NE(table.find("| toplight-hg | 32x16 |"), std::string::npos) << table;
+    EXPECT_EQ(table.find("experiments/"), std::string::npos) << table;
+}
+
 TEST(Bench, BadExperimentFileIsOneErrorAndWritesNothing) {
     TempDir dir;
     write_text(dir.path() / "bad.toml",
