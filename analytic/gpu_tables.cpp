@@ -6,9 +6,11 @@
 #include <map>
 #include <mutex>
 #include <numbers>
-#include <thread>
 #include <tuple>
 
+#include <tbb/parallel_for.h>
+
+#include "analytic/in_scattering.h"
 #include "analytic/phase_functions.h"
 
 namespace sl::analytic {
@@ -65,9 +67,7 @@ void simplified_column(const Medium& medium, int size, int x, float* values) {
     const double kappa = double(x) / (size - 1);
     const double step = kPi / (size - 1);
     auto f = [&](double beta) {
-        const double sb = std::sin(beta), cb = std::cos(beta);
-        const double norm = std::sqrt(kappa * kappa * cb * cb + sb * sb);
-        return phase(medium.phase, medium.g, norm > 0.0 ? -sb / norm : 0.0);
+        return phase(medium.phase, medium.g, simplified_cos_alpha(kappa, beta));
     };
     // cos α turns from +1 to -1 over |β| of about κ around β = 0: split there, and resolve it.
     auto piece = [&](double a, double b) {
@@ -92,20 +92,12 @@ std::shared_ptr<const MediumTable> build(const Medium& medium, int size) {
     table->values.assign(size_t(size) * size, 0.0f);
     const bool physical = medium.model == MediumModel::physical;
     // Columns are independent: spread them over the cores.
-    const int workers = int(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
-    std::vector<std::thread> threads;
-    for (int w = 0; w < workers; ++w) {
-        threads.emplace_back([&, w] {
-            for (int x = w; x < size; x += workers) {
-                if (physical)
-                    physical_column(medium, size, x, table->values.data());
-                else
-                    simplified_column(medium, size, x, table->values.data());
-            }
-        });
-    }
-    for (std::thread& thread : threads)
-        thread.join();
+    tbb::parallel_for(0, size, [&](int x) {
+        if (physical)
+            physical_column(medium, size, x, table->values.data());
+        else
+            simplified_column(medium, size, x, table->values.data());
+    });
     table->build_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return table;
@@ -114,10 +106,9 @@ std::shared_ptr<const MediumTable> build(const Medium& medium, int size) {
 }  // namespace
 
 std::shared_ptr<const MediumTable> medium_table(const Medium& medium, int size) {
-    const bool uses_g =
-        medium.phase == PhaseFunction::henyey_greenstein || medium.phase == PhaseFunction::schlick;
     using Key = std::tuple<int, int, float, int>;
-    const Key key{int(medium.model), int(medium.phase), uses_g ? medium.g : 0.0f, size};
+    const Key key{int(medium.model), int(medium.phase),
+                  uses_asymmetry(medium.phase) ? medium.g : 0.0f, size};
     static std::mutex mutex;
     static std::map<Key, std::shared_ptr<const MediumTable>> cache;
     const std::lock_guard lock(mutex);

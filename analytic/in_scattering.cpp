@@ -21,30 +21,19 @@ dvec3 axis(const SpotLight& light) {
 }
 
 // Geometry of the ray relative to the light (Nilsson eq. 2.16): z_s, the distance along the ray
-// closest to L, and h = r0, the distance of the ray from L.
+// closest to L, and h = r0, the distance of the ray from L; below `grazing` (relative to L's
+// distance) the forms in 1/h lose their accuracy (γ → 0).
 struct Closest {
     double z_s;
     double h;
+    double grazing;
 };
 
 Closest closest_approach(const EyeRay& ray, const dvec3& light) {
     const dvec3 delta = light - ray.origin;
     const double z_s = glm::dot(delta, ray.direction);
     const dvec3 off = delta - z_s * ray.direction;
-    return {z_s, glm::length(off)};
-}
-
-// I(Ω) / I of Nilsson eq. 2.9 with the optional smooth edge, as SpotLight::cone_factor, in double.
-double cone_factor(const SpotLight& light, const dvec3& p) {
-    const dvec3 from_light = glm::normalize(p - dvec3(light.position));
-    const double angle = std::acos(std::clamp(glm::dot(from_light, axis(light)), -1.0, 1.0));
-    const double cone = glm::radians(double(light.cone_half_angle_degrees));
-    if (light.falloff_degrees <= 0.0f) {
-        return angle <= cone ? 1.0 : 0.0;
-    }
-    const double t =
-        std::clamp((cone - angle) / glm::radians(double(light.falloff_degrees)), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);  // smoothstep from the edge inwards
+    return {z_s, glm::length(off), 1e-7 * std::max(glm::length(delta), 1.0)};
 }
 
 }  // namespace
@@ -60,7 +49,7 @@ dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light,
     }
     // The cone factor in double precision (SpotLight::cone_factor's float would leave noise
     // the quadrature cannot converge on).
-    const double cone = cone_factor(light, p);
+    const double cone = light.cone_factor(p);
     if (cone == 0.0) {
         return dvec3(0.0);
     }
@@ -76,6 +65,12 @@ dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light,
     // Nilsson eq. 2.6-2.8: T(z) σs p I(Ω) T(r) / r².
     const dvec3 sigma_t(medium.sigma_t());
     return glm::exp(-sigma_t * (z + r)) * sigma_s * p_alpha * intensity * cone / (r * r);
+}
+
+double simplified_cos_alpha(double kappa, double beta) {
+    const double sb = std::sin(beta), cb = std::cos(beta);
+    const double norm = std::sqrt(kappa * kappa * cb * cb + sb * sb);
+    return norm > 0.0 ? -sb / norm : 0.0;
 }
 
 Interval light_interval(const EyeRay& ray, const SpotLight& light, double t_max) {
@@ -153,14 +148,13 @@ namespace {
 // inside the cone interval already.
 dvec3 hard_edge_integral(const EyeRay& ray, double z0, double z1, const SpotLight& light,
                          const Medium& medium) {
-    const dvec3 L(light.position);
-    const Closest closest = closest_approach(ray, L);
-    const double h = closest.h, z_s = closest.z_s;
-    // Below this distance from L (relative) the closed forms in 1/h lose their accuracy (γ → 0).
-    const double grazing = 1e-7 * std::max(glm::length(L - ray.origin), 1.0);
+    const Closest closest = closest_approach(ray, dvec3(light.position));
+    const double h = closest.h, z_s = closest.z_s, grazing = closest.grazing;
     const bool isotropic = medium.phase == PhaseFunction::isotropic;
     const double a0 = medium.a0, a1 = medium.a1;
     auto p = [&](double cos_alpha) { return phase(medium.phase, medium.g, cos_alpha); };
+    SpotLight hard = light;  // for the quadrature fallback: [z0, z1] is inside the cone
+    hard.falloff_degrees = 0.0f;
     dvec3 result(0.0);
     for (int c = 0; c < 3; ++c) {
         const double sigma_s = medium.sigma_s[c];
@@ -189,11 +183,7 @@ dvec3 hard_edge_integral(const EyeRay& ray, double z0, double z1, const SpotLigh
             // ∫ e dz = σs I / (a1 H) ∫ p(cos α(κ, β)) dβ; κ = 1 when a0 = 0. For κ -> 0 (the
             // ray passes near L) cos α turns from +1 to -1 around β = 0: split there.
             const double kappa = h / H;
-            auto integrand = [&](double beta) {
-                const double sb = std::sin(beta), cb = std::cos(beta);
-                const double norm = std::sqrt(kappa * kappa * cb * cb + sb * sb);
-                return p(norm > 0.0 ? -sb / norm : 0.0);
-            };
+            auto integrand = [&](double beta) { return p(simplified_cos_alpha(kappa, beta)); };
             const double b0 = std::atan((z0 - z_s) / H), b1 = std::atan((z1 - z_s) / H);
             double sum = 0.0;
             if (b0 < 0.0 && b1 > 0.0) {
@@ -228,33 +218,39 @@ dvec3 hard_edge_integral(const EyeRay& ray, double z0, double z1, const SpotLigh
             continue;
         }
         // No closed form: adaptive quadrature of e(z) itself.
-        SpotLight hard = light;
-        hard.falloff_degrees = 0.0f;
         result[c] = integrate([&](double z) { return scattering_density(ray, z, hard, medium)[c]; },
                               z0, z1, 1e-12);
     }
     return result;
 }
 
-// The ray's cone interval (from t = 0 on) and, for a smooth falloff, its inner cone's.
-struct FalloffSpans {
-    Interval outer, inner;
-};
-
-FalloffSpans falloff_spans(const EyeRay& ray, const SpotLight& light) {
+// A smooth edge's integral over [z0, z1]: the hard edge's closed form over the inner cone (half-
+// angle cone - falloff, factor 1), plus shell(interval) for each of the ray's two shell intervals
+// between the inner and the outer cone (from t = 0 on, so that the GPU's pieces, which cannot see
+// z0, are the same), with `closest` of the ray.
+template <typename Shell>
+dvec3 smooth_edge_integral(const EyeRay& ray, double z0, double z1, const SpotLight& light,
+                           const Medium& medium, const Shell& shell) {
     constexpr double kUnbounded = 1e30;  // the range's far plane bounds the interval
     const double cone = glm::radians(double(light.cone_half_angle_degrees));
-    const double inner = cone - glm::radians(double(light.falloff_degrees));
-    FalloffSpans spans{cone_interval(ray, light, cone, kUnbounded), {}};
-    if (inner > 0.0) {
-        spans.inner = cone_interval(ray, light, inner, kUnbounded);
-        spans.inner.begin = std::max(spans.inner.begin, spans.outer.begin);
-        spans.inner.end = std::min(spans.inner.end, spans.outer.end);
+    const double inner_angle = cone - glm::radians(double(light.falloff_degrees));
+    const Interval outer = cone_interval(ray, light, cone, kUnbounded);
+    Interval inner =
+        inner_angle > 0.0 ? cone_interval(ray, light, inner_angle, kUnbounded) : Interval{};
+    inner = {std::max(inner.begin, outer.begin), std::min(inner.end, outer.end)};
+    if (inner.empty()) {
+        inner = {outer.end, outer.end};
     }
-    if (spans.inner.empty()) {
-        spans.inner = {spans.outer.end, spans.outer.end};
+    dvec3 result = in_scattering_hard_edge(ray, std::max(z0, inner.begin), std::min(z1, inner.end),
+                                           light, medium);
+    const Closest closest = closest_approach(ray, dvec3(light.position));
+    for (const Interval part :
+         {Interval{outer.begin, inner.begin}, Interval{inner.end, outer.end}}) {
+        if (!part.empty()) {
+            result += shell(part, closest);
+        }
     }
-    return spans;
+    return result;
 }
 
 }  // namespace
@@ -275,39 +271,31 @@ dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& li
     if (light.falloff_degrees <= 0.0f) {
         return in_scattering_hard_edge(ray, z0, z1, light, medium);
     }
-    // Smooth falloff: the inner cone in closed form, the shell by quadrature of e(z), cut where
-    // the cone factor has its kinks (the inner and outer cones).
-    const FalloffSpans spans = falloff_spans(ray, light);
-    dvec3 result = in_scattering_hard_edge(ray, std::max(z0, spans.inner.begin),
-                                           std::min(z1, spans.inner.end), light, medium);
-    for (const Interval shell : {Interval{spans.outer.begin, spans.inner.begin},
-                                 Interval{spans.inner.end, spans.outer.end}}) {
+    // The shell by quadrature of e(z), cut where the cone factor has its kinks (the inner and
+    // outer cones).
+    return smooth_edge_integral(ray, z0, z1, light, medium, [&](Interval shell, Closest closest) {
         const double a = std::max(z0, shell.begin), b = std::min(z1, shell.end);
+        dvec3 sum(0.0);
         if (!(b > a))
-            continue;
-        // In the angle at L, z = z_s + h tan θ: e dz = e(z(θ)) h sec² θ dθ has no 1/r² peak
-        // (e r² is bounded), so the quadrature converges in a few pieces.
-        const Closest closest = closest_approach(ray, dvec3(light.position));
-        const bool grazing =
-            closest.h <= 1e-7 * std::max(glm::length(dvec3(light.position) - ray.origin), 1.0);
+            return sum;
+        const double h = closest.h, z_s = closest.z_s;
         for (int c = 0; c < 3; ++c) {
-            if (grazing) {
-                result[c] += integrate(
-                    [&](double z) { return scattering_density(ray, z, light, medium)[c]; }, a, b,
-                    1e-12);
+            auto e = [&](double z) { return scattering_density(ray, z, light, medium)[c]; };
+            if (h <= closest.grazing) {
+                sum[c] = integrate(e, a, b, 1e-12);
                 continue;
             }
-            const double h = closest.h, z_s = closest.z_s;
-            result[c] += integrate(
+            // In the angle at L, z = z_s + h tan θ: e dz = e(z(θ)) h sec² θ dθ has no 1/r² peak
+            // (e r² is bounded), so the quadrature converges in a few pieces.
+            sum[c] = integrate(
                 [&](double t) {
                     const double cos_t = std::cos(t);
-                    return scattering_density(ray, z_s + h * std::tan(t), light, medium)[c] * h /
-                           (cos_t * cos_t);
+                    return e(z_s + h * std::tan(t)) * h / (cos_t * cos_t);
                 },
                 std::atan((a - z_s) / h), std::atan((b - z_s) / h), 1e-12);
         }
-    }
-    return result;
+        return sum;
+    });
 }
 
 dvec3 in_scattering_pieces(const EyeRay& ray, double z0, double z1, const SpotLight& light,
@@ -315,20 +303,14 @@ dvec3 in_scattering_pieces(const EyeRay& ray, double z0, double z1, const SpotLi
     if (light.falloff_degrees <= 0.0f) {
         return in_scattering_hard_edge(ray, z0, z1, light, medium);
     }
-    const FalloffSpans spans = falloff_spans(ray, light);
-    dvec3 result = in_scattering_hard_edge(ray, std::max(z0, spans.inner.begin),
-                                           std::min(z1, spans.inner.end), light, medium);
-    Closest closest = closest_approach(ray, dvec3(light.position));
-    closest.h = std::max(closest.h, 1e-9);
-    for (const Interval shell : {Interval{spans.outer.begin, spans.inner.begin},
-                                 Interval{spans.inner.end, spans.outer.end}}) {
-        if (shell.empty())
-            continue;
+    return smooth_edge_integral(ray, z0, z1, light, medium, [&](Interval shell, Closest closest) {
+        closest.h = std::max(closest.h, 1e-9);
         // Equal pieces of the angle at L, θ = atan((z - z_s) / h): e dz is nearly uniform in θ
         // (exactly so for 1/r² alone), so each piece carries a like share of the integral.
         const double t0 = std::atan((shell.begin - closest.z_s) / closest.h);
         const double t1 = std::atan((shell.end - closest.z_s) / closest.h);
         auto z_at = [&](double t) { return closest.z_s + closest.h * std::tan(t); };
+        dvec3 sum(0.0);
         for (int k = 0; k < pieces; ++k) {
             const double ta = t0 + (t1 - t0) * k / pieces;
             const double tb = t0 + (t1 - t0) * (k + 1) / pieces;
@@ -338,12 +320,12 @@ dvec3 in_scattering_pieces(const EyeRay& ray, double z0, double z1, const SpotLi
             if (!(hi > lo))
                 continue;
             const double weight =
-                cone_factor(light, ray.origin + z_at(0.5 * (ta + tb)) * ray.direction);
+                light.cone_factor(ray.origin + z_at(0.5 * (ta + tb)) * ray.direction);
             if (weight > 0.0)
-                result += weight * hard_edge_integral(ray, lo, hi, light, medium);
+                sum += weight * hard_edge_integral(ray, lo, hi, light, medium);
         }
-    }
-    return result;
+        return sum;
+    });
 }
 
 }  // namespace sl::analytic

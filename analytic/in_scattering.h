@@ -33,6 +33,10 @@ struct Interval {
     bool empty() const { return !(end > begin); }
 };
 
+// The cosine of the scattering angle in the simplified model's angle variable β (x = H tan β,
+// κ = h / H; in_scattering.cpp derives it): -sin β / sqrt(κ² cos² β + sin² β), 0 at κ = β = 0.
+double simplified_cos_alpha(double kappa, double beta);
+
 // e(z) per channel at distance z along the ray, light cone factor and range included.
 dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light, const Medium& medium);
 

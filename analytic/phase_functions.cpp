@@ -33,4 +33,8 @@ double phase(PhaseFunction function, double g, double cos_alpha) {
     return 0.0;
 }
 
+bool uses_asymmetry(PhaseFunction function) {
+    return function == PhaseFunction::henyey_greenstein || function == PhaseFunction::schlick;
+}
+
 }  // namespace sl::analytic

@@ -20,5 +20,7 @@
 namespace sl::analytic {
 
 double phase(PhaseFunction function, double g, double cos_alpha);
+// Whether the function reads g (Henyey-Greenstein and Schlick).
+bool uses_asymmetry(PhaseFunction function);
 
 }  // namespace sl::analytic

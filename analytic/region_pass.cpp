@@ -1,6 +1,9 @@
 #include "analytic/region_pass.h"
 
+#include <fmt/format.h>
+
 #include "analytic/gpu_tables.h"
+#include "analytic/in_scattering.h"
 #include "core/error.h"
 #include "gl/shaders.h"
 
@@ -27,7 +30,7 @@ std::string AnalyticRegionPass::accepts() {
 
 std::vector<std::string> edge_defines(const SpotLight& light) {
     if (light.falloff_degrees > 0.0f) {
-        return {"SL_SMOOTH_CONE_EDGE 1"};
+        return {"SL_SMOOTH_CONE_EDGE 1", fmt::format("FALLOFF_PIECES {}", kFalloffPieces)};
     }
     return {};
 }

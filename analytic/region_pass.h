@@ -23,7 +23,7 @@ using gl::VertexArray;
 using gl::VolumeInputs;
 
 // The defines of a program that includes analytic/shaders/in_scattering.glsl for this light:
-// SL_SMOOTH_CONE_EDGE where it has a smooth edge.
+// SL_SMOOTH_CONE_EDGE and FALLOFF_PIECES (= kFalloffPieces) where it has a smooth edge.
 std::vector<std::string> edge_defines(const SpotLight& light);
 
 class AnalyticRegionPass {

@@ -56,7 +56,7 @@ std::string scene_label(const std::string& scene) {
     if (!scene.ends_with(".toml")) {
         return scene;
     }
-    std::string stem = std::filesystem::path(scene).stem().string();
+    std::string stem = fs::path(scene).stem().string();
     if (stem.ends_with(".scene")) {
         stem.resize(stem.size() - 6);
     }

@@ -48,14 +48,30 @@ glm::mat4 SpotLight::projection() const {
     return glm::perspective(2.0f * glm::radians(cone_half_angle_degrees), 1.0f, near, far);
 }
 
-float SpotLight::cone_factor(glm::vec3 p) const {
-    const float cos_angle = glm::dot(glm::normalize(p - position), direction());
-    const float angle = glm::degrees(std::acos(std::clamp(cos_angle, -1.0f, 1.0f)));
-    if (falloff_degrees <= 0.0f) {
-        return angle <= cone_half_angle_degrees ? 1.0f : 0.0f;  // Nilsson eq. 2.9
+namespace {
+
+// SpotLight::cone_factor in the precision of T.
+template <typename T>
+T cone_factor_in(const SpotLight& light, const glm::vec<3, T>& p) {
+    using V = glm::vec<3, T>;
+    const T cos_angle = glm::dot(glm::normalize(p - V(light.position)), V(light.direction()));
+    const T angle = glm::degrees(std::acos(std::clamp(cos_angle, T(-1), T(1))));
+    const T cone = T(light.cone_half_angle_degrees), falloff = T(light.falloff_degrees);
+    if (falloff <= T(0)) {
+        return angle <= cone ? T(1) : T(0);  // Nilsson eq. 2.9
     }
-    const float t = std::clamp((cone_half_angle_degrees - angle) / falloff_degrees, 0.0f, 1.0f);
-    return t * t * (3.0f - 2.0f * t);  // smoothstep from the edge inwards
+    const T t = std::clamp((cone - angle) / falloff, T(0), T(1));
+    return t * t * (T(3) - T(2) * t);  // smoothstep from the edge inwards
+}
+
+}  // namespace
+
+float SpotLight::cone_factor(glm::vec3 p) const {
+    return cone_factor_in(*this, p);
+}
+
+double SpotLight::cone_factor(const glm::dvec3& p) const {
+    return cone_factor_in(*this, p);
 }
 
 bool SpotLight::in_influence_volume(glm::vec3 p) const {

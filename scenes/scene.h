@@ -95,8 +95,10 @@ struct SpotLight {
     glm::mat4 view() const;
     // The square frustum circumscribing the cone (the influence pyramid), near to far.
     glm::mat4 projection() const;
-    // I(Ω) / I of eq. 2.9 for the direction from the light to p, with the optional falloff.
+    // I(Ω) / I of eq. 2.9 for the direction from the light to p, with the optional falloff; in
+    // double precision for quadrature (float would leave noise it cannot converge on).
     float cone_factor(glm::vec3 p) const;
+    double cone_factor(const glm::dvec3& p) const;
     // True when p lies inside the influence pyramid between near and far.
     bool in_influence_volume(glm::vec3 p) const;
 };

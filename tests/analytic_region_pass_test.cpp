@@ -11,6 +11,7 @@
 
 #include "analytic/gpu_tables.h"
 #include "analytic/in_scattering.h"
+#include "analytic/phase_functions.h"
 #include "analytic/region_pass.h"
 #include "core/error.h"
 #include "core/metrics.h"
@@ -58,15 +59,13 @@ TwinError glsl_against_cpp(const Scene& scene, int table_size = analytic::kMediu
                             analytic::edge_defines(scene.light));
     const double peak = std::max(red_peak(rgba), 1e-30);
     TwinError error{.pixels = width * height};
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const TestRay r = test_pattern_ray(uniforms, x, y, width, height);
-            const analytic::EyeRay ray{r.origin, r.direction};
-            const double t = 1.0 + 24.0 * (x + 0.5) / width;
+    for_each_pattern_pixel(
+        uniforms, width, height,
+        [&](int, int, const analytic::EyeRay& ray, double t, size_t index) {
             const glm::dvec3 cpu =
                 analytic::in_scattering_pieces(ray, 0.0, t, scene.light, scene.medium);
             for (int c = 0; c < 3; ++c) {
-                const double gpu = rgba[(size_t(y) * width + x) * 4 + size_t(c)];
+                const double gpu = rgba[index + size_t(c)];
                 const double difference = std::abs(gpu - cpu[c]);
                 error.worst = std::max(error.worst, difference / std::max(std::abs(cpu[c]), peak));
                 error.worst_dim =
@@ -75,8 +74,7 @@ TwinError glsl_against_cpp(const Scene& scene, int table_size = analytic::kMediu
                     error.worst = HUGE_VAL;
             }
             error.compared += cpu.x > 1e-2 * peak;
-        }
-    }
+        });
     return error;
 }
 
@@ -148,8 +146,7 @@ TEST_F(GpuMethod, DISABLED_MediumTableResolution) {
              {PhaseFunction::henyey_greenstein, PhaseFunction::schlick, PhaseFunction::rayleigh,
               PhaseFunction::mie_hazy, PhaseFunction::mie_murky, PhaseFunction::isotropic}) {
             for (const float g : {-0.5f, 0.6f, 0.9f}) {
-                const bool uses_g =
-                    phase == PhaseFunction::henyey_greenstein || phase == PhaseFunction::schlick;
+                const bool uses_g = analytic::uses_asymmetry(phase);
                 if (!uses_g && g != 0.6f)
                     continue;
                 for (const int size : {256, 512, 1024, 2048}) {

@@ -53,21 +53,18 @@ TEST_F(Sampling, GlslIntegrandMatchesCppForEveryPhaseFunction) {
                 render_test_pattern(uniforms, "tests/shaders/scattering.frag", width, height);
             const double peak = red_peak(rgba);
             ASSERT_GT(peak, 0.0);
-            for (int y = 0; y < height; ++y) {
-                for (int x = 0; x < width; ++x) {
-                    const TestRay r = test_pattern_ray(uniforms, x, y, width, height);
-                    const analytic::EyeRay ray{r.origin, r.direction};
-                    const double t = 1.0 + 24.0 * (x + 0.5) / width;
+            for_each_pattern_pixel(
+                uniforms, width, height,
+                [&](int x, int y, const analytic::EyeRay& ray, double t, size_t index) {
                     const glm::dvec3 cpu =
                         analytic::scattering_density(ray, t, scene.light, scene.medium);
                     for (int c = 0; c < 3; ++c) {
-                        const double gpu = rgba[(size_t(y) * width + x) * 4 + size_t(c)];
+                        const double gpu = rgba[index + size_t(c)];
                         ASSERT_NEAR(gpu, cpu[c], tolerance * std::max(std::abs(cpu[c]), peak))
                             << to_string(scene.medium.phase) << " " << to_string(model) << " pixel "
                             << x << ", " << y;
                     }
-                }
-            }
+                });
         }
     }
 }

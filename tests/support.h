@@ -12,6 +12,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "analytic/in_scattering.h"
 #include "core/image.h"
 #include "gl/platform.h"
 #include "gl/renderer.h"
@@ -83,6 +84,20 @@ struct TestRay {
 };
 TestRay test_pattern_ray(const gl::shared::FrameUniforms& uniforms, int x, int y, int width,
                          int height);
+// Calls f(x, y, ray, t, index) for every test-pattern pixel: its eye ray (test_pattern_ray), the
+// distance t = 1 + 24 (x + ½) / width the tests/shaders patterns evaluate at, and the offset of
+// its RGBA value in the pattern's pixels.
+template <typename F>
+void for_each_pattern_pixel(const gl::shared::FrameUniforms& uniforms, int width, int height,
+                            const F& f) {
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const TestRay r = test_pattern_ray(uniforms, x, y, width, height);
+            f(x, y, analytic::EyeRay{r.origin, r.direction}, 1.0 + 24.0 * (x + 0.5) / width,
+              (size_t(y) * width + x) * 4);
+        }
+    }
+}
 // The largest red value of an RGBA image.
 double red_peak(const std::vector<float>& rgba);
 

@@ -12,7 +12,6 @@
 // behind a uniform branch it made llvmpipe's hard-edge region pass 4.6x slower (134 ms against
 // 29 ms on toplight at 640x360).
 layout(binding = 7) uniform sampler2D medium_table;
-const int FALLOFF_PIECES = 16;  // kFalloffPieces in analytic/in_scattering.h
 
 // Bilinear interpolation of a table in float arithmetic at `texel` (texel units, 0 at the first
 // sample's centre). The texture unit's own GL_LINEAR filter is not used: GPUs interpolate with
@@ -142,7 +141,7 @@ LightSpans light_spans(vec3 origin, vec3 direction) {
 
 #ifdef SL_SMOOTH_CONE_EDGE
 // ∫ of e times the cone factor over one shell interval up to z, in FALLOFF_PIECES pieces equal
-// in the angle at L (as in_scattering_pieces).
+// in the angle at L (as in_scattering_pieces; edge_defines sets it to kFalloffPieces).
 vec3 shell_integral(vec3 origin, vec3 direction, vec2 span, vec2 shell, float z) {
     if (!(shell.y > shell.x) || z <= shell.x) return vec3(0.0);
     vec3 delta = frame.light_position.xyz - origin;
