@@ -37,19 +37,11 @@ std::vector<std::string> edge_defines(const SpotLight& light) {
 
 void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>& positions,
                                 const std::vector<glm::uvec3>& triangles) {
-    index_count_ = GLsizei(triangles.size() * 3);
-    if (index_count_ == 0) {
+    mesh_ = gl::create_triangle_mesh(positions, triangles);
+    if (mesh_.index_count == 0) {
         return;  // no lit region (or only slivers): draw() adds nothing
     }
-    vertices_ = gl::create_buffer(positions.data(), positions.size() * sizeof(glm::vec3));
-    indices_ = gl::create_buffer(triangles.data(), triangles.size() * sizeof(glm::uvec3));
-    vertex_array_ = gl::create_vertex_array();
-    GL.VertexArrayVertexBuffer(vertex_array_.id(), 0, vertices_.id(), 0, sizeof(glm::vec3));
-    GL.VertexArrayElementBuffer(vertex_array_.id(), indices_.id());
-    GL.EnableVertexArrayAttrib(vertex_array_.id(), 0);
-    GL.VertexArrayAttribFormat(vertex_array_.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
-    GL.VertexArrayAttribBinding(vertex_array_.id(), 0, 0);
-    vertex_array_.label("lit regions");
+    mesh_.vertex_array.label("lit regions");
     const bool smooth_edge = scene.light.falloff_degrees > 0.0f;
     if (!program_ || smooth_edge != smooth_edge_) {
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
@@ -64,7 +56,7 @@ void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>
 }
 
 void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
-    if (index_count_ == 0)
+    if (mesh_.index_count == 0)
         return;
     GL.UseProgram(program_.id());
     GL.BindTextureUnit(0, inputs.surface_depth);
@@ -72,16 +64,16 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     GL.Enable(GL_BLEND);
     GL.BlendFunc(GL_ONE, GL_ONE);  // signed sums in the float target
     GL.Enable(GL_DEPTH_CLAMP);     // faces in front of the near plane still count
-    GL.BindVertexArray(vertex_array_.id());
+    GL.BindVertexArray(mesh_.vertex_array.id());
     GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
-    GL.DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+    GL.DrawElements(GL_TRIANGLES, mesh_.index_count, GL_UNSIGNED_INT, nullptr);
     GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
     GL.Disable(GL_DEPTH_CLAMP);
     GL.Disable(GL_BLEND);
 }
 
 double AnalyticRegionPass::fragments() const {
-    if (index_count_ == 0)
+    if (mesh_.index_count == 0)
         return 0.0;
     GLuint64 count = 0;
     GL.GetQueryObjectui64v(fragments_.id(), GL_QUERY_RESULT, &count);

@@ -14,12 +14,10 @@
 
 namespace sl::analytic {
 
-using gl::Buffer;
 using gl::Program;
 using gl::Query;
 using gl::Texture;
 using gl::TextureViews;
-using gl::VertexArray;
 using gl::VolumeInputs;
 
 // The defines of a program that includes analytic/shaders/in_scattering.glsl for this light:
@@ -40,19 +38,17 @@ public:
                 const std::vector<glm::uvec3>& triangles);
     // Adds ∫ e over the regions' part of every eye ray, up to the first surface.
     void draw(const VolumeInputs& inputs) const;
-    size_t triangle_count() const { return size_t(index_count_) / 3; }
+    size_t triangle_count() const { return size_t(mesh_.index_count) / 3; }
     // Its lookup tables, named "<owner>/...".
     TextureViews textures(const std::string& owner) const;
     // Fragment-shader invocations of the last draw (waits for it).
     double fragments() const;
 
 private:
-    Buffer vertices_, indices_;
-    VertexArray vertex_array_;
+    gl::TriangleMesh mesh_;
     Program program_;
     Texture medium_table_;
     Query fragments_;
-    GLsizei index_count_ = 0;
     bool smooth_edge_ = false;  // what program_ was made for
 };
 

@@ -38,6 +38,25 @@ VertexArray create_vertex_array() {
     return VertexArray(id);
 }
 
+TriangleMesh create_triangle_mesh(const std::vector<glm::vec3>& positions,
+                                  const std::vector<glm::uvec3>& triangles) {
+    TriangleMesh mesh;
+    if (triangles.empty()) {
+        return mesh;
+    }
+    mesh.index_count = GLsizei(triangles.size() * 3);
+    mesh.vertices = create_buffer(positions.data(), positions.size() * sizeof(glm::vec3));
+    mesh.indices = create_buffer(triangles.data(), triangles.size() * sizeof(glm::uvec3));
+    mesh.vertex_array = create_vertex_array();
+    const GLuint vao = mesh.vertex_array.id();
+    GL.VertexArrayVertexBuffer(vao, 0, mesh.vertices.id(), 0, sizeof(glm::vec3));
+    GL.VertexArrayElementBuffer(vao, mesh.indices.id());
+    GL.EnableVertexArrayAttrib(vao, 0);
+    GL.VertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    GL.VertexArrayAttribBinding(vao, 0, 0);
+    return mesh;
+}
+
 Query create_query(GLenum target) {
     GLuint id = 0;
     if (target == GL_FRAGMENT_SHADER_INVOCATIONS) {

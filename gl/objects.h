@@ -5,6 +5,9 @@
 
 #include <string>
 #include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "gl/functions.h"
 
@@ -97,5 +100,15 @@ VertexArray create_vertex_array();
 Query create_query(GLenum target);
 // A sampler that reads any 2D texture as plain values: clamped, `filter`, depth comparison off.
 Sampler create_plain_sampler(GLenum filter);
+
+// An indexed triangle mesh of positions alone (attribute 0, vec3), ready for DrawElements with
+// GL_UNSIGNED_INT indices; empty (no objects, index_count 0) for no triangles.
+struct TriangleMesh {
+    Buffer vertices, indices;
+    VertexArray vertex_array;
+    GLsizei index_count = 0;
+};
+TriangleMesh create_triangle_mesh(const std::vector<glm::vec3>& positions,
+                                  const std::vector<glm::uvec3>& triangles);
 
 }  // namespace sl::gl

@@ -21,25 +21,8 @@ void RegionLists::upload(const bt::RegionMesh& lit, const bt::RegionMesh& uncert
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
                                        {GL_FRAGMENT_SHADER, "sampling/shaders/region_lists.frag"}});
     }
-    const bt::RegionMesh* meshes[2] = {&lit, &uncertain};
-    for (int s = 0; s < 2; ++s) {
-        const bt::RegionMesh& mesh = *meshes[s];
-        counts_[s] = GLsizei(mesh.triangles.size() * 3);
-        arrays_[s] = gl::create_vertex_array();
-        if (counts_[s] == 0) {
-            continue;
-        }
-        vertices_[s] =
-            gl::create_buffer(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
-        indices_[s] =
-            gl::create_buffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
-        const GLuint vao = arrays_[s].id();
-        GL.VertexArrayVertexBuffer(vao, 0, vertices_[s].id(), 0, sizeof(glm::vec3));
-        GL.VertexArrayElementBuffer(vao, indices_[s].id());
-        GL.EnableVertexArrayAttrib(vao, 0);
-        GL.VertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-        GL.VertexArrayAttribBinding(vao, 0, 0);
-    }
+    meshes_[0] = gl::create_triangle_mesh(lit.positions, lit.triangles);
+    meshes_[1] = gl::create_triangle_mesh(uncertain.positions, uncertain.triangles);
 }
 
 void RegionLists::build(const gl::VolumeInputs& inputs, bool mark_stencil) {
@@ -67,7 +50,7 @@ void RegionLists::build(const gl::VolumeInputs& inputs, bool mark_stencil) {
         GL.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     }
     for (int s = 0; s < 2; ++s) {
-        if (counts_[s] == 0) {
+        if (meshes_[s].index_count == 0) {
             continue;
         }
         if (mark_stencil) {
@@ -76,8 +59,8 @@ void RegionLists::build(const gl::VolumeInputs& inputs, bool mark_stencil) {
             GL.StencilMask(bit);
         }
         GL.ProgramUniform1i(program_.id(), 0, s);
-        GL.BindVertexArray(arrays_[s].id());
-        GL.DrawElements(GL_TRIANGLES, counts_[s], GL_UNSIGNED_INT, nullptr);
+        GL.BindVertexArray(meshes_[s].vertex_array.id());
+        GL.DrawElements(GL_TRIANGLES, meshes_[s].index_count, GL_UNSIGNED_INT, nullptr);
     }
     GL.Disable(GL_DEPTH_CLAMP);
     GL.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);

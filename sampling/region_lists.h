@@ -28,12 +28,10 @@ public:
     void build(const gl::VolumeInputs& inputs, bool mark_stencil = false);
     // Pixels whose list of a surface overflowed in the last build (reads the counts back).
     size_t overflows() const;
-    size_t triangle_count(int surface) const { return size_t(counts_[surface]) / 3; }
+    size_t triangle_count(int surface) const { return size_t(meshes_[surface].index_count) / 3; }
 
 private:
-    gl::Buffer vertices_[2], indices_[2];
-    gl::VertexArray arrays_[2];
-    GLsizei counts_[2] = {0, 0};
+    gl::TriangleMesh meshes_[2];  // lit, uncertain
     gl::Program program_;
     gl::Buffer region_counts_, crossings_;
     int width_ = 0, height_ = 0;
