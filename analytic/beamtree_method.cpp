@@ -1,7 +1,5 @@
 #include "analytic/beamtree_method.h"
 
-#include <chrono>
-
 #include "analytic/region_pass.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/boundary.h"
@@ -10,11 +8,6 @@
 namespace sl::analytic {
 
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
 
 class BeamTreeMethod final : public gl::VolumeMethod {
 public:
@@ -29,30 +22,38 @@ public:
     std::string name() const override { return "beamtree"; }
     std::string accepts() const override { return AnalyticRegionPass::accepts(); }
     void prepare(const Scene& scene) override {
+        built_ = false;
+        update(scene, SceneChange::everything(scene));
+    }
+    std::unique_ptr<gl::FrameWork> cpu_update(const Scene& scene,
+                                              const SceneChange& change) const override {
         AnalyticRegionPass::require_closed_form(scene, name());
-        auto start = std::chrono::steady_clock::now();
-        const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
-        const bt::Regions regions = bt::extract_regions(tree);
-        build_ms_ = ms_since(start);
-        start = std::chrono::steady_clock::now();
-        const bt::RegionMesh lit = parameter("surfaces") == 0
-                                       ? bt::boundary_mesh(tree, regions, bt::Region::lit)
-                                       : regions.mesh(bt::Region::lit);
-        mesh_ms_ = ms_since(start);
-        pass_.upload(scene, lit.positions, lit.triangles);
+        return region_frame_work(scene, change, {.lit = true, .cells = parameter("surfaces") == 1},
+                                 built_);
+    }
+    void apply_update(const Scene& scene, const SceneChange&,
+                      std::unique_ptr<gl::FrameWork> work) override {
+        if (auto* regions = dynamic_cast<RegionFrameWork*>(work.get())) {
+            const bt::FrameRegions& r = regions->regions;
+            stages_ = r.ms;
+            pass_.upload_mesh(r.lit.positions, r.lit.triangles);
+            built_ = true;
+        }
+        pass_.set_scene(scene);
     }
     void render(const gl::VolumeInputs& inputs) override { pass_.draw(inputs); }
     gl::TextureViews textures() const override { return pass_.textures(name()); }
     gl::MethodStatistics statistics() const override {
-        return {{"cpu_ms_beamtree", build_ms_},
-                {"cpu_ms_region_mesh", mesh_ms_},
-                {"region_faces", double(pass_.triangle_count())},
-                {"fragments_analytic", pass_.fragments()}};
+        gl::MethodStatistics stats = region_statistics(stages_);
+        stats.push_back({"region_faces", double(pass_.triangle_count())});
+        stats.push_back({"fragments_analytic", pass_.fragments()});
+        return stats;
     }
 
 private:
     AnalyticRegionPass pass_;
-    double build_ms_ = 0.0, mesh_ms_ = 0.0;
+    bt::RegionStageTimes stages_;
+    bool built_ = false;
 };
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "analytic/region_pass.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "analytic/gpu_tables.h"
@@ -37,11 +39,19 @@ std::vector<std::string> edge_defines(const SpotLight& light) {
 
 void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>& positions,
                                 const std::vector<glm::uvec3>& triangles) {
+    upload_mesh(positions, triangles);
+    set_scene(scene);
+}
+
+void AnalyticRegionPass::upload_mesh(const std::vector<glm::vec3>& positions,
+                                     const std::vector<glm::uvec3>& triangles) {
     mesh_ = gl::create_triangle_mesh(positions, triangles);
-    if (mesh_.index_count == 0) {
-        return;  // no lit region (or only slivers): draw() adds nothing
-    }
-    mesh_.vertex_array.label("lit regions");
+    if (mesh_.index_count > 0) {
+        mesh_.vertex_array.label("lit regions");
+    }  // else no lit region (or only slivers): draw() adds nothing
+}
+
+void AnalyticRegionPass::set_scene(const Scene& scene) {
     const bool smooth_edge = scene.light.falloff_degrees > 0.0f;
     if (!program_ || smooth_edge != smooth_edge_) {
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
@@ -52,7 +62,30 @@ void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>
     if (!fragments_) {
         fragments_ = gl::create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
     }
-    medium_table_ = create_medium_table(scene.medium);
+    if (!medium_ || !(*medium_ == scene.medium)) {
+        medium_table_ = create_medium_table(scene.medium);
+        medium_ = scene.medium;
+    }
+}
+
+gl::MethodStatistics region_statistics(const bt::RegionStageTimes& ms) {
+    gl::MethodStatistics stats = {{"cpu_ms_beamtree", ms.total()}};
+    for (const auto& [stage, value] : ms.named()) {
+        std::string key = "cpu_ms_region_" + stage;
+        std::replace(key.begin(), key.end(), ' ', '_');
+        stats.push_back({key, value});
+    }
+    return stats;
+}
+
+std::unique_ptr<gl::FrameWork> region_frame_work(const Scene& scene, const SceneChange& change,
+                                                 const bt::RegionRequest& request, bool built) {
+    if (built && !change.regions()) {
+        return nullptr;
+    }
+    auto work = std::make_unique<RegionFrameWork>();
+    work->regions = bt::build_frame_regions(scene, request);
+    return work;
 }
 
 void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {

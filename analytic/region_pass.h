@@ -4,9 +4,12 @@
 // additive blending into the float target (analytic/shaders/regions.frag). Used by `beamtree`,
 // `hybrid2` and `hybrid3`.
 
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
+
+#include "beamtree/frame_regions.h"
 
 #include "gl/objects.h"
 #include "gl/volume_method.h"
@@ -36,6 +39,12 @@ public:
     // Uploads the region faces (closed, outward-wound) and the scene's tables.
     void upload(const Scene& scene, const std::vector<glm::vec3>& positions,
                 const std::vector<glm::uvec3>& triangles);
+    // The per-frame halves of upload(): new faces (fresh buffers, so the previous frame's stay
+    // alive until the GPU is done with them), and the scene's medium table and edge program,
+    // remade only when the medium or the kind of cone edge differs from the last call's.
+    void upload_mesh(const std::vector<glm::vec3>& positions,
+                     const std::vector<glm::uvec3>& triangles);
+    void set_scene(const Scene& scene);
     // Adds ∫ e over the regions' part of every eye ray, up to the first surface.
     void draw(const VolumeInputs& inputs) const;
     size_t triangle_count() const { return size_t(mesh_.index_count) / 3; }
@@ -49,7 +58,21 @@ private:
     Program program_;
     Texture medium_table_;
     Query fragments_;
-    bool smooth_edge_ = false;  // what program_ was made for
+    bool smooth_edge_ = false;      // what program_ was made for
+    std::optional<Medium> medium_;  // what medium_table_ was made for
 };
+
+// The CPU half of a region method's per-frame update (VolumeMethod::cpu_update): the frame's
+// tree and meshes (beamtree/frame_regions.h).
+struct RegionFrameWork final : gl::FrameWork {
+    bt::FrameRegions regions;
+};
+// The statistics of the last region build: cpu_ms_beamtree (the whole CPU update) and
+// cpu_ms_region_<stage> for each stage of bt::RegionStageTimes.
+gl::MethodStatistics region_statistics(const bt::RegionStageTimes& ms);
+// The frame's regions as `request` asks, or null when `change` leaves them as they are (and
+// `built` says there are some).
+std::unique_ptr<gl::FrameWork> region_frame_work(const Scene& scene, const SceneChange& change,
+                                                 const bt::RegionRequest& request, bool built);
 
 }  // namespace sl::analytic

@@ -14,6 +14,7 @@ namespace sl::app {
 using Command = std::function<int()>;
 
 Command add_render_command(CLI::App& app);
+Command add_animate_command(CLI::App& app);
 Command add_scenes_command(CLI::App& app);
 Command add_gl_info_command(CLI::App& app);
 Command add_regions_command(CLI::App& app);

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
         commands[app.get_subcommands({})[before]] = std::move(command);
     };
     add(sl::app::add_render_command);
+    add(sl::app::add_animate_command);
     add(sl::app::add_regions_command);
     add(sl::app::add_scenes_command);
     add(sl::app::add_methods_command);

@@ -635,8 +635,9 @@ BeamTreeStats BeamTree::stats() const {
 }
 
 BeamTree build_scene_beam_tree(const Scene& scene) {
-    VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
-                           .automatic_inner = scene.bounds.automatic_inner});
+    VolumeLibrary& library =
+        VolumeLibrary::shared({.max_outer_planes = scene.bounds.max_outer_planes,
+                               .automatic_inner = scene.bounds.automatic_inner});
     return BeamTree(scene.light, library.build(scene, nullptr));
 }
 

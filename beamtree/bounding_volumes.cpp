@@ -11,15 +11,20 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
 #include <tuple>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "core/cache.h"
 #include "core/error.h"
+#include "core/hash.h"
 
 namespace sl::bt {
 
@@ -467,12 +472,247 @@ LocalVolumes VolumeLibrary::compute(const Mesh& mesh) const {
     return volumes;
 }
 
-const LocalVolumes& VolumeLibrary::local(const std::shared_ptr<const Mesh>& mesh) {
-    auto it = cache_.find(mesh.get());
-    if (it != cache_.end()) {
-        return it->second.second;
+namespace {
+
+constexpr std::string_view kVolumesVersion = "shaftlab-volumes-1";
+
+// LocalVolumes known to this process, by content key: libraries share them.
+std::mutex& process_mutex() {
+    static std::mutex mutex;
+    return mutex;
+}
+std::map<uint64_t, std::shared_ptr<const LocalVolumes>>& process_volumes() {
+    static std::map<uint64_t, std::shared_ptr<const LocalVolumes>> volumes;
+    return volumes;
+}
+
+template <typename T>
+uint64_t mix(uint64_t hash, const T* data, size_t count) {
+    return fnv1a(std::string_view(reinterpret_cast<const char*>(data), count * sizeof(T)), hash);
+}
+
+std::filesystem::path volumes_file(uint64_t key) {
+    return cache_directory() / "volumes" / fmt::format("{:016x}.bin", key);
+}
+
+// The cache file: the version, then each volume as its flag, faces (vertex lists) and planes,
+// in doubles, so that a volume read back is bit-identical to the one computed.
+class Writer {
+public:
+    explicit Writer(std::ostream& out) : out_(out) {}
+    template <typename T>
+    void value(const T& v) {
+        out_.write(reinterpret_cast<const char*>(&v), sizeof(T));
     }
-    return cache_.emplace(mesh.get(), std::pair{mesh, compute(*mesh)}).first->second.second;
+    void volume(const ConvexVolume& v) {
+        value(uint8_t(v.flat));
+        value(uint64_t(v.faces.size()));
+        for (size_t i = 0; i < v.faces.size(); ++i) {
+            value(v.faces[i].on_split_plane);
+            value(uint64_t(v.faces[i].vertices.size()));
+            out_.write(reinterpret_cast<const char*>(v.faces[i].vertices.data()),
+                       std::streamsize(v.faces[i].vertices.size() * sizeof(dvec3)));
+            value(v.planes[i]);
+        }
+    }
+
+private:
+    std::ostream& out_;
+};
+
+class Reader {
+public:
+    explicit Reader(std::istream& in) : in_(in) {}
+    template <typename T>
+    T value() {
+        T v{};
+        in_.read(reinterpret_cast<char*>(&v), sizeof(T));
+        if (!in_) {
+            throw std::runtime_error("truncated");
+        }
+        return v;
+    }
+    uint64_t count(uint64_t limit) {
+        const uint64_t n = value<uint64_t>();
+        if (n > limit) {
+            throw std::runtime_error("corrupt count");
+        }
+        return n;
+    }
+    ConvexVolume volume() {
+        ConvexVolume v;
+        v.flat = value<uint8_t>() != 0;
+        const uint64_t faces = count(1 << 20);
+        for (uint64_t i = 0; i < faces; ++i) {
+            Polygon face;
+            face.on_split_plane = value<uint64_t>();
+            face.vertices.resize(count(1 << 20));
+            in_.read(reinterpret_cast<char*>(face.vertices.data()),
+                     std::streamsize(face.vertices.size() * sizeof(dvec3)));
+            v.faces.push_back(std::move(face));
+            v.planes.push_back(value<Plane>());
+        }
+        return v;
+    }
+
+private:
+    std::istream& in_;
+};
+
+std::shared_ptr<const LocalVolumes> read_volumes(uint64_t key) {
+    std::ifstream in(volumes_file(key), std::ios::binary);
+    if (!in) {
+        return nullptr;
+    }
+    try {
+        Reader r(in);
+        std::string version(kVolumesVersion.size(), '\0');
+        in.read(version.data(), std::streamsize(version.size()));
+        if (!in || version != kVolumesVersion || r.value<uint64_t>() != key) {
+            return nullptr;
+        }
+        auto volumes = std::make_shared<LocalVolumes>();
+        volumes->closed = r.value<uint8_t>() != 0;
+        volumes->self_inner = r.value<uint8_t>() != 0;
+        volumes->outer = r.volume();
+        const uint64_t inner = r.count(1 << 10);
+        for (uint64_t i = 0; i < inner; ++i) {
+            volumes->automatic_inner.push_back(r.volume());
+        }
+        return volumes;
+    } catch (const std::runtime_error&) {
+        return nullptr;  // a truncated or foreign file: computed again and rewritten
+    }
+}
+
+void write_volumes(uint64_t key, const LocalVolumes& volumes) {
+    write_cache_file(volumes_file(key), [&](const std::filesystem::path& file) {
+        std::ofstream out(file, std::ios::binary);
+        Writer w(out);
+        out.write(kVolumesVersion.data(), std::streamsize(kVolumesVersion.size()));
+        w.value(key);
+        w.value(uint8_t(volumes.closed));
+        w.value(uint8_t(volumes.self_inner));
+        w.volume(volumes.outer);
+        w.value(uint64_t(volumes.automatic_inner.size()));
+        for (const ConvexVolume& inner : volumes.automatic_inner) {
+            w.volume(inner);
+        }
+        out.close();
+        if (!out) {
+            fail("{}: cannot write", file.string());
+        }
+    });
+}
+
+std::filesystem::path verified_box_file(uint64_t mesh_key, uint64_t box_key) {
+    return cache_directory() / "volumes" / fmt::format("{:016x}-box-{:016x}.ok", mesh_key, box_key);
+}
+
+}  // namespace
+
+uint64_t volumes_key(const Mesh& mesh, const BoundingVolumeOptions& options) {
+    uint64_t hash = fnv1a(kVolumesVersion);
+    hash = mix(hash, mesh.positions.data(), mesh.positions.size());
+    hash = mix(hash, mesh.triangles.data(), mesh.triangles.size());
+    const int32_t settings[2] = {options.max_outer_planes, options.automatic_inner ? 1 : 0};
+    return mix(hash, settings, 2);
+}
+
+void VolumeLibrary::forget_process_volumes() {
+    const std::lock_guard lock(process_mutex());
+    process_volumes().clear();
+}
+
+VolumeLibrary& VolumeLibrary::shared(BoundingVolumeOptions options) {
+    static std::mutex mutex;
+    static std::map<std::pair<int, bool>, std::unique_ptr<VolumeLibrary>> libraries;
+    const std::lock_guard lock(mutex);
+    std::unique_ptr<VolumeLibrary>& library =
+        libraries[{options.max_outer_planes, options.automatic_inner}];
+    if (!library) {
+        library = std::make_unique<VolumeLibrary>(options);
+    }
+    return *library;
+}
+
+const VolumeLibrary::Entry& VolumeLibrary::entry(const std::shared_ptr<const Mesh>& mesh) {
+    {
+        const std::lock_guard lock(mutex_);
+        if (auto it = cache_.find(mesh.get()); it != cache_.end()) {
+            if (!it->second.mesh.expired()) {
+                return it->second;
+            }
+            cache_.erase(it);
+        }
+    }
+    const uint64_t key = volumes_key(*mesh, options_);
+    std::shared_ptr<const LocalVolumes> volumes;
+    bool from_disk = false, computed = false;
+    {
+        const std::lock_guard lock(process_mutex());
+        if (auto it = process_volumes().find(key); it != process_volumes().end()) {
+            volumes = it->second;
+        }
+    }
+    if (!volumes && disk_) {
+        volumes = read_volumes(key);
+        from_disk = volumes != nullptr;
+    }
+    if (!volumes) {
+        volumes = std::make_shared<const LocalVolumes>(compute(*mesh));
+        computed = true;
+        if (disk_) {
+            write_volumes(key, *volumes);
+        }
+    }
+    {
+        const std::lock_guard lock(process_mutex());
+        process_volumes().emplace(key, volumes);
+    }
+    const std::lock_guard lock(mutex_);
+    std::erase_if(cache_, [](const auto& item) { return item.second.mesh.expired(); });
+    auto [it, inserted] = cache_.emplace(mesh.get(), Entry{mesh, volumes, key});
+    if (inserted) {
+        (computed ? stats_.computed : from_disk ? stats_.disk : stats_.memory) += 1;
+    }
+    return it->second;
+}
+
+const LocalVolumes& VolumeLibrary::local(const std::shared_ptr<const Mesh>& mesh) {
+    return *entry(mesh).volumes;
+}
+
+VolumeLibraryStats VolumeLibrary::stats() const {
+    const std::lock_guard lock(mutex_);
+    return stats_;
+}
+
+bool VolumeLibrary::box_verified(const Mesh& mesh, uint64_t key, const Box& box) {
+    const uint64_t box_key = mix(fnv1a(kVolumesVersion), &box, 1);
+    {
+        const std::lock_guard lock(mutex_);
+        if (verified_boxes_.contains({key, box_key})) {
+            return true;
+        }
+    }
+    std::error_code ec;
+    const std::filesystem::path marker = verified_box_file(key, box_key);
+    bool inside = disk_ && std::filesystem::is_regular_file(marker, ec);
+    if (!inside) {
+        inside = box_inside_mesh(mesh, box);
+        if (inside && disk_) {
+            write_cache_file(marker, [](const std::filesystem::path& file) {
+                std::ofstream out(file, std::ios::binary);
+                out << "inside\n";
+            });
+        }
+    }
+    if (inside) {
+        const std::lock_guard lock(mutex_);
+        verified_boxes_.insert({key, box_key});
+    }
+    return inside;
 }
 
 std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
@@ -480,22 +720,22 @@ std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
     // The meshes not seen before, computed in parallel (each is independent of the others),
     // then cached in scene order.
     std::vector<std::shared_ptr<const Mesh>> missing;
-    std::set<const Mesh*> seen;
-    for (const Object& object : scene.objects) {
-        if (!cache_.contains(object.mesh.get()) && seen.insert(object.mesh.get()).second) {
-            missing.push_back(object.mesh);
+    {
+        const std::lock_guard lock(mutex_);
+        std::set<const Mesh*> seen;
+        for (const Object& object : scene.objects) {
+            if (!cache_.contains(object.mesh.get()) && seen.insert(object.mesh.get()).second) {
+                missing.push_back(object.mesh);
+            }
         }
     }
-    std::vector<LocalVolumes> computed(missing.size());
-    tbb::parallel_for(size_t(0), missing.size(),
-                      [&](size_t i) { computed[i] = compute(*missing[i]); });
-    for (size_t i = 0; i < missing.size(); ++i) {
-        cache_.emplace(missing[i].get(), std::pair{missing[i], std::move(computed[i])});
-    }
+    tbb::parallel_for(size_t(0), missing.size(), [&](size_t i) { entry(missing[i]); });
     std::vector<ObjectVolumes> result;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const Object& object = scene.objects[i];
-        const LocalVolumes& local = this->local(object.mesh);
+        const Entry& entry = this->entry(object.mesh);
+        const LocalVolumes& local = *entry.volumes;
+        const uint64_t key = entry.key;
         const glm::dmat4 transform(object.transform);
         ObjectVolumes volumes;
         volumes.object = int(i);
@@ -503,7 +743,7 @@ std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
         volumes.outer = local.outer.transformed(transform);
         if (!object.inner_boxes.empty()) {
             for (size_t b = 0; b < object.inner_boxes.size(); ++b) {
-                if (!box_inside_mesh(*object.mesh, object.inner_boxes[b])) {
+                if (!box_verified(*object.mesh, key, object.inner_boxes[b])) {
                     fail("object '{}': inner box {} is not strictly inside its mesh", object.name,
                          b);
                 }

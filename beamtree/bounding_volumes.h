@@ -8,7 +8,9 @@
 
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -66,22 +68,60 @@ bool box_inside_mesh(const Mesh& mesh, const Box& box);
 std::optional<Box> inscribed_box(const Mesh& mesh);
 ConvexVolume box_volume(const Box& box);
 
-// Computes and caches LocalVolumes per mesh (keyed by the mesh object), so that scenes sharing a
-// mesh, or many scenes built from one, pay for hulls and inner boxes once.
+// Where a mesh's LocalVolumes came from (VolumeLibrary::stats).
+struct VolumeLibraryStats {
+    size_t memory = 0;    // this library had them, or another one in this process
+    size_t disk = 0;      // read from the cache on disk
+    size_t computed = 0;  // hulls, reduced hulls and inner boxes computed (and written to disk)
+    bool operator==(const VolumeLibraryStats&) const = default;
+};
+
+// The static half of the beam tree's per-frame work (DESIGN.md §10): LocalVolumes are computed
+// once per mesh, keyed by the mesh's content and the options, and kept in this process and on
+// disk (core/cache.h, folder `volumes`), so that every later frame, scene or run that shows the
+// mesh only transforms them. The verification of explicit inner boxes is cached the same way.
+// Thread-safe: the pipelined frame loop builds on a worker thread.
 class VolumeLibrary {
 public:
     explicit VolumeLibrary(BoundingVolumeOptions options = {}) : options_(options) {}
+    VolumeLibrary(const VolumeLibrary&) = delete;
+    VolumeLibrary& operator=(const VolumeLibrary&) = delete;
+
+    // One library per option set for the whole process (what the methods build with).
+    static VolumeLibrary& shared(BoundingVolumeOptions options);
+    // Off: nothing is read from or written to disk (tests of the computation itself).
+    void set_disk_cache(bool enabled) { disk_ = enabled; }
+    // Empties what this process keeps across libraries, so that a new library reads the disk
+    // (what a fresh process does; benchmarks and tests of the disk cache).
+    static void forget_process_volumes();
+
     const LocalVolumes& local(const std::shared_ptr<const Mesh>& mesh);
     // World-space volumes of every object. Throws sl::Error naming the object when an explicit
     // inner box is not strictly inside its mesh. Open meshes get no automatic inner volume and
     // a line in `warnings`.
     std::vector<ObjectVolumes> build(const Scene& scene, std::vector<std::string>* warnings);
+    VolumeLibraryStats stats() const;
 
 private:
+    struct Entry {
+        std::weak_ptr<const Mesh> mesh;  // expired: the address may belong to another mesh
+        std::shared_ptr<const LocalVolumes> volumes;
+        uint64_t key = 0;
+    };
     LocalVolumes compute(const Mesh& mesh) const;
+    const Entry& entry(const std::shared_ptr<const Mesh>& mesh);
+    bool box_verified(const Mesh& mesh, uint64_t key, const Box& box);
 
     BoundingVolumeOptions options_;
-    std::map<const Mesh*, std::pair<std::shared_ptr<const Mesh>, LocalVolumes>> cache_;
+    bool disk_ = true;
+    mutable std::mutex mutex_;
+    std::map<const Mesh*, Entry> cache_;
+    std::set<std::pair<uint64_t, uint64_t>> verified_boxes_;
+    VolumeLibraryStats stats_;
 };
+
+// The content key of a mesh's volumes under `options` (FNV-1a of its vertices, triangles and the
+// options, with the cache format's version).
+uint64_t volumes_key(const Mesh& mesh, const BoundingVolumeOptions& options);
 
 }  // namespace sl::bt

@@ -19,6 +19,10 @@ public:
     std::string name() const override { return "none"; }
     std::string accepts() const override { return "every scene (it renders no medium)"; }
     void prepare(const Scene&) override {}
+    std::unique_ptr<FrameWork> cpu_update(const Scene&, const SceneChange&) const override {
+        return nullptr;
+    }
+    void apply_update(const Scene&, const SceneChange&, std::unique_ptr<FrameWork>) override {}
     void render(const VolumeInputs&) override {}
 };
 

@@ -13,6 +13,7 @@
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders/frame_uniforms.h"
+#include "scenes/animation.h"
 #include "scenes/scene.h"
 
 namespace sl::gl {
@@ -82,6 +83,12 @@ struct Parameter {
     std::string text() const;
 };
 
+// What a method's per-frame update computed on the CPU (a beam tree and its meshes), handed from
+// cpu_update() to apply_update(); methods define their own.
+struct FrameWork {
+    virtual ~FrameWork() = default;
+};
+
 class VolumeMethod {
 public:
     virtual ~VolumeMethod() = default;
@@ -96,8 +103,26 @@ public:
     virtual std::string accepts() const {
         return "every medium and light (it samples e(z) itself)";
     }
-    // Called once per scene before the first frame (CPU work such as building regions).
+    // Called once per scene before the first frame: programs, buffers, and the scene's state as
+    // update(scene, SceneChange::everything(scene)) would make it.
     virtual void prepare(const Scene& scene) = 0;
+
+    // The per-frame update (DESIGN.md §10): `scene` is the frame's scene, `change` what differs
+    // from the scene of the last prepare() or update(). In two halves, so that the pipelined
+    // frame loop (gl/frame_loop.h) can run the CPU half on a worker thread while the GPU draws
+    // the previous frame with this method:
+    //   cpu_update    no GL and no state that render() reads (it may run during render());
+    //                 returns what apply_update() installs, or null when nothing is needed;
+    //   apply_update  on the GL thread between frames: uploads, tables, programs.
+    // Both throw sl::Error as prepare() would.
+    virtual std::unique_ptr<FrameWork> cpu_update(const Scene& scene,
+                                                  const SceneChange& change) const = 0;
+    virtual void apply_update(const Scene& scene, const SceneChange& change,
+                              std::unique_ptr<FrameWork> work) = 0;
+    // Both halves in turn (the serial mode).
+    void update(const Scene& scene, const SceneChange& change) {
+        apply_update(scene, change, cpu_update(scene, change));
+    }
     // Adds I_s (linear RGB, alpha ignored) into the bound framebuffer, which is cleared to zero
     // and has no depth attachment; the viewport covers it.
     virtual void render(const VolumeInputs& inputs) = 0;

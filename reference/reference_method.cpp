@@ -41,6 +41,11 @@ public:
                "smooth cone edge)";
     }
     void prepare(const Scene&) override {}
+    // Nothing per frame: render() recomputes (or loads) the reference when its key changes.
+    std::unique_ptr<gl::FrameWork> cpu_update(const Scene&, const SceneChange&) const override {
+        return nullptr;
+    }
+    void apply_update(const Scene&, const SceneChange&, std::unique_ptr<gl::FrameWork>) override {}
     void render(const gl::VolumeInputs& inputs) override {
         // Recomputed (or loaded from the cache) whenever anything it depends on changes: the
         // viewer moves the camera and the light between frames.

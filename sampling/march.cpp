@@ -112,30 +112,8 @@ public:
     }
 
     void prepare(const Scene& scene) override {
-        if (variant_ == MarchVariant::hybrid3) {
-            analytic::AnalyticRegionPass::require_closed_form(scene, name());
-            const auto start = std::chrono::steady_clock::now();
-            const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
-            const bt::Regions regions = bt::extract_regions(tree);
-            const bt::RegionMesh lit = bt::boundary_mesh(tree, regions, bt::Region::lit);
-            const bt::RegionMesh uncertain =
-                bt::boundary_mesh(tree, regions, bt::Region::uncertain);
-            const bt::GpuTree gpu = tree.gpu_tree();
-            beamtree_ms_ =
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                    .count();
-            analytic_.upload(scene, lit.positions, lit.triangles);
-            lists_.upload(bt::RegionMesh{}, uncertain);
-            tree_nodes_ =
-                gl::create_buffer(gpu.nodes.data(), gpu.nodes.size() * sizeof(gpu.nodes[0]));
-            tree_planes_ =
-                gl::create_buffer(gpu.planes.data(), gpu.planes.size() * sizeof(gpu.planes[0]));
-        }
-        clip_planes_.clear();
-        for (const bt::Plane& plane : bt::influence_planes(scene.light)) {
-            clip_planes_.insert(clip_planes_.end(), {float(plane.normal.x), float(plane.normal.y),
-                                                     float(plane.normal.z), float(plane.offset)});
-        }
+        built_ = false;
+        update(scene, SceneChange::everything(scene));
         if (!march_program_) {
             march_program_ =
                 gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
@@ -146,6 +124,39 @@ public:
             empty_vertex_array_ = gl::create_vertex_array();
         }
         frame_index_ = 0;
+    }
+
+    std::unique_ptr<gl::FrameWork> cpu_update(const Scene& scene,
+                                              const SceneChange& change) const override {
+        if (variant_ != MarchVariant::hybrid3) {
+            return nullptr;
+        }
+        analytic::AnalyticRegionPass::require_closed_form(scene, name());
+        return analytic::region_frame_work(
+            scene, change, {.lit = true, .uncertain = true, .gpu_tree = true}, built_);
+    }
+    void apply_update(const Scene& scene, const SceneChange&,
+                      std::unique_ptr<gl::FrameWork> work) override {
+        if (auto* regions = dynamic_cast<analytic::RegionFrameWork*>(work.get())) {
+            const bt::FrameRegions& r = regions->regions;
+            stages_ = r.ms;
+            analytic_.upload_mesh(r.lit.positions, r.lit.triangles);
+            lists_.upload(bt::RegionMesh{}, r.uncertain);
+            tree_nodes_ =
+                gl::create_buffer(r.gpu.nodes.data(), r.gpu.nodes.size() * sizeof(r.gpu.nodes[0]));
+            tree_planes_ = gl::create_buffer(r.gpu.planes.data(),
+                                             r.gpu.planes.size() * sizeof(r.gpu.planes[0]));
+            built_ = true;
+        }
+        if (variant_ == MarchVariant::hybrid3) {
+            analytic_.set_scene(scene);
+        }
+        // The march clips each ray to the influence pyramid of the frame's light.
+        clip_planes_.clear();
+        for (const bt::Plane& plane : bt::influence_planes(scene.light)) {
+            clip_planes_.insert(clip_planes_.end(), {float(plane.normal.x), float(plane.normal.y),
+                                                     float(plane.normal.z), float(plane.offset)});
+        }
     }
 
     void render(const gl::VolumeInputs& inputs) override {
@@ -218,8 +229,9 @@ public:
                                       {"buffer_width", double(buffer_width_)},
                                       {"buffer_height", double(buffer_height_)}};
         if (variant_ == MarchVariant::hybrid3) {
-            stats.insert(stats.end(), {{"cpu_ms_beamtree", beamtree_ms_},
-                                       {"region_faces", double(analytic_.triangle_count())},
+            const gl::MethodStatistics regions = analytic::region_statistics(stages_);
+            stats.insert(stats.end(), regions.begin(), regions.end());
+            stats.insert(stats.end(), {{"region_faces", double(analytic_.triangle_count())},
                                        {"uncertain_faces", double(lists_.triangle_count(1))},
                                        {"fragments_analytic", analytic_.fragments()},
                                        {"list_overflows", double(lists_.overflows())}});
@@ -270,7 +282,8 @@ private:
     std::vector<float> clip_planes_;
     int buffer_width_ = 0, buffer_height_ = 0, frame_width_ = 0, frame_height_ = 0;
     int frame_index_ = 0;
-    double beamtree_ms_ = 0.0;
+    bt::RegionStageTimes stages_;
+    bool built_ = false;
 };
 
 }  // namespace

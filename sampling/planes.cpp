@@ -94,26 +94,8 @@ public:
     }
 
     void prepare(const Scene& scene) override {
-        if (variant_ == PlanesVariant::hybrid2) {
-            analytic::AnalyticRegionPass::require_closed_form(scene, name());
-        }
         tree_.reset();
-        if (variant_ != PlanesVariant::planes) {
-            const auto start = std::chrono::steady_clock::now();
-            tree_ = std::make_unique<bt::BeamTree>(bt::build_scene_beam_tree(scene));
-            const bt::Regions regions = bt::extract_regions(*tree_);
-            const bt::RegionMesh lit = bt::boundary_mesh(*tree_, regions, bt::Region::lit);
-            if (variant_ == PlanesVariant::hybrid2) {
-                analytic_.upload(scene, lit.positions, lit.triangles);
-            }
-            lists_.upload(lit, bt::boundary_mesh(*tree_, regions, bt::Region::uncertain));
-            const bt::GpuTree gpu = tree_->gpu_tree();
-            tree_nodes_ =
-                gl::create_buffer(gpu.nodes.data(), gpu.nodes.size() * sizeof(gpu.nodes[0]));
-            tree_planes_ =
-                gl::create_buffer(gpu.planes.data(), gpu.planes.size() * sizeof(gpu.planes[0]));
-            beamtree_ms_ = ms_since(start);
-        }
+        update(scene, SceneChange::everything(scene));
         if (!program_) {
             program_ = gl::create_program({{GL_VERTEX_SHADER, "sampling/shaders/planes.vert"},
                                            {GL_FRAGMENT_SHADER, "sampling/shaders/planes.frag"}});
@@ -129,6 +111,37 @@ public:
             GL.VertexArrayAttribBinding(vao, 1, 0);
             vertex_array_.label("sampling planes");
             fragments_ = gl::create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
+        }
+    }
+
+    std::unique_ptr<gl::FrameWork> cpu_update(const Scene& scene,
+                                              const SceneChange& change) const override {
+        if (variant_ == PlanesVariant::planes) {
+            return nullptr;  // everything it draws is made from the frame's scene in render()
+        }
+        if (variant_ == PlanesVariant::hybrid2) {
+            analytic::AnalyticRegionPass::require_closed_form(scene, name());
+        }
+        return analytic::region_frame_work(
+            scene, change, {.lit = true, .uncertain = true, .gpu_tree = true}, tree_ != nullptr);
+    }
+    void apply_update(const Scene& scene, const SceneChange&,
+                      std::unique_ptr<gl::FrameWork> work) override {
+        if (auto* regions = dynamic_cast<analytic::RegionFrameWork*>(work.get())) {
+            const bt::FrameRegions& r = regions->regions;
+            tree_ = r.tree;
+            stages_ = r.ms;
+            if (variant_ == PlanesVariant::hybrid2) {
+                analytic_.upload_mesh(r.lit.positions, r.lit.triangles);
+            }
+            lists_.upload(r.lit, r.uncertain);
+            tree_nodes_ =
+                gl::create_buffer(r.gpu.nodes.data(), r.gpu.nodes.size() * sizeof(r.gpu.nodes[0]));
+            tree_planes_ = gl::create_buffer(r.gpu.planes.data(),
+                                             r.gpu.planes.size() * sizeof(r.gpu.planes[0]));
+        }
+        if (variant_ == PlanesVariant::hybrid2) {
+            analytic_.set_scene(scene);
         }
     }
 
@@ -280,9 +293,10 @@ public:
                                       {"slices", double(slice_count_)},
                                       {"fragments", double(fragments)}};
         if (tree_) {
+            const gl::MethodStatistics regions = analytic::region_statistics(stages_);
+            stats.insert(stats.end(), regions.begin(), regions.end());
             stats.insert(stats.end(),
-                         {{"cpu_ms_beamtree", beamtree_ms_},
-                          {"cpu_ms_partition", partition_ms_},
+                         {{"cpu_ms_partition", partition_ms_},
                           {"pieces_lit", double(pieces_[size_t(bt::Region::lit)])},
                           {"pieces_uncertain", double(pieces_[size_t(bt::Region::uncertain)])},
                           {"pieces_unlit", double(pieces_[size_t(bt::Region::unlit)])}});
@@ -296,7 +310,8 @@ public:
 
 private:
     PlanesVariant variant_;
-    std::unique_ptr<bt::BeamTree> tree_;
+    std::shared_ptr<const bt::BeamTree> tree_;
+    bt::RegionStageTimes stages_;
     analytic::AnalyticRegionPass analytic_;
     gl::Program program_;
     gl::Buffer vertex_buffer_;
@@ -312,7 +327,7 @@ private:
     gl::Query fragments_;
     size_t slice_count_ = 0;
     std::array<size_t, 3> pieces_{};
-    double beamtree_ms_ = 0.0, slicing_ms_ = 0.0, partition_ms_ = 0.0;
+    double slicing_ms_ = 0.0, partition_ms_ = 0.0;
 };
 
 }  // namespace

@@ -10,6 +10,14 @@
 
 namespace sl {
 
+glm::mat4 Placement::matrix() const {
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), translate);
+    m = glm::rotate(m, glm::radians(rotate_degrees.z), {0, 0, 1});
+    m = glm::rotate(m, glm::radians(rotate_degrees.y), {0, 1, 0});
+    m = glm::rotate(m, glm::radians(rotate_degrees.x), {1, 0, 0});
+    return glm::scale(m, scale);
+}
+
 glm::mat4 Camera::view() const {
     return glm::lookAt(position, target, up);
 }

@@ -44,12 +44,23 @@ struct Box {
     glm::vec3 max{0.0f};
 };
 
+// An object's placement as scene files write it: translate, then rotate about z, y and x (degrees;
+// x applied first), then scale. Animation tracks replace its parts (scenes/animation.h).
+struct Placement {
+    glm::vec3 translate{0.0f};
+    glm::vec3 rotate_degrees{0.0f};
+    glm::vec3 scale{1.0f};
+    glm::mat4 matrix() const;
+    bool operator==(const Placement&) const = default;
+};
+
 struct Object {
     std::string name;
     std::shared_ptr<const Mesh> mesh;  // local frame
-    glm::mat4 transform{1.0f};         // local -> world
-    int material = 0;                  // index into Scene::materials
-    std::vector<Box> inner_boxes;      // explicit inner bounding volumes, local frame
+    glm::mat4 transform{1.0f};         // local -> world: placement.matrix() for scene files
+    Placement placement{};
+    int material = 0;              // index into Scene::materials
+    std::vector<Box> inner_boxes;  // explicit inner bounding volumes, local frame
 };
 
 struct Camera {
@@ -123,6 +134,7 @@ struct Medium {
     float a0 = 1.0f;  // simplified model attenuation I / (a1 r^2 + a0), Nilsson eq. 2.13
     float a1 = 1.0f;
 
+    bool operator==(const Medium&) const = default;
     glm::vec3 sigma_t() const { return sigma_s + sigma_a; }
     // T(s) along a path of length s: e^(-σt s) (Nilsson eq. 2.2) for `physical`, 1 for
     // `simplified` (eq. 2.15).
@@ -178,6 +190,8 @@ struct Subsurface {
     std::vector<SpotLight> lights;
 };
 
+class Animation;  // scenes/animation.h
+
 struct Scene {
     std::string name;
     std::filesystem::path source;  // the file it was read from, empty for generated scenes
@@ -191,6 +205,9 @@ struct Scene {
     Subsurface subsurface;
     std::vector<Material> materials;
     std::vector<Object> objects;
+    // Keyframed tracks ([animation] in scene files); null for a still scene. The scene's own
+    // values are what the tracks leave alone.
+    std::shared_ptr<const Animation> animation;
 
     size_t triangle_count() const;
     bool has_translucent_objects() const;

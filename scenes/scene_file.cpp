@@ -13,6 +13,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/error.h"
+#include "scenes/animation_toml.h"
 #include "scenes/toml_reader.h"
 
 #ifndef SHAFTLAB_SCENES_DIR
@@ -293,25 +294,26 @@ Subsurface read_subsurface(TableReader r) {
     return s;
 }
 
-glm::mat4 read_transform(TableReader& r) {
-    const glm::vec3 translate = r.vec3("translate", glm::vec3(0.0f));
-    const glm::vec3 rotate = r.vec3("rotate", glm::vec3(0.0f));
-    glm::vec3 scale(1.0f);
+}  // namespace
+
+Placement read_placement(TomlTableReader& r, const Placement& fallback) {
+    Placement p;
+    p.translate = r.vec3("translate", fallback.translate);
+    p.rotate_degrees = r.vec3("rotate", fallback.rotate_degrees);
+    p.scale = fallback.scale;
     if (const toml::node* node = r.take("scale"); node && node->is_number()) {
-        scale = glm::vec3(float(*node->value<double>()));
+        p.scale = glm::vec3(float(*node->value<double>()));
     } else if (node) {
-        scale = r.vec3("scale", scale);
+        p.scale = r.vec3("scale", p.scale);
     }
-    if (!std::isfinite(scale.x) || !std::isfinite(scale.y) || !std::isfinite(scale.z) ||
-        scale.x == 0 || scale.y == 0 || scale.z == 0) {
+    if (!std::isfinite(p.scale.x) || !std::isfinite(p.scale.y) || !std::isfinite(p.scale.z) ||
+        p.scale.x == 0 || p.scale.y == 0 || p.scale.z == 0) {
         r.error("scale", "must be finite and non-zero");
     }
-    glm::mat4 m = glm::translate(glm::mat4(1.0f), translate);
-    m = glm::rotate(m, glm::radians(rotate.z), {0, 0, 1});
-    m = glm::rotate(m, glm::radians(rotate.y), {0, 1, 0});
-    m = glm::rotate(m, glm::radians(rotate.x), {1, 0, 0});
-    return glm::scale(m, scale);
+    return p;
 }
+
+namespace {
 
 fs::path resolve_mesh_path(const std::string& file, const fs::path& base_dir,
                            const SceneSearchPaths& paths, TableReader& r) {
@@ -451,7 +453,9 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
     }
     auto names = canonical_scene_names();
     const auto effects = effect_scene_names();
+    const auto animated = animated_scene_names();
     names.insert(names.end(), effects.begin(), effects.end());
+    names.insert(names.end(), animated.begin(), animated.end());
     if (std::find(names.begin(), names.end(), name) != names.end()) {
         const fs::path path = paths.scenes / (name + ".toml");
         return {read_text_file(path), path.string(), paths.scenes};
@@ -469,8 +473,8 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
         effect_list += (effect_list.empty() ? "" : ", ") + effect;
     }
     fail(
-        "unknown scene {} (canonical: toplight, parallel, multiple, multiple:N; effects: {}; "
-        "or a .toml file)",
+        "unknown scene {} (canonical: toplight, parallel, multiple, multiple:N; animated: "
+        "toplight-orbit, parallel-walk, multiple-moving; effects: {}; or a .toml file)",
         quote(name), effect_list);
 }
 
@@ -625,11 +629,15 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
                 r.error("material", fmt::format("unknown material {}", quote(material)));
             }
             object.material = it->second;
-            object.transform = read_transform(r);
+            object.placement = read_placement(r, Placement{});
+            object.transform = object.placement.matrix();
             object.inner_boxes = read_inner_boxes(r, origin, context);
             r.finish();
             scene.objects.push_back(std::move(object));
         }
+    }
+    if (const toml::table* animation = top.table("animation")) {
+        scene.animation = std::make_shared<Animation>(read_animation(*animation, origin, scene));
     }
     top.finish();
     return scene;
@@ -708,6 +716,10 @@ std::string scene_view_toml(const Scene& scene, const std::string& base, const s
 
 std::vector<std::string> canonical_scene_names() {
     return {"toplight", "parallel", "multiple"};
+}
+
+std::vector<std::string> animated_scene_names() {
+    return {"toplight-orbit", "parallel-walk", "multiple-moving"};
 }
 
 std::vector<std::string> effect_scene_names() {

@@ -30,6 +30,7 @@
 //               the shape's parameters, material, translate, rotate (degrees about x, y, z,
 //               applied in that order), scale (number or [x, y, z]),
 //               inner = [{ min = [..], max = [..] }, ...]   (boxes in the local frame)
+//   [animation] keyframed tracks of the light, the camera and the objects (scenes/animation.h)
 
 #include <filesystem>
 #include <string>
@@ -64,6 +65,9 @@ std::string scene_view_toml(const Scene& scene, const std::string& base, const s
 
 // The canonical scenes in display order, and the generated `multiple:N` family.
 std::vector<std::string> canonical_scene_names();
+// The canonical animated scenes (toplight-orbit, parallel-walk, multiple-moving: DESIGN.md §10),
+// loadable by name.
+std::vector<std::string> animated_scene_names();
 // The effect scenes (IBL, SSS), loadable by name like the canonical ones.
 std::vector<std::string> effect_scene_names();
 // A scene of N objects on a jittered grid under one spot light (DESIGN.md §5), as TOML text,

@@ -1,0 +1,148 @@
+// `shaftlab animate`: plays a scene's [animation] with one method, serial or pipelined
+// (gl/frame_loop.h), and writes every frame's costs (DESIGN.md §10).
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/output_files.h"
+#include "experiments/measure.h"
+#include "gl/frame_loop.h"
+#include "gl/platform.h"
+#include "gl/renderer.h"
+#include "scenes/animation.h"
+#include "scenes/scene_file.h"
+
+namespace sl::app {
+
+namespace {
+
+struct AnimateArguments {
+    std::string scene;
+    std::string method = "beamtree";
+    std::string size = "640x360";
+    std::string out = "out";
+    std::string mode = "pipelined";
+    int frames = 0;  // 0: the whole animation
+    int warmup = 2;
+    std::vector<std::string> settings;
+};
+
+double median_of(std::vector<double> values) {
+    return values.empty() ? 0.0 : experiments::median(std::move(values));
+}
+
+int run_animate(const AnimateArguments& args) {
+    gl::RenderOptions options;
+    parse_size(args.size, options.width, options.height);
+    std::vector<gl::FrameMode> modes;
+    if (args.mode == "both") {
+        modes = {gl::FrameMode::serial, gl::FrameMode::pipelined};
+    } else {
+        modes = {gl::parse_frame_mode(args.mode)};
+    }
+    const std::unique_ptr<gl::VolumeMethod> method = experiments::create_configured_method(
+        args.method, options.shadow, experiments::parse_settings(args.settings));
+    const Scene scene = load_scene(args.scene, SceneSearchPaths::defaults());
+    if (!scene.animation) {
+        fail(
+            "{}: the scene has no [animation] to play (scenes/animation.h; animated scenes: "
+            "toplight-orbit, parallel-walk, multiple-moving)",
+            args.scene);
+    }
+    const Animation& animation = *scene.animation;
+    const int available = animation.frame_count();
+    if (args.frames > available) {
+        fail("--frames {}: the animation has {} frames ({} s to {} s at {} fps)", args.frames,
+             available, animation.start, animation.end, animation.fps);
+    }
+    const int frames = args.frames > 0 ? args.frames : available;
+
+    const auto platform = gl::create_headless_platform();
+    const gl::ContextInfo context = platform->info();
+    OutputFiles outputs(args.out);
+    for (const gl::FrameMode mode : modes) {
+        Scene live = scene_at(scene, animation.frame_time(0));
+        gl::SceneRenderer renderer(live, options);
+        method->prepare(live);
+        for (int i = 0; i < args.warmup; ++i) {
+            renderer.draw(*method);  // shader compilation and first-use costs
+        }
+        std::vector<gl::FrameRecord> records;
+        std::string csv =
+            "frame,time_s,update_ms,update_on_worker,apply_ms,wait_ms,draw_ms,frame_ms,"
+            "overlap_ms,critical_cpu_ms,gpu_ms\n";
+        gl::FrameLoop loop(renderer, *method, live, mode);
+        loop.play(
+            frames, [&](int k) { return scene_at(scene, animation.frame_time(k)); },
+            [&](const gl::FrameRecord& r) {
+                records.push_back(r);
+                csv += fmt::format(
+                    "{},{:.6f},{:.4f},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},"
+                    "{:.4f}\n",
+                    r.frame, animation.frame_time(r.frame), r.update_ms, int(r.update_on_worker),
+                    r.apply_ms, r.wait_ms, r.draw_ms, r.frame_ms, r.overlap_ms, r.critical_cpu_ms(),
+                    r.gpu.total_ms());
+            });
+        const gl::Frame last = renderer.read_back();
+        const std::string stem =
+            fmt::format("{}.{}.{}", scene.name, method->name(), gl::to_string(mode));
+        outputs.add_text(stem + ".frames.csv", csv);
+        outputs.add(stem + ".last.png", [&](const std::filesystem::path& path) {
+            write_png(last.display_srgb8, options.width, options.height, path);
+        });
+        // Frame 0 pays for the first build; the medians are over the frames after it.
+        auto column = [&](auto get) {
+            std::vector<double> v;
+            for (size_t i = records.size() > 1 ? 1 : 0; i < records.size(); ++i)
+                v.push_back(get(records[i]));
+            return median_of(v);
+        };
+        fmt::print(
+            "{} {} {} ({} frames, {}x{}, {}): median frame {:.2f} ms, CPU critical path {:.2f} "
+            "ms, update {:.2f} ms, GPU {:.2f} ms, overlap {:.2f} ms\n",
+            scene.name, method->name(), gl::to_string(mode), frames, options.width, options.height,
+            context.renderer, column([](const gl::FrameRecord& r) { return r.frame_ms; }),
+            column([](const gl::FrameRecord& r) { return r.critical_cpu_ms(); }),
+            column([](const gl::FrameRecord& r) { return r.update_ms; }),
+            column([](const gl::FrameRecord& r) { return r.gpu.total_ms(); }),
+            column([](const gl::FrameRecord& r) { return r.overlap_ms; }));
+    }
+    outputs.commit();
+    fmt::print("  -> {}/{}.{}.<mode>.{{frames.csv,last.png}}\n", args.out, scene.name,
+               method->name());
+    return 0;
+}
+
+}  // namespace
+
+Command add_animate_command(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "animate",
+        "Play a scene's [animation] with one method, serial or pipelined (the CPU update of frame "
+        "k+1 beside the GPU's frame k): DIR/<scene>.<method>.<mode>.frames.csv");
+    auto args = std::make_shared<AnimateArguments>();
+    command->add_option("--scene", args->scene, "An animated scene (toplight-orbit, ...) or file")
+        ->required();
+    command->add_option("--method", args->method, "Volumetric method")->capture_default_str();
+    command->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+    command->add_option("--out", args->out, "Output directory")->capture_default_str();
+    command->add_option("--mode", args->mode, "serial, pipelined or both")
+        ->check(CLI::IsMember({"serial", "pipelined", "both"}))
+        ->capture_default_str();
+    command->add_option("--frames", args->frames, "Frames to play (0: the whole animation)")
+        ->check(CLI::Range(0, 1000000))
+        ->capture_default_str();
+    command->add_option("--warmup", args->warmup, "Frames of the first state drawn before playing")
+        ->check(CLI::Range(0, 1000))
+        ->capture_default_str();
+    command->add_option("--set", args->settings, "Set a parameter of the method, NAME=VALUE");
+    return [args] { return run_animate(*args); };
+}
+
+}  // namespace sl::app

@@ -1,0 +1,233 @@
+// The per-frame CPU work of the region methods on moving scenes (issue "moving scenes",
+// results/moving.md): one core (TBB limited to one thread; scripts/moving_bench.sh also pins the
+// process with taskset). Writes Markdown to stdout.
+//
+//   1. A light move on toplight, parallel and multiple: the light circles 0.5 m about its place
+//      over 24 frames. Per frame, the first round's path (a fresh VolumeLibrary: hulls, reduced
+//      hulls and inner boxes recomputed, as build_scene_beam_tree did) against today's
+//      (bt::build_frame_regions: cached volumes transformed, then tree, regions, meshes), each
+//      stage timed, for what `beamtree` needs (the lit boundary) and what the hybrids need (lit
+//      and uncertain boundaries and the GPU tree).
+//   2. The canonical animations, every frame.
+//   3. Scaling over multiple:N.
+//   4. The static half: each mesh's volumes computed, and read back from the disk cache.
+
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "beamtree/boundary.h"
+#include "beamtree/frame_regions.h"
+#include "scenes/animation.h"
+#include "scenes/scene_file.h"
+
+namespace sl::bt {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+double quantile(std::vector<double> v, double q) {
+    if (v.empty())
+        return 0.0;
+    std::sort(v.begin(), v.end());
+    const double x = q * double(v.size() - 1);
+    const size_t i = size_t(x);
+    return i + 1 < v.size() ? v[i] + (x - double(i)) * (v[i + 1] - v[i]) : v[i];
+}
+
+// Per-stage samples over frames.
+struct StageSamples {
+    std::vector<RegionStageTimes> frames;
+    std::vector<double> column(double RegionStageTimes::*stage) const {
+        std::vector<double> v;
+        for (const RegionStageTimes& t : frames)
+            v.push_back(t.*stage);
+        return v;
+    }
+    std::vector<double> totals() const {
+        std::vector<double> v;
+        for (const RegionStageTimes& t : frames)
+            v.push_back(t.total());
+        return v;
+    }
+};
+
+const RegionRequest kBeamtree{.lit = true};
+const RegionRequest kHybrids{.lit = true, .uncertain = true, .gpu_tree = true};
+
+Scene light_moved(const Scene& scene, int frame, int frames) {
+    Scene s = scene;
+    const double a = 2.0 * M_PI * frame / frames;
+    s.light.position +=
+        glm::vec3(0.5 * std::cos(a), 0.0, 0.5 * std::sin(a)) - glm::vec3(0.5f, 0.0f, 0.0f);
+    return s;
+}
+
+StageSamples play(const std::vector<Scene>& states, const RegionRequest& request) {
+    StageSamples samples;
+    build_frame_regions(states.front(), request);  // the static half, before timing
+    for (const Scene& s : states) {
+        samples.frames.push_back(build_frame_regions(s, request).ms);
+    }
+    return samples;
+}
+
+// The first round's per-frame path: volumes from a fresh library (nothing cached), then the same
+// stages.
+double first_round_frame(const Scene& scene, const RegionRequest& request) {
+    const Clock::time_point start = Clock::now();
+    VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
+                           .automatic_inner = scene.bounds.automatic_inner});
+    library.set_disk_cache(false);
+    const BeamTree tree(scene.light, library.build(scene, nullptr));
+    const Regions regions = extract_regions(tree);
+    if (request.lit)
+        boundary_mesh(tree, regions, Region::lit);
+    if (request.uncertain)
+        boundary_mesh(tree, regions, Region::uncertain);
+    if (request.gpu_tree)
+        tree.gpu_tree();
+    return ms_since(start);
+}
+
+std::string stage_cells(const StageSamples& s) {
+    std::string row;
+    for (double RegionStageTimes::*stage :
+         {&RegionStageTimes::volumes, &RegionStageTimes::tree, &RegionStageTimes::regions,
+          &RegionStageTimes::lit, &RegionStageTimes::uncertain, &RegionStageTimes::gpu_tree}) {
+        row += fmt::format(" {:.2f} |", quantile(s.column(stage), 0.5));
+    }
+    const std::vector<double> totals = s.totals();
+    return row +
+           fmt::format(" **{:.2f}** | {:.2f} |", quantile(totals, 0.5), quantile(totals, 0.95));
+}
+
+constexpr const char* kStageHeader =
+    " volumes | tree | regions | lit mesh | uncertain mesh | GPU tree | total (median) | p95 |";
+constexpr const char* kStageRule = "---:|---:|---:|---:|---:|---:|---:|---:|";
+
+int run() {
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    const SceneSearchPaths paths = SceneSearchPaths::defaults();
+    constexpr double kBudget = 4.0;
+    constexpr int kFrames = 24;
+
+    fmt::print("## A light move on the canonical scenes\n\n");
+    fmt::print(
+        "The light circles 0.5 m about its place over {} frames; milliseconds per frame, one "
+        "core, medians over the frames (p95 beside the total). *First round*: what a light move "
+        "cost before the static/dynamic split (a fresh `VolumeLibrary` each frame, median of 3 "
+        "frames). Budget {} ms.\n\n",
+        kFrames, kBudget);
+    fmt::print("| scene | needs | first round | {}\n|---|---|---:|{}\n", kStageHeader, kStageRule);
+    for (const std::string& name : canonical_scene_names()) {
+        const Scene scene = load_scene(name, paths);
+        std::vector<Scene> states;
+        for (int k = 0; k < kFrames; ++k)
+            states.push_back(light_moved(scene, k, kFrames));
+        for (const auto& [label, request] :
+             {std::pair{"beamtree (lit)", kBeamtree},
+              std::pair{"hybrids (lit, uncertain, tree)", kHybrids}}) {
+            std::vector<double> before;
+            for (int k = 0; k < 3; ++k)
+                before.push_back(first_round_frame(states[size_t(k)], request));
+            const StageSamples after = play(states, request);
+            const double total = quantile(after.totals(), 0.5);
+            fmt::print("| {} | {} | {:.1f} |{} {}\n", name, label, quantile(before, 0.5),
+                       stage_cells(after),
+                       total <= kBudget ? "" : fmt::format("{:.1f}x over", total / kBudget));
+        }
+        std::fflush(stdout);
+    }
+
+    fmt::print("\n## The canonical animations, every frame (what the hybrids need)\n\n");
+    fmt::print("| scene | frames | {} worst |\n|---|---:|{}---:|\n", kStageHeader, kStageRule);
+    for (const std::string& name : animated_scene_names()) {
+        const Scene scene = load_scene(name, paths);
+        std::vector<Scene> states;
+        for (int k = 0; k < scene.animation->frame_count(); ++k)
+            states.push_back(scene_at(scene, scene.animation->frame_time(k)));
+        const StageSamples s = play(states, kHybrids);
+        const std::vector<double> totals = s.totals();
+        fmt::print("| {} | {} |{} {:.2f} |\n", name, states.size(), stage_cells(s),
+                   *std::max_element(totals.begin(), totals.end()));
+        std::fflush(stdout);
+    }
+
+    fmt::print("\n## Scaling: a light move on multiple:N (what the hybrids need)\n\n");
+    fmt::print("| N | triangles | {}\n|---:|---:|{}\n", kStageHeader, kStageRule);
+    std::vector<std::pair<double, double>> fit;
+    for (const int n : {4, 8, 16, 32, 64, 128, 256}) {
+        const Scene scene = load_scene(fmt::format("multiple:{}", n), paths);
+        std::vector<Scene> states;
+        const int frames = n <= 64 ? 12 : 6;
+        for (int k = 0; k < frames; ++k)
+            states.push_back(light_moved(scene, k, frames));
+        const StageSamples s = play(states, kHybrids);
+        fit.emplace_back(std::log(double(n)), std::log(quantile(s.totals(), 0.5)));
+        fmt::print("| {} | {} |{}\n", n, scene.triangle_count(), stage_cells(s));
+        std::fflush(stdout);
+    }
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (const auto& [x, y] : fit) {
+        sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+    const double k = (double(fit.size()) * sxy - sx * sy) / (double(fit.size()) * sxx - sx * sx);
+    fmt::print("\nFitted exponent (total ∝ N^k): **k = {:.2f}**.\n", k);
+
+    fmt::print("\n## The static half, once per mesh\n\n");
+    fmt::print(
+        "Each scene's local volumes (hulls, reduced hulls, inner boxes and their verification) "
+        "computed from scratch, and read back from the disk cache by a fresh library, one "
+        "core.\n\n| scene | meshes | computed ms | from disk ms |\n|---|---:|---:|---:|\n");
+    for (const std::string& name : canonical_scene_names()) {
+        const Scene scene = load_scene(name, paths);
+        const BoundingVolumeOptions options{.max_outer_planes = scene.bounds.max_outer_planes,
+                                            .automatic_inner = scene.bounds.automatic_inner};
+        Clock::time_point start = Clock::now();
+        VolumeLibrary cold(options);
+        cold.set_disk_cache(false);
+        cold.build(scene, nullptr);
+        const double computed = ms_since(start);
+        VolumeLibrary warm_up(options);
+        warm_up.build(scene, nullptr);  // make sure the disk holds them
+        // A fresh process finds nothing in memory: time the disk path alone.
+        VolumeLibrary::forget_process_volumes();
+        start = Clock::now();
+        size_t meshes = 0;
+        {
+            VolumeLibrary fresh(options);
+            for (const Object& o : scene.objects) {
+                fresh.local(o.mesh);
+            }
+            meshes = fresh.stats().memory + fresh.stats().disk + fresh.stats().computed;
+        }
+        const double disk = ms_since(start);
+        fmt::print("| {} | {} | {:.1f} | {:.2f} |\n", name, meshes, computed, disk);
+    }
+    return 0;
+}
+
+}  // namespace
+}  // namespace sl::bt
+
+int main() {
+    try {
+        return sl::bt::run();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "moving_bench: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,65 @@
+#include "beamtree/frame_regions.h"
+
+#include <chrono>
+
+#include "beamtree/boundary.h"
+
+namespace sl::bt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_between(Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, double>> RegionStageTimes::named() const {
+    return {{"volumes", volumes},          {"tree", tree},
+            {"regions", regions},          {"lit mesh", lit},
+            {"uncertain mesh", uncertain}, {"gpu tree", gpu_tree}};
+}
+
+FrameRegions build_frame_regions(const Scene& scene, const RegionRequest& request) {
+    FrameRegions out;
+    Clock::time_point t = Clock::now();
+    auto lap = [&](double& stage) {
+        const Clock::time_point now = Clock::now();
+        stage = ms_between(t, now);
+        t = now;
+    };
+    VolumeLibrary& library =
+        VolumeLibrary::shared({.max_outer_planes = scene.bounds.max_outer_planes,
+                               .automatic_inner = scene.bounds.automatic_inner});
+    const std::vector<ObjectVolumes> volumes = library.build(scene, nullptr);
+    lap(out.ms.volumes);
+    auto tree = std::make_shared<const BeamTree>(scene.light, volumes);
+    lap(out.ms.tree);
+    if (request.lit || request.uncertain || request.pieces) {
+        auto pieces = std::make_shared<const Regions>(extract_regions(*tree));
+        const Regions& regions = *pieces;
+        lap(out.ms.regions);
+        if (request.pieces) {
+            out.regions = pieces;
+        }
+        if (request.lit) {
+            out.lit = request.cells ? regions.mesh(Region::lit)
+                                    : boundary_mesh(*tree, regions, Region::lit);
+            lap(out.ms.lit);
+        }
+        if (request.uncertain) {
+            out.uncertain = boundary_mesh(*tree, regions, Region::uncertain);
+            lap(out.ms.uncertain);
+        }
+    }
+    if (request.gpu_tree) {
+        out.gpu = tree->gpu_tree();
+        lap(out.ms.gpu_tree);
+    }
+    out.tree = std::move(tree);
+    return out;
+}
+
+}  // namespace sl::bt

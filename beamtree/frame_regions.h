@@ -1,0 +1,52 @@
+#pragma once
+// The per-frame CPU work of the region methods (DESIGN.md §10): from the scene as it stands this
+// frame, the beam tree and what the GPU draws from it. The static half (each mesh's hulls,
+// reduced hulls and inner boxes) comes from VolumeLibrary::shared, computed once per mesh and
+// cached on disk; what is left per frame is to transform the volumes, build the tree, extract
+// the regions and build the surfaces asked for. No GL: it runs on the pipelined frame loop's
+// worker thread (gl/frame_loop.h) while the GPU draws the previous frame.
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "beamtree/beam_tree.h"
+#include "beamtree/regions.h"
+
+namespace sl::bt {
+
+// What a method needs built.
+struct RegionRequest {
+    bool lit = false;        // the lit region's mesh
+    bool uncertain = false;  // the uncertain region's boundary mesh
+    bool cells = false;  // lit: every lit cell's faces (the first round's mesh), not the boundary
+    bool gpu_tree = false;  // the tree as the GPU's classify reads it
+    bool pieces = false;    // keep the region pieces (FrameRegions::regions: PLY, statistics)
+};
+
+// CPU milliseconds of each stage (one thread, wall clock).
+struct RegionStageTimes {
+    double volumes = 0.0;    // the cached local volumes transformed into the world
+    double tree = 0.0;       // the beam tree
+    double regions = 0.0;    // the region pieces
+    double lit = 0.0;        // the lit mesh
+    double uncertain = 0.0;  // the uncertain boundary mesh
+    double gpu_tree = 0.0;   // the GPU's tree buffers
+    double total() const { return volumes + tree + regions + lit + uncertain + gpu_tree; }
+    // (stage, ms) in pipeline order, for statistics and reports.
+    std::vector<std::pair<std::string, double>> named() const;
+};
+
+struct FrameRegions {
+    std::shared_ptr<const BeamTree> tree;
+    std::shared_ptr<const Regions> regions;  // with RegionRequest::pieces
+    RegionMesh lit, uncertain;
+    GpuTree gpu;
+    RegionStageTimes ms;
+};
+
+// Throws sl::Error as BeamTree's constructor and VolumeLibrary::build do.
+FrameRegions build_frame_regions(const Scene& scene, const RegionRequest& request);
+
+}  // namespace sl::bt

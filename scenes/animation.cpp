@@ -1,0 +1,344 @@
+#include "scenes/animation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+
+#include "core/error.h"
+#include "core/text.h"
+#include "scenes/animation_toml.h"
+#include "scenes/toml_reader.h"
+
+namespace sl {
+
+template <typename T>
+T Track<T>::at(double time, Interpolation interpolation) const {
+    const size_t n = times.size();
+    if (time <= times.front()) {
+        return values.front();
+    }
+    if (time >= times.back()) {
+        return values.back();
+    }
+    const size_t i = size_t(std::upper_bound(times.begin(), times.end(), time) - times.begin());
+    const double t0 = times[i - 1], t1 = times[i];
+    const double h = t1 - t0;
+    const double s = (time - t0) / h;
+    const T& p0 = values[i - 1];
+    const T& p1 = values[i];
+    if (interpolation == Interpolation::linear || n == 2) {
+        return p0 + float(s) * (p1 - p0);
+    }
+    // Non-uniform cardinal (Catmull-Rom) tangents, one-sided at the ends, in units of value per
+    // second; the cubic Hermite basis on [t0, t1].
+    auto tangent = [&](size_t k) -> T {
+        const size_t a = k == 0 ? 0 : k - 1;
+        const size_t b = std::min(k + 1, n - 1);
+        return (values[b] - values[a]) / float(times[b] - times[a]);
+    };
+    const T m0 = tangent(i - 1) * float(h);
+    const T m1 = tangent(i) * float(h);
+    const double s2 = s * s, s3 = s2 * s;
+    return float(2 * s3 - 3 * s2 + 1) * p0 + float(s3 - 2 * s2 + s) * m0 +
+           float(-2 * s3 + 3 * s2) * p1 + float(s3 - s2) * m1;
+}
+
+template struct Track<glm::vec3>;
+template struct Track<float>;
+
+int Animation::frame_count() const {
+    // A tiny slack so that (end - start)·fps computed in double still counts its last frame.
+    return int(std::floor((end - start) * fps * (1.0 + 1e-12) + 1e-9)) + 1;
+}
+
+bool Animation::moves_light() const {
+    return !light_position.empty() || !light_target.empty() || !cone_angle.empty() ||
+           !light_intensity.empty();
+}
+
+namespace {
+
+// Keys of one track group ([[animation.light]], ...): each key's time strictly after the
+// previous one's and at least `start`.
+class KeyReader {
+public:
+    explicit KeyReader(double start) : start_(start) {}
+
+    double time(TomlTableReader& r, double& previous, bool first) const {
+        if (!r.has("time")) {
+            r.error("time", "missing: every key needs its time");
+        }
+        const double t = r.number("time");
+        if (t < start_) {
+            r.error("time", fmt::format("{} is before the animation's start {}", t, start_));
+        }
+        if (!first && t <= previous) {
+            r.error("time", fmt::format("{} is not after the previous key's {}", t, previous));
+        }
+        previous = t;
+        return t;
+    }
+
+private:
+    double start_;
+};
+
+template <typename T>
+void add_key(Track<T>& track, double time, T value) {
+    track.times.push_back(time);
+    track.values.push_back(value);
+}
+
+// A key table of `[[animation.NAME]]` at index i, or a clear error.
+const toml::table& key_table(const toml::array& keys, size_t i, const std::string& origin,
+                             const char* name) {
+    const toml::table* table = keys[i].as_table();
+    if (!table) {
+        fail("{}:{}: [animation] {}: expected an array of tables ([[animation.{}]])", origin,
+             keys[i].source().begin.line, name, name);
+    }
+    return *table;
+}
+
+}  // namespace
+
+Animation read_animation(const toml::table& table, const std::string& origin, const Scene& scene) {
+    TomlTableReader r(table, origin, "[animation]");
+    Animation a;
+    a.start = r.number("start", 0.0);
+    a.fps = r.number_in("fps", 30.0, 0.0, 1e4, true);
+    const std::string interpolation = r.string("interpolation", "linear");
+    if (interpolation == "catmull-rom") {
+        a.interpolation = Interpolation::catmull_rom;
+    } else if (interpolation != "linear") {
+        r.error("interpolation", fmt::format("unknown value {} (expected one of: linear, "
+                                             "catmull-rom)",
+                                             quote(interpolation)));
+    }
+    const KeyReader keys(a.start);
+    double last = a.start;
+    bool any = false;
+
+    if (const toml::array* light = r.array("light")) {
+        double previous = 0.0;
+        for (size_t i = 0; i < light->size(); ++i) {
+            TomlTableReader k(key_table(*light, i, origin, "light"), origin,
+                              fmt::format("[[animation.light]] #{}", i + 1));
+            const double t = keys.time(k, previous, i == 0);
+            if (k.has("position"))
+                add_key(a.light_position, t, k.vec3("position"));
+            if (k.has("target"))
+                add_key(a.light_target, t, k.vec3("target"));
+            if (k.has("cone_angle"))
+                add_key(a.cone_angle, t, float(k.number_in("cone_angle", 0, 0, 89, true)));
+            if (k.has("intensity"))
+                add_key(a.light_intensity, t, k.non_negative_vec3("intensity", glm::vec3(0)));
+            k.finish();
+            last = std::max(last, t);
+            any = true;
+        }
+    }
+    if (const toml::array* camera = r.array("camera")) {
+        double previous = 0.0;
+        for (size_t i = 0; i < camera->size(); ++i) {
+            TomlTableReader k(key_table(*camera, i, origin, "camera"), origin,
+                              fmt::format("[[animation.camera]] #{}", i + 1));
+            const double t = keys.time(k, previous, i == 0);
+            if (k.has("position"))
+                add_key(a.camera_position, t, k.vec3("position"));
+            if (k.has("target"))
+                add_key(a.camera_target, t, k.vec3("target"));
+            if (k.has("fov"))
+                add_key(a.fov, t, float(k.number_in("fov", 0, 0, 180, true, true)));
+            k.finish();
+            last = std::max(last, t);
+            any = true;
+        }
+    }
+    if (const toml::array* objects = r.array("objects")) {
+        std::vector<double> previous(scene.objects.size(), 0.0);
+        std::vector<int> tracks_of(scene.objects.size(), -1);
+        for (size_t i = 0; i < objects->size(); ++i) {
+            TomlTableReader k(key_table(*objects, i, origin, "objects"), origin,
+                              fmt::format("[[animation.objects]] #{}", i + 1));
+            const std::string name = k.string("name");
+            const auto it = std::find_if(scene.objects.begin(), scene.objects.end(),
+                                         [&](const Object& o) { return o.name == name; });
+            if (it == scene.objects.end()) {
+                k.error("name", fmt::format("the scene has no object {}", quote(name)));
+            }
+            const int object = int(it - scene.objects.begin());
+            int& index = tracks_of[size_t(object)];
+            const double t = keys.time(k, previous[size_t(object)], index < 0);
+            if (index < 0) {
+                index = int(a.objects.size());
+                a.objects.push_back({.object = object, .translate = {}, .rotate = {}, .scale = {}});
+            }
+            Animation::ObjectTracks& tracks = a.objects[size_t(index)];
+            const Placement placement = read_placement(k, it->placement);
+            if (k.has("translate"))
+                add_key(tracks.translate, t, placement.translate);
+            if (k.has("rotate"))
+                add_key(tracks.rotate, t, placement.rotate_degrees);
+            if (k.has("scale"))
+                add_key(tracks.scale, t, placement.scale);
+            k.finish();
+            last = std::max(last, t);
+            any = true;
+        }
+    }
+    if (!any) {
+        fail(
+            "{}: [animation] needs at least one key ([[animation.light]], [[animation.camera]] "
+            "or [[animation.objects]])",
+            origin);
+    }
+    a.end = r.number("end", last);
+    if (a.end <= a.start) {
+        r.error("end", fmt::format("{} is not after the start {}", a.end, a.start));
+    }
+    if (last > a.end) {
+        r.error("end", fmt::format("{} is before the last key's time {}", a.end, last));
+    }
+    if (double(a.frame_count()) > 1e6) {
+        r.error("fps", "more than 10^6 frames between start and end");
+    }
+    r.finish();
+    return a;
+}
+
+Animation parse_animation(const std::string& text, const std::string& origin, const Scene& scene) {
+    toml::table root;
+    try {
+        root = toml::parse(text, origin);
+    } catch (const toml::parse_error& e) {
+        fail("{}:{}: malformed TOML: {}", origin, e.source().begin.line, e.description());
+    }
+    const toml::table* animation = root["animation"].as_table();
+    if (!animation) {
+        fail("{}: no [animation] table (a path file holds the scene file's [animation] keys)",
+             origin);
+    }
+    return read_animation(*animation, origin, scene);
+}
+
+Animation load_animation_file(const std::filesystem::path& path, const Scene& scene) {
+    std::error_code ec;
+    std::ifstream in(path, std::ios::binary);
+    if (!std::filesystem::is_regular_file(path, ec) || !in) {
+        fail("{}: cannot read the animation file", path.string());
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_animation(text.str(), path.string(), scene);
+}
+
+Scene scene_at(const Scene& scene, const Animation& a, double time) {
+    if (!std::isfinite(time) || time < a.start || time > a.end) {
+        fail("{}: time {} is outside the animation's range [{}, {}]", scene.name, time, a.start,
+             a.end);
+    }
+    Scene s = scene;
+    const Interpolation in = a.interpolation;
+    if (!a.light_position.empty())
+        s.light.position = a.light_position.at(time, in);
+    if (!a.light_target.empty())
+        s.light.target = a.light_target.at(time, in);
+    if (!a.cone_angle.empty())
+        s.light.cone_half_angle_degrees = a.cone_angle.at(time, in);
+    if (!a.light_intensity.empty())
+        // Catmull-Rom may overshoot below zero near a dark key: no light is the floor.
+        s.light.intensity = glm::max(a.light_intensity.at(time, in), glm::vec3(0.0f));
+    if (!a.camera_position.empty())
+        s.camera.position = a.camera_position.at(time, in);
+    if (!a.camera_target.empty())
+        s.camera.target = a.camera_target.at(time, in);
+    if (!a.fov.empty())
+        s.camera.fov_y_degrees = a.fov.at(time, in);
+    for (const Animation::ObjectTracks& tracks : a.objects) {
+        Object& object = s.objects[size_t(tracks.object)];
+        if (!tracks.translate.empty())
+            object.placement.translate = tracks.translate.at(time, in);
+        if (!tracks.rotate.empty())
+            object.placement.rotate_degrees = tracks.rotate.at(time, in);
+        if (!tracks.scale.empty())
+            object.placement.scale = tracks.scale.at(time, in);
+        const glm::vec3 scale = object.placement.scale;
+        if (scale.x == 0 || scale.y == 0 || scale.z == 0) {
+            fail("{} at time {}: object {} has a zero scale", scene.name, time, quote(object.name));
+        }
+        object.transform = object.placement.matrix();
+    }
+    const char* bad = nullptr;
+    if (glm::length(s.camera.target - s.camera.position) <= 0.0f) {
+        bad = "the camera's target is on its position";
+    } else if (glm::length(glm::cross(s.camera.target - s.camera.position, s.camera.up)) <=
+               1e-6f * glm::length(s.camera.up)) {
+        bad = "the camera looks along its up vector";
+    } else if (glm::length(s.light.target - s.light.position) <= 0.0f) {
+        bad = "the light's target is on its position";
+    } else if (!(s.light.cone_half_angle_degrees > 0.0f &&
+                 s.light.cone_half_angle_degrees < 89.0f)) {
+        bad = "the cone angle left (0, 89) degrees";
+    } else if (s.light.falloff_degrees > s.light.cone_half_angle_degrees) {
+        bad = "the cone angle fell below the light's falloff";
+    } else if (!(s.camera.fov_y_degrees > 0.0f && s.camera.fov_y_degrees < 180.0f)) {
+        bad = "the field of view left (0, 180) degrees";
+    }
+    if (bad) {
+        fail("{} at time {}: {}", scene.name, time, bad);
+    }
+    return s;
+}
+
+Scene scene_at(const Scene& scene, double time) {
+    if (!scene.animation) {
+        fail("{}: the scene has no [animation]", scene.name);
+    }
+    return scene_at(scene, *scene.animation, time);
+}
+
+SceneChange SceneChange::everything(const Scene& scene) {
+    SceneChange change{
+        .camera = true, .light = true, .light_geometry = true, .medium = true, .objects = {}};
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        change.objects.push_back(int(i));
+    }
+    return change;
+}
+
+SceneChange scene_change(const Scene& before, const Scene& after) {
+    const Camera& c0 = before.camera;
+    const Camera& c1 = after.camera;
+    const SpotLight& l0 = before.light;
+    const SpotLight& l1 = after.light;
+    const Medium& m0 = before.medium;
+    const Medium& m1 = after.medium;
+    SceneChange change;
+    change.camera = c0.position != c1.position || c0.target != c1.target || c0.up != c1.up ||
+                    c0.fov_y_degrees != c1.fov_y_degrees || c0.near != c1.near ||
+                    c0.far != c1.far || c0.exposure != c1.exposure;
+    change.light_geometry = l0.position != l1.position || l0.target != l1.target ||
+                            l0.cone_half_angle_degrees != l1.cone_half_angle_degrees ||
+                            l0.near != l1.near || l0.far != l1.far;
+    change.light = change.light_geometry || l0.intensity != l1.intensity ||
+                   l0.falloff_degrees != l1.falloff_degrees;
+    change.medium = m0.sigma_s != m1.sigma_s || m0.sigma_a != m1.sigma_a || m0.phase != m1.phase ||
+                    m0.g != m1.g || m0.model != m1.model || m0.a0 != m1.a0 || m0.a1 != m1.a1;
+    const size_t n = std::min(before.objects.size(), after.objects.size());
+    for (size_t i = 0; i < n; ++i) {
+        if (before.objects[i].transform != after.objects[i].transform ||
+            before.objects[i].mesh != after.objects[i].mesh) {
+            change.objects.push_back(int(i));
+        }
+    }
+    for (size_t i = n; i < std::max(before.objects.size(), after.objects.size()); ++i) {
+        change.objects.push_back(int(i));
+    }
+    return change;
+}
+
+}  // namespace sl

@@ -1,0 +1,246 @@
+// Animation tracks in scene files (scenes/animation.h): interpolation, the canonical animated
+// scenes, scene changes, and one clear error for every kind of bad animation input.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "core/error.h"
+#include "scenes/animation.h"
+#include "scenes/scene_file.h"
+#include "support.h"
+
+namespace sl {
+namespace {
+
+using test::TempDir;
+using test::write_text;
+
+// A two-object scene with an animation block appended.
+std::string animated_scene(const std::string& animation) {
+    return R"([camera]
+position = [0.0, 2.0, 8.0]
+target = [0.0, 1.0, 0.0]
+[light]
+position = [0.0, 6.0, 0.0]
+target = [0.0, 0.0, 0.0]
+cone_angle = 30.0
+[[objects]]
+name = "floor"
+shape = "plane"
+size = [8.0, 0.0, 8.0]
+[[objects]]
+name = "box"
+shape = "box"
+size = [1.0, 1.0, 1.0]
+translate = [1.0, 0.5, 0.0]
+rotate = [0.0, 30.0, 0.0]
+)" + animation;
+}
+
+Scene parse(const std::string& text) {
+    return parse_scene(text, "anim.toml", {}, SceneSearchPaths::defaults());
+}
+
+TEST(Animation, LinearTracksInterpolateHoldAndLeaveTheRestAlone) {
+    const Scene scene = parse(animated_scene(R"(
+[animation]
+start = 0.0
+end = 3.0
+[[animation.light]]
+time = 1.0
+position = [0.0, 6.0, 0.0]
+[[animation.light]]
+time = 2.0
+position = [2.0, 6.0, 0.0]
+cone_angle = 20.0
+[[animation.objects]]
+name = "box"
+time = 0.0
+translate = [1.0, 0.5, 0.0]
+[[animation.objects]]
+name = "box"
+time = 3.0
+translate = [-2.0, 0.5, 0.0]
+)"));
+    ASSERT_TRUE(scene.animation);
+    EXPECT_EQ(scene.animation->frame_count(), 91);  // 3 s at 30 fps, both ends
+    // Held before the first key and after the last; linear between.
+    EXPECT_EQ(scene_at(scene, 0.5).light.position, glm::vec3(0, 6, 0));
+    EXPECT_NEAR(scene_at(scene, 1.25).light.position.x, 0.5f, 1e-6f);
+    EXPECT_EQ(scene_at(scene, 3.0).light.position, glm::vec3(2, 6, 0));
+    // A quantity keyed once is constant; one never keyed keeps the scene's value.
+    EXPECT_EQ(scene_at(scene, 0.0).light.cone_half_angle_degrees, 20.0f);
+    EXPECT_EQ(scene_at(scene, 1.5).light.target, scene.light.target);
+    // Objects: the keyed part of the placement moves, the rest (rotate) stays, and the
+    // transform is rebuilt from it.
+    const Scene mid = scene_at(scene, 1.5);
+    EXPECT_NEAR(mid.objects[1].placement.translate.x, -0.5f, 1e-6f);
+    EXPECT_EQ(mid.objects[1].placement.rotate_degrees, glm::vec3(0, 30, 0));
+    EXPECT_EQ(mid.objects[1].transform, mid.objects[1].placement.matrix());
+    EXPECT_EQ(mid.objects[0].transform, scene.objects[0].transform);
+}
+
+TEST(Animation, CatmullRomPassesThroughEveryKeyAndIsSmooth) {
+    Track<glm::vec3> track;
+    for (int k = 0; k < 5; ++k) {
+        track.times.push_back(0.5 * k * k);  // non-uniform spacing
+        track.values.push_back(glm::vec3(std::sin(k), std::cos(k), float(k)));
+    }
+    for (size_t k = 0; k < track.times.size(); ++k) {
+        EXPECT_EQ(track.at(track.times[k], Interpolation::catmull_rom), track.values[k]);
+    }
+    // C1 at the inner keys: one-sided difference quotients agree.
+    for (size_t k = 1; k + 1 < track.times.size(); ++k) {
+        const double t = track.times[k], h = 1e-4;
+        const glm::vec3 left = (track.at(t, Interpolation::catmull_rom) -
+                                track.at(t - h, Interpolation::catmull_rom)) /
+                               float(h);
+        const glm::vec3 right = (track.at(t + h, Interpolation::catmull_rom) -
+                                 track.at(t, Interpolation::catmull_rom)) /
+                                float(h);
+        EXPECT_LT(glm::length(left - right), 2e-2f * (1.0f + glm::length(left))) << "key " << k;
+    }
+    // A linear track is piecewise linear: its midpoint is the average of the keys.
+    const glm::vec3 mid = track.at(0.25, Interpolation::linear);
+    EXPECT_LT(glm::length(mid - 0.5f * (track.values[0] + track.values[1])), 1e-6f);
+}
+
+TEST(Animation, CanonicalAnimatedScenesLoadAndMove) {
+    for (const std::string& name : animated_scene_names()) {
+        const Scene scene = load_scene(name, SceneSearchPaths::defaults());
+        ASSERT_TRUE(scene.animation) << name;
+        const Animation& a = *scene.animation;
+        EXPECT_EQ(a.frame_count(), 121) << name;  // 4 s at 30 fps
+        const Scene first = scene_at(scene, a.frame_time(0));
+        const Scene later = scene_at(scene, a.frame_time(45));
+        const SceneChange change = scene_change(first, later);
+        EXPECT_TRUE(change.any()) << name;
+        if (name == "toplight-orbit") {
+            EXPECT_TRUE(change.light_geometry && change.objects.empty() && !change.camera);
+            // The light circles at its height, 1.6 m from the axis.
+            const glm::vec3 p = later.light.position;
+            EXPECT_NEAR(std::hypot(p.x, p.z), 1.6, 0.02) << "orbit radius";
+        } else if (name == "parallel-walk") {
+            EXPECT_TRUE(change.camera && change.light_geometry && change.objects.empty());
+        } else {
+            EXPECT_EQ(change.objects.size(), 32u) << "every object but the floor moves";
+            EXPECT_FALSE(change.light);
+        }
+    }
+}
+
+TEST(Animation, SceneChangeSaysWhatDiffers) {
+    const Scene a = load_scene("toplight", SceneSearchPaths::defaults());
+    Scene b = a;
+    EXPECT_FALSE(scene_change(a, b).any());
+    b.light.intensity *= 2.0f;
+    EXPECT_TRUE(scene_change(a, b).light);
+    EXPECT_FALSE(scene_change(a, b).regions()) << "a brighter light keeps its regions";
+    b.light.position.x += 0.1f;
+    EXPECT_TRUE(scene_change(a, b).regions());
+    Scene c = a;
+    c.objects[2].transform[3].x += 0.5f;
+    EXPECT_EQ(scene_change(a, c).objects, std::vector<int>{2});
+    EXPECT_TRUE(scene_change(a, c).regions());
+    Scene d = a;
+    d.camera.position.z += 1.0f;
+    EXPECT_TRUE(scene_change(a, d).camera);
+    EXPECT_FALSE(scene_change(a, d).regions());
+}
+
+// Each bad input: one error naming the file, the line and the key.
+TEST(Animation, BadInputGivesOneClearErrorNamingFileLineAndKey) {
+    struct Case {
+        std::string animation;
+        std::string expected;
+    };
+    const Case cases[] = {
+        {"[animation]\n[[animation.light]]\ntime = 1.0\nposition = [0.0, 6.0, 0.0]\n"
+         "[[animation.light]]\ntime = 0.5\nposition = [1.0, 6.0, 0.0]\n",
+         "anim.toml:23: [[animation.light]] #2 time: 0.5 is not after the previous key's 1"},
+        {"[animation]\n[[animation.objects]]\nname = \"teapot\"\ntime = 0.0\n"
+         "translate = [0.0, 0.0, 0.0]\n",
+         "anim.toml:20: [[animation.objects]] #1 name: the scene has no object 'teapot'"},
+        {"[animation]\n[[animation.camera]]\ntime = 0.0\nposition = [nan, 1.0, 2.0]\n",
+         "anim.toml:21: [[animation.camera]] #1 position: component 0 is not finite"},
+        {"[animation]\nstart = 1.0\n[[animation.light]]\ntime = 0.5\ncone_angle = 20.0\n",
+         "anim.toml:21: [[animation.light]] #1 time: 0.5 is before the animation's start 1"},
+        {"[animation]\nend = 1.0\n[[animation.light]]\ntime = 2.0\ncone_angle = 20.0\n",
+         "anim.toml:19: [animation] end: 1 is before the last key's time 2"},
+        {"[animation]\n[[animation.light]]\ntime = 0.0\ncolour = [1.0, 1.0, 1.0]\n",
+         "anim.toml:21: [[animation.light]] #1 colour: unknown key"},
+        {"[animation]\n[[animation.light]]\nposition = [1.0, 6.0, 0.0]\n",
+         "[[animation.light]] #1 time: missing: every key needs its time"},
+        {"[animation]\nend = 2.0\n", "[animation] needs at least one key"},
+        {"[animation]\ninterpolation = \"cubic\"\n[[animation.light]]\ntime = 0.0\n",
+         "[animation] interpolation: unknown value 'cubic'"},
+        {"[animation]\n[[animation.light]]\ntime = 0.0\ncone_angle = 95.0\n",
+         "[[animation.light]] #1 cone_angle: must be in (0, 89]"},
+    };
+    for (const Case& c : cases) {
+        try {
+            parse(animated_scene(c.animation));
+            ADD_FAILURE() << "accepted:\n" << c.animation;
+        } catch (const Error& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find(c.expected), std::string::npos)
+                << "expected: " << c.expected << "\ngot: " << message;
+            EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        }
+    }
+}
+
+TEST(Animation, TimesOutsideTheRangeAndOvershootsAreRefused) {
+    const Scene scene = parse(animated_scene(R"(
+[animation]
+end = 3.0
+interpolation = "catmull-rom"
+[[animation.light]]
+time = 0.0
+cone_angle = 80.0
+[[animation.light]]
+time = 1.0
+cone_angle = 80.0
+[[animation.light]]
+time = 2.0
+cone_angle = 2.0
+[[animation.light]]
+time = 3.0
+cone_angle = 2.0
+)"));
+    EXPECT_THROW(scene_at(scene, -0.1), Error);
+    EXPECT_THROW(scene_at(scene, 3.5), Error);
+    EXPECT_THROW(scene_at(scene, std::nan("")), Error);
+    try {
+        // Catmull-Rom overshoots below 0 degrees after the steep fall to 2.
+        for (int k = 0; k <= 90; ++k) {
+            scene_at(scene, k / 30.0);
+        }
+        ADD_FAILURE() << "an overshoot outside (0, 89) degrees was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("the cone angle left (0, 89) degrees"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(Animation, PathFilesHoldTheSameFormat) {
+    TempDir dir;
+    const Scene scene = load_scene("toplight", SceneSearchPaths::defaults());
+    write_text(dir / "path.toml",
+               "[animation]\nfps = 10\n[[animation.camera]]\ntime = 0.0\nposition = [0.0, 2.4, "
+               "9.0]\n[[animation.camera]]\ntime = 1.0\nposition = [2.0, 2.4, 9.0]\n");
+    const Animation path = load_animation_file(dir / "path.toml", scene);
+    EXPECT_EQ(path.frame_count(), 11);
+    EXPECT_NEAR(scene_at(scene, path, 0.5).camera.position.x, 1.0f, 1e-6f);
+    write_text(dir / "none.toml", "[camera]\nposition = [0.0, 1.0, 2.0]\n");
+    EXPECT_THROW(load_animation_file(dir / "none.toml", scene), Error);
+    EXPECT_THROW(load_animation_file(dir / "absent.toml", scene), Error);
+}
+
+}  // namespace
+}  // namespace sl
