@@ -649,24 +649,24 @@ const VolumeLibrary::Entry& VolumeLibrary::entry(const std::shared_ptr<const Mes
     const uint64_t key = volumes_key(*mesh, options_);
     std::shared_ptr<const LocalVolumes> volumes;
     bool from_disk = false, computed = false;
-    {
+    if (caching_) {
         const std::lock_guard lock(process_mutex());
         if (auto it = process_volumes().find(key); it != process_volumes().end()) {
             volumes = it->second;
         }
     }
-    if (!volumes && disk_) {
+    if (!volumes && caching_) {
         volumes = read_volumes(key);
         from_disk = volumes != nullptr;
     }
     if (!volumes) {
         volumes = std::make_shared<const LocalVolumes>(compute(*mesh));
         computed = true;
-        if (disk_) {
+        if (caching_) {
             write_volumes(key, *volumes);
         }
     }
-    {
+    if (caching_) {
         const std::lock_guard lock(process_mutex());
         process_volumes().emplace(key, volumes);
     }
@@ -698,10 +698,10 @@ bool VolumeLibrary::box_verified(const Mesh& mesh, uint64_t key, const Box& box)
     }
     std::error_code ec;
     const std::filesystem::path marker = verified_box_file(key, box_key);
-    bool inside = disk_ && std::filesystem::is_regular_file(marker, ec);
+    bool inside = caching_ && std::filesystem::is_regular_file(marker, ec);
     if (!inside) {
         inside = box_inside_mesh(mesh, box);
-        if (inside && disk_) {
+        if (inside && caching_) {
             write_cache_file(marker, [](const std::filesystem::path& file) {
                 std::ofstream out(file, std::ios::binary);
                 out << "inside\n";

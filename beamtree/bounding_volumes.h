@@ -89,8 +89,9 @@ public:
 
     // One library per option set for the whole process (what the methods build with).
     static VolumeLibrary& shared(BoundingVolumeOptions options);
-    // Off: nothing is read from or written to disk (tests of the computation itself).
-    void set_disk_cache(bool enabled) { disk_ = enabled; }
+    // Off: this library computes every mesh's volumes itself, sharing nothing with the process
+    // or the disk (oracles in tests, the first round's cost in benchmarks).
+    void set_caching(bool enabled) { caching_ = enabled; }
     // Empties what this process keeps across libraries, so that a new library reads the disk
     // (what a fresh process does; benchmarks and tests of the disk cache).
     static void forget_process_volumes();
@@ -113,7 +114,7 @@ private:
     bool box_verified(const Mesh& mesh, uint64_t key, const Box& box);
 
     BoundingVolumeOptions options_;
-    bool disk_ = true;
+    bool caching_ = true;
     mutable std::mutex mutex_;
     std::map<const Mesh*, Entry> cache_;
     std::set<std::pair<uint64_t, uint64_t>> verified_boxes_;

@@ -272,8 +272,21 @@ Scene scene_at(const Scene& scene, const Animation& a, double time) {
         }
         object.transform = object.placement.matrix();
     }
+    auto finite = [](const glm::vec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
+    bool all_finite = finite(s.camera.position) && finite(s.camera.target) &&
+                      std::isfinite(s.camera.fov_y_degrees) && finite(s.light.position) &&
+                      finite(s.light.target) && finite(s.light.intensity) &&
+                      std::isfinite(s.light.cone_half_angle_degrees);
+    for (const Object& o : s.objects) {
+        all_finite = all_finite && finite(o.placement.translate) &&
+                     finite(o.placement.rotate_degrees) && finite(o.placement.scale);
+    }
     const char* bad = nullptr;
-    if (glm::length(s.camera.target - s.camera.position) <= 0.0f) {
+    if (!all_finite) {
+        bad = "an interpolated value is not finite (keys too far apart for float)";
+    } else if (glm::length(s.camera.target - s.camera.position) <= 0.0f) {
         bad = "the camera's target is on its position";
     } else if (glm::length(glm::cross(s.camera.target - s.camera.position, s.camera.up)) <=
                1e-6f * glm::length(s.camera.up)) {

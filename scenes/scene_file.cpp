@@ -487,13 +487,15 @@ toml::table parse_toml(const std::string& text, const std::string& origin) {
 }
 
 // Keys of `over` replace those of `base`; tables merge key by key, arrays ([[objects]]) replace.
-void merge_into(toml::table& base, const toml::table& over) {
-    for (const auto& [key, node] : over) {
-        toml::node* existing = base.get(key);
-        if (existing && existing->is_table() && node.is_table()) {
-            merge_into(*existing->as_table(), *node.as_table());
-        } else {
-            base.insert_or_assign(key, node);
+// Done as `base` filling in what `over` lacks, so that `over`'s own nodes keep their lines for
+// error messages (a copied node loses its source).
+void fill_from(toml::table& over, const toml::table& base) {
+    for (const auto& [key, node] : base) {
+        toml::node* mine = over.get(key);
+        if (!mine) {
+            over.insert(key, node);
+        } else if (mine->is_table() && node.is_table()) {
+            fill_from(*mine->as_table(), *node.as_table());
         }
     }
 }
@@ -547,8 +549,8 @@ toml::table resolve_base(toml::table root, const std::string& origin, const fs::
     if (toml::table* merged_scene = merged["scene"].as_table()) {
         merged_scene->erase("name");  // the derived scene is named by its own file
     }
-    merge_into(merged, root);
-    return merged;
+    fill_from(root, merged);
+    return root;
 }
 
 }  // namespace

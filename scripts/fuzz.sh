@@ -9,7 +9,7 @@ set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 seconds=${1:-60}
 shift || true
-all=(scene off obj environment experiment view_path)
+all=(scene off obj environment experiment animation)
 targets=("$@")
 ((${#targets[@]})) || targets=("${all[@]}")
 

@@ -283,7 +283,8 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
 // and says so when there is no display, writing nothing.
 TEST(Cli, ViewRejectsBadInputBeforeOpeningAWindow) {
     TempDir dir;
-    write_text(dir / "path.toml", "[[key]]\nframe = 2\n[[key]]\nframe = 1\n");
+    write_text(dir / "path.toml",
+               "[animation]\n[[animation.light]]\ntime = 2\n[[animation.light]]\ntime = 1\n");
     const std::pair<std::string, std::string> cases[] = {
         {"--scene nowhere", "unknown scene 'nowhere'"},
         {"--scene toplight --method magic", "unknown method 'magic'"},
@@ -291,9 +292,9 @@ TEST(Cli, ViewRejectsBadInputBeforeOpeningAWindow) {
         {"--scene toplight --layers volumes,fog", "unknown layer 'fog' (known: volumes"},
         {"--scene toplight --screenshot x.png", "need --frames N"},
         {"--scene toplight --frames 2 --path " + (dir / "absent.toml").string(),
-         "cannot read the path file"},
+         "cannot read the animation file"},
         {"--scene toplight --frames 2 --path " + (dir / "path.toml").string(),
-         "frame: 1 is not after the previous key's 2"},
+         "path.toml:5: [[animation.light]] #2 time: 1 is not after the previous key's 2"},
         {"--scene toplight --size 8x8", "window size 8x8"},
     };
     for (const auto& [arguments, expected] : cases) {
@@ -397,6 +398,8 @@ TEST(Cli, EveryCommandsEarlyFailureWritesNothing) {
     const std::string d = dir.path().string();
     const std::string smoke = std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/smoke.toml";
     write_text(dir / "bad.toml", "[camera\n");
+    write_text(dir / "bad-animation.toml",
+               "[scene]\nbase = \"toplight\"\n[[animation.light]]\ntime = -1.0\n");
     Image good(8, 4);
     write_exr(good, dir / "a.exr");
     write_exr(Image(4, 4), dir / "b.exr");
@@ -421,6 +424,13 @@ TEST(Cli, EveryCommandsEarlyFailureWritesNothing) {
         {"sss uniformity --mesh " + d + "/absent.off --out " + out, "absent.off"},
         {"view --scene toplight --method magic --frames 1 --screenshot " + out + "/s.png",
          "unknown method 'magic'"},
+        {"animate --scene toplight --out " + out, "the scene has no [animation] to play"},
+        {"animate --scene toplight-orbit --frames 500 --out " + out,
+         "--frames 500: the animation has 121 frames"},
+        {"animate --scene " + d + "/bad-animation.toml --out " + out,
+         "bad-animation.toml:4: [[animation.light]] #1 time: -1 is before the animation's start 0"},
+        {"render --scene " + d + "/bad-animation.toml --out " + out,
+         "is before the animation's start"},
     };
     for (const auto& [arguments, expected] : cases) {
         const CommandResult run = run_shaftlab(arguments);

@@ -84,7 +84,7 @@ TEST(MovingRegions, PerFrameUpdateEqualsAFreshBuildAtEveryFrame) {
 
             VolumeLibrary fresh({.max_outer_planes = still.bounds.max_outer_planes,
                                  .automatic_inner = still.bounds.automatic_inner});
-            fresh.set_disk_cache(false);
+            fresh.set_caching(false);
             const BeamTree tree(still.light, fresh.build(still, nullptr));
             const Regions regions = extract_regions(tree);
             const std::string label = fmt::format("{} frame {}", name, k);

@@ -140,14 +140,21 @@ TEST(ViewerScripted, RegionOverlayAppearsWhereTheRegionsProject) {
 // renders: the bench's I_s for the saved cell equals the viewer's last frame.
 TEST(ViewerScripted, SavedExperimentReproducesTheView) {
     TempDir dir;
-    write_text(dir / "path.toml", R"([[key]]
-frame = 0
-camera_position = [0.0, 2.4, 9.0]
-light_position = [1.2, 7.0, -0.8]
-[[key]]
-frame = 2
-camera_position = [3.0, 3.0, 8.0]
-light_position = [0.5, 6.5, 0.2]
+    // The scene files' [animation] format (scenes/animation.h); at 1 fps frame k is time k.
+    write_text(dir / "path.toml", R"([animation]
+fps = 1
+[[animation.camera]]
+time = 0
+position = [0.0, 2.4, 9.0]
+[[animation.camera]]
+time = 2
+position = [3.0, 3.0, 8.0]
+[[animation.light]]
+time = 0
+position = [1.2, 7.0, -0.8]
+[[animation.light]]
+time = 2
+position = [0.5, 6.5, 0.2]
 cone_angle = 26.0
 )");
     const CommandResult viewed = run_shaftlab(fmt::format(
@@ -158,6 +165,11 @@ cone_angle = 26.0
         (dir / "saved" / "view.toml").string(), (dir / "ui.png").string()));
     ASSERT_EQ(viewed.exit_code, 0) << viewed.output;
     ASSERT_TRUE(fs::is_regular_file(dir / "saved" / "view.scene.toml"));
+    // The light changed on every frame (its cone is held at the one key's 26 degrees from frame
+    // 0 on): each change measured to the end of the frame that shows it.
+    EXPECT_NE(viewed.output.find("3 scene changes; from a change to the end of the first frame"),
+              std::string::npos)
+        << viewed.output;
 
     const Scene saved =
         load_scene((dir / "saved" / "view.scene.toml").string(), SceneSearchPaths::defaults());

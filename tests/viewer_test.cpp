@@ -21,7 +21,6 @@
 #include "viewer/camera_controller.h"
 #include "viewer/region_overlay.h"
 #include "viewer/saved_view.h"
-#include "viewer/view_path.h"
 
 namespace sl::test {
 namespace {
@@ -68,52 +67,6 @@ TEST(CameraController, OrbitAndFlyKeepTheirInvariants) {
     EXPECT_GT(glm::length(glm::cross(controller.forward(), glm::vec3(0, 1, 0))), 0.0f);
     controller.zoom(0.5f);
     EXPECT_NEAR(controller.distance(), distance * 0.5f, 1e-3f);
-}
-
-// Each quantity of a path is its own track: linear between the keys that set it, held outside.
-TEST(ViewPath, TracksInterpolateAndHold) {
-    const viewer::ViewPath path = viewer::ViewPath::parse(R"(
-[[key]]
-frame = 0
-camera_position = [0.0, 2.0, 10.0]
-light_position = [0.0, 8.0, 0.0]
-[[key]]
-frame = 10
-camera_position = [10.0, 2.0, 0.0]
-cone_angle = 20.0
-[[key]]
-frame = 20
-light_position = [4.0, 8.0, 0.0]
-)",
-                                                          "path.toml");
-    Scene scene = load_canonical("toplight");
-    const glm::vec3 target = scene.camera.target;
-    path.apply(5, scene);
-    expect_near(scene.camera.position, {5.0f, 2.0f, 5.0f}, 1e-5f, "camera half way");
-    expect_near(scene.light.position, {1.0f, 8.0f, 0.0f}, 1e-5f, "light a quarter of the way");
-    EXPECT_EQ(scene.light.cone_half_angle_degrees, 20.0f) << "held before its only key";
-    expect_near(scene.camera.target, target, 0.0f, "no key sets it: the scene's");
-    path.apply(50, scene);
-    expect_near(scene.camera.position, {10.0f, 2.0f, 0.0f}, 0.0f, "held after the last key");
-    expect_near(scene.light.position, {4.0f, 8.0f, 0.0f}, 0.0f, "held after the last key");
-    EXPECT_EQ(path.last_frame(), 20);
-
-    for (const auto& [text, expected] : {
-             std::pair{"[[key]]\nframe = 3\n[[key]]\nframe = 3\n", "not after"},
-             std::pair{"[[key]]\ncamera_position = [1.0, 2.0, 3.0]\n", "frame"},
-             std::pair{"[[key]]\nframe = 0\ncamera_postion = [1.0, 2.0, 3.0]\n", "camera_postion"},
-             std::pair{"[[key]]\nframe = 0\ncone_angle = 95.0\n", "cone_angle"},
-             std::pair{"title = 1\n", "title"},
-             std::pair{"", "at least one"},
-         }) {
-        try {
-            viewer::ViewPath::parse(text, "bad.toml");
-            ADD_FAILURE() << "accepted: " << text;
-        } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
-            EXPECT_NE(std::string(e.what()).find("bad.toml"), std::string::npos) << e.what();
-        }
-    }
 }
 
 // The heat map is black where the images agree, at the top of the ramp at full scale, and never

@@ -52,6 +52,19 @@ void Viewer::handle_input(double dt) {
                 point += per_pixel * (d.x * controller_.right() - d.y * controller_.up());
                 scene_changed();
             }
+        } else if (io.KeyAlt && io.MouseDown[0] && selected_object_ >= 0) {
+            // Drag the chosen object in the camera's view plane.
+            Object& object = scene_.objects[size_t(selected_object_)];
+            const float distance = glm::length(object.placement.translate - scene_.camera.position);
+            const float per_pixel = 2.0f * distance *
+                                    std::tan(glm::radians(scene_.camera.fov_y_degrees) / 2.0f) /
+                                    float(std::max(height_, 1));
+            if (d != glm::vec2(0.0f)) {
+                object.placement.translate +=
+                    per_pixel * (d.x * controller_.right() - d.y * controller_.up());
+                object.transform = object.placement.matrix();
+                scene_changed();
+            }
         } else if (mode_ == CameraMode::orbit) {
             const bool dragged = d != glm::vec2(0.0f);
             if (io.MouseDown[0] && dragged) {

@@ -23,6 +23,32 @@ void Viewer::ui_light() {
     ImGui::TextDisabled("ctrl + drag in the view moves it too");
 }
 
+void Viewer::ui_objects() {
+    const char* preview =
+        selected_object_ >= 0 ? scene_.objects[size_t(selected_object_)].name.c_str() : "(none)";
+    if (ImGui::BeginCombo("object", preview)) {
+        for (size_t i = 0; i < scene_.objects.size(); ++i) {
+            if (ImGui::Selectable(scene_.objects[i].name.c_str(), int(i) == selected_object_)) {
+                selected_object_ = int(i);
+            }
+        }
+        ImGui::EndCombo();
+    }
+    if (selected_object_ < 0) {
+        ImGui::TextDisabled("choose one to move it");
+        return;
+    }
+    Object& o = scene_.objects[size_t(selected_object_)];
+    bool changed = ImGui::DragFloat3("translate", &o.placement.translate.x, 0.02f);
+    changed |= ImGui::DragFloat3("rotate", &o.placement.rotate_degrees.x, 0.5f);
+    if (changed) {
+        o.transform = o.placement.matrix();
+        scene_changed();
+    }
+    ImGui::TextDisabled("alt + drag in the view moves it too");
+    ImGui::Text("update %.2f ms (tree and regions through the per-frame path)", update_ms_);
+}
+
 void Viewer::ui_medium() {
     Medium& m = scene_.medium;
     bool changed = false;

@@ -7,12 +7,14 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "beamtree/beam_tree.h"
+#include "beamtree/frame_regions.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
 #include "experiments/measure.h"
@@ -55,7 +57,9 @@ Viewer::Viewer(const ViewerOptions& options)
     method_ = experiments::create_configured_method(options.method, options.shadow,
                                                     experiments::parse_settings(options.settings));
     if (!options.path.empty()) {
-        path_ = ViewPath::load(options.path);
+        path_ = load_animation_file(options.path, scene_);
+    } else if (scene_.animation && scripted() && options.orbit_degrees == 0.0f) {
+        path_ = *scene_.animation;  // an animated scene plays itself
     }
     if (options.width < 16 || options.height < 16 || options.width > 8192 ||
         options.height > 8192) {
@@ -69,8 +73,6 @@ Viewer::Viewer(const ViewerOptions& options)
     }
     heat_scale_ = options.error_scale;
     preview_name_ = options.preview.empty() ? "frame/in-scattering I_s" : options.preview;
-    good_light_ = scene_.light;
-    good_medium_ = scene_.medium;
 
     platform_ =
         gl::create_glfw_platform(options.width, options.height,
@@ -137,34 +139,43 @@ void Viewer::prepare_method() {
 void Viewer::scene_changed() {
     try {
         auto start = Clock::now();
-        const bt::BeamTree tree = bt::build_scene_beam_tree(scene_);
-        tree_ms_ = ms_since(start);
-        start = Clock::now();
-        const bt::Regions regions = bt::extract_regions(tree);
-        extract_ms_ = ms_since(start);
-        overlay_.upload(regions, scene_.light.far);
-        beams_ = regions.beam_count;
-        for (int r = 0; r < 3; ++r) {
-            region_faces_[size_t(r)] = regions.face_count(bt::Region(r));
+        const SceneChange change =
+            applied_ ? scene_change(*applied_, scene_) : SceneChange::everything(scene_);
+        if (change.regions()) {
+            // The overlay's regions, with the methods' per-frame path (cached volumes).
+            const bt::FrameRegions frame = bt::build_frame_regions(scene_, {.pieces = true});
+            tree_ms_ = frame.ms.volumes + frame.ms.tree;
+            extract_ms_ = frame.ms.regions;
+            const bt::Regions& regions = *frame.regions;
+            overlay_.upload(regions, scene_.light.far);
+            beams_ = regions.beam_count;
+            for (int r = 0; r < 3; ++r) {
+                region_faces_[size_t(r)] = regions.face_count(bt::Region(r));
+            }
+            region_volume_ = regions.volume;
+            influence_volume_ = regions.influence_volume;
         }
-        region_volume_ = regions.volume;
-        influence_volume_ = regions.influence_volume;
         start = Clock::now();
-        method_->prepare(scene_);
-        prepare_ms_ = ms_since(start);
-        good_light_ = scene_.light;
-        good_medium_ = scene_.medium;
+        if (applied_) {
+            method_->update(scene_, change);
+            update_ms_ = ms_since(start);
+        } else {
+            method_->prepare(scene_);
+            prepare_ms_ = ms_since(start);
+        }
+        applied_ = scene_;
         status_.clear();
     } catch (const Error& e) {
         // A light inside a bounding volume, a medium the method has no closed form for: say
-        // so, and go back to the last state that worked.
-        if (scripted()) {
+        // so, and go back to the last state that worked (a failed update leaves the method as
+        // it was; the overlay is rebuilt for that state).
+        if (scripted() || !applied_) {
             throw;
         }
         status_ = e.what();
-        scene_.light = good_light_;
-        scene_.medium = good_medium_;
-        method_->prepare(scene_);
+        scene_ = *applied_;
+        applied_.reset();
+        scene_changed();
     }
 }
 
@@ -232,6 +243,7 @@ int Viewer::run() {
                                  ? glm::radians(options_.orbit_degrees) / float(options_.frames - 1)
                                  : 0.0f;
     while (!platform_->should_close()) {
+        std::optional<Clock::time_point> change_start;
         platform_->poll_events();
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
@@ -239,12 +251,13 @@ int Viewer::run() {
         const double dt = std::min(ImGui::GetIO().DeltaTime, 0.1f);
         if (scripted()) {
             if (path_) {
-                const SpotLight before = scene_.light;
-                path_->apply(frame_, scene_);
+                // Frame k at start + k / fps, held at the end.
+                const double time = std::min(path_->frame_time(frame_), path_->end);
+                scene_ = scene_at(scene_, *path_, time);
                 controller_ = CameraController(scene_.camera);
-                if (before.position != scene_.light.position ||
-                    before.target != scene_.light.target ||
-                    before.cone_half_angle_degrees != scene_.light.cone_half_angle_degrees) {
+                const SceneChange change = scene_change(*applied_, scene_);
+                if (change.light || change.medium || !change.objects.empty()) {
+                    change_start = Clock::now();
                     scene_changed();
                 }
             }
@@ -256,6 +269,9 @@ int Viewer::run() {
             handle_input(dt);
         }
         draw_frame();
+        if (change_start) {
+            change_latency_ms_.push_back(ms_since(*change_start));  // draw_frame waits for the GPU
+        }
         if (options_.ui) {
             draw_ui();
         }
@@ -289,6 +305,15 @@ int Viewer::run() {
                 "CPU; beam tree %zu beams, %.2f ms\n",
                 options_.frames, scene_.name.c_str(), method_->name().c_str(), width_, height_, gpu,
                 timings_.cpu_ms, beams_, tree_ms_);
+            if (!change_latency_ms_.empty()) {
+                std::printf(
+                    "shaftlab view: %zu scene changes; from a change to the end of the first "
+                    "frame that shows it: median %.2f ms, max %.2f ms (method update %.2f ms, "
+                    "regions overlay %.2f ms of the last)\n",
+                    change_latency_ms_.size(), experiments::median(change_latency_ms_),
+                    *std::max_element(change_latency_ms_.begin(), change_latency_ms_.end()),
+                    update_ms_, tree_ms_ + extract_ms_);
+            }
             if (layer("error")) {
                 if (reference_) {
                     std::printf(
@@ -336,6 +361,8 @@ void Viewer::draw_ui() {
         ui_view();
     if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen))
         ui_light();
+    if (ImGui::CollapsingHeader("Objects"))
+        ui_objects();
     if (ImGui::CollapsingHeader("Medium"))
         ui_medium();
     if (ImGui::CollapsingHeader("Environment (IBL)"))

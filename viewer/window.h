@@ -33,11 +33,11 @@
 #include "gl/renderer.h"
 #include "gl/volume_method.h"
 #include "reference/reference.h"
+#include "scenes/animation.h"
 #include "scenes/scene.h"
 #include "viewer/camera_controller.h"
 #include "viewer/region_overlay.h"
 #include "viewer/texture_preview.h"
-#include "viewer/view_path.h"
 #include "viewer/viewer.h"
 
 namespace sl::viewer {
@@ -81,7 +81,9 @@ public:
 private:
     bool scripted() const { return options_.frames > 0; }
     void switch_method(const std::string& name);
-    void scene_changed();  // light or medium: the beam tree and the method's prepare
+    // The light, an object or the medium changed: the overlay's regions and the method's
+    // per-frame update (VolumeMethod::update), through the path every moving frame takes.
+    void scene_changed();
     void prepare_method();
     void handle_input(double dt);  // input.cpp
     void draw_frame();
@@ -90,6 +92,7 @@ private:
     // The panels (panel_*.cpp, error_view.cpp, saving.cpp).
     void ui_view();
     void ui_light();
+    void ui_objects();
     void ui_medium();
     void ui_environment();
     void ui_method();
@@ -109,8 +112,9 @@ private:
     Scene scene_;
     CameraController controller_;
     CameraMode mode_ = CameraMode::orbit;
-    std::optional<ViewPath> path_;  // scripted mode
-    float fly_speed_ = 2.0f;        // metres per second
+    std::optional<Animation> path_;  // scripted mode: --path, or the scene's own animation
+    int selected_object_ = -1;       // alt + drag moves it (panel "objects")
+    float fly_speed_ = 2.0f;         // metres per second
     std::unique_ptr<gl::VolumeMethod> method_;
     std::unique_ptr<gl::SceneRenderer> renderer_;
     int width_ = 0, height_ = 0;
@@ -124,9 +128,8 @@ private:
     gl::Program blit_program_;
     gl::VertexArray empty_array_;
 
-    // The last light and medium the beam tree and the method accepted.
-    SpotLight good_light_;
-    Medium good_medium_;
+    // The last scene the beam tree and the method accepted (empty before the first).
+    std::optional<Scene> applied_;
     std::string status_;               // the last error, shown in red
     Environment environment_pending_;  // baked settings being edited in the panel
     bool environment_editing_ = false;
@@ -136,7 +139,9 @@ private:
     std::array<size_t, 3> region_faces_{};
     std::array<double, 3> region_volume_{};
     double influence_volume_ = 0.0;
-    double tree_ms_ = 0.0, extract_ms_ = 0.0, prepare_ms_ = 0.0;
+    double tree_ms_ = 0.0, extract_ms_ = 0.0, prepare_ms_ = 0.0, update_ms_ = 0.0;
+    // Scripted mode: per scene change, from the change to the end of the first frame showing it.
+    std::vector<double> change_latency_ms_;
     gl::FrameTimings timings_;
     gl::MethodStatistics statistics_;
     History frame_history_, cpu_history_, shadow_history_, surface_history_, volume_history_,

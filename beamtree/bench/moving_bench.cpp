@@ -90,7 +90,7 @@ double first_round_frame(const Scene& scene, const RegionRequest& request) {
     const Clock::time_point start = Clock::now();
     VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
                            .automatic_inner = scene.bounds.automatic_inner});
-    library.set_disk_cache(false);
+    library.set_caching(false);
     const BeamTree tree(scene.light, library.build(scene, nullptr));
     const Regions regions = extract_regions(tree);
     if (request.lit)
@@ -198,7 +198,7 @@ int run() {
                                             .automatic_inner = scene.bounds.automatic_inner};
         Clock::time_point start = Clock::now();
         VolumeLibrary cold(options);
-        cold.set_disk_cache(false);
+        cold.set_caching(false);
         cold.build(scene, nullptr);
         const double computed = ms_since(start);
         VolumeLibrary warm_up(options);
