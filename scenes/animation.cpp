@@ -122,74 +122,67 @@ Animation read_animation(const toml::table& table, const std::string& origin, co
     double last = a.start;
     bool any = false;
 
-    if (const toml::array* light = r.array("light")) {
-        double previous = 0.0;
-        for (size_t i = 0; i < light->size(); ++i) {
-            TomlTableReader k(key_table(*light, i, origin, "light"), origin,
-                              fmt::format("[[animation.light]] #{}", i + 1));
-            const double t = keys.time(k, previous, i == 0);
-            if (k.has("position"))
-                add_key(a.light_position, t, k.vec3("position"));
-            if (k.has("target"))
-                add_key(a.light_target, t, k.vec3("target"));
-            if (k.has("cone_angle"))
-                add_key(a.cone_angle, t, float(k.number_in("cone_angle", 0, 0, 89, true)));
-            if (k.has("intensity"))
-                add_key(a.light_intensity, t, k.non_negative_vec3("intensity", glm::vec3(0)));
+    // Reads every key table of [[animation.NAME]] with read(key, index), which returns its time.
+    auto each_key = [&](const char* name, const auto& read) {
+        const toml::array* list = r.array(name);
+        for (size_t i = 0; list && i < list->size(); ++i) {
+            TomlTableReader k(key_table(*list, i, origin, name), origin,
+                              fmt::format("[[animation.{}]] #{}", name, i + 1));
+            last = std::max(last, read(k, i));
             k.finish();
-            last = std::max(last, t);
             any = true;
         }
-    }
-    if (const toml::array* camera = r.array("camera")) {
-        double previous = 0.0;
-        for (size_t i = 0; i < camera->size(); ++i) {
-            TomlTableReader k(key_table(*camera, i, origin, "camera"), origin,
-                              fmt::format("[[animation.camera]] #{}", i + 1));
-            const double t = keys.time(k, previous, i == 0);
-            if (k.has("position"))
-                add_key(a.camera_position, t, k.vec3("position"));
-            if (k.has("target"))
-                add_key(a.camera_target, t, k.vec3("target"));
-            if (k.has("fov"))
-                add_key(a.fov, t, float(k.number_in("fov", 0, 0, 180, true, true)));
-            k.finish();
-            last = std::max(last, t);
-            any = true;
+    };
+    double light_previous = 0.0, camera_previous = 0.0;
+    each_key("light", [&](TomlTableReader& k, size_t i) {
+        const double t = keys.time(k, light_previous, i == 0);
+        if (k.has("position"))
+            add_key(a.light_position, t, k.vec3("position"));
+        if (k.has("target"))
+            add_key(a.light_target, t, k.vec3("target"));
+        if (k.has("cone_angle"))
+            add_key(a.cone_angle, t, float(k.number_in("cone_angle", 0, 0, 89, true)));
+        if (k.has("intensity"))
+            add_key(a.light_intensity, t, k.non_negative_vec3("intensity", glm::vec3(0)));
+        return t;
+    });
+    each_key("camera", [&](TomlTableReader& k, size_t i) {
+        const double t = keys.time(k, camera_previous, i == 0);
+        if (k.has("position"))
+            add_key(a.camera_position, t, k.vec3("position"));
+        if (k.has("target"))
+            add_key(a.camera_target, t, k.vec3("target"));
+        if (k.has("fov"))
+            add_key(a.fov, t, float(k.number_in("fov", 0, 0, 180, true, true)));
+        return t;
+    });
+    std::vector<double> object_previous(scene.objects.size(), 0.0);
+    std::vector<int> tracks_of(scene.objects.size(), -1);
+    each_key("objects", [&](TomlTableReader& k, size_t) {
+        const std::string name = k.string("name");
+        const auto it = std::find_if(scene.objects.begin(), scene.objects.end(),
+                                     [&](const Object& o) { return o.name == name; });
+        if (it == scene.objects.end()) {
+            k.error("name", fmt::format("the scene has no object {}", quote(name)));
         }
-    }
-    if (const toml::array* objects = r.array("objects")) {
-        std::vector<double> previous(scene.objects.size(), 0.0);
-        std::vector<int> tracks_of(scene.objects.size(), -1);
-        for (size_t i = 0; i < objects->size(); ++i) {
-            TomlTableReader k(key_table(*objects, i, origin, "objects"), origin,
-                              fmt::format("[[animation.objects]] #{}", i + 1));
-            const std::string name = k.string("name");
-            const auto it = std::find_if(scene.objects.begin(), scene.objects.end(),
-                                         [&](const Object& o) { return o.name == name; });
-            if (it == scene.objects.end()) {
-                k.error("name", fmt::format("the scene has no object {}", quote(name)));
-            }
-            const int object = int(it - scene.objects.begin());
-            int& index = tracks_of[size_t(object)];
-            const double t = keys.time(k, previous[size_t(object)], index < 0);
-            if (index < 0) {
-                index = int(a.objects.size());
-                a.objects.push_back({.object = object, .translate = {}, .rotate = {}, .scale = {}});
-            }
-            Animation::ObjectTracks& tracks = a.objects[size_t(index)];
-            const Placement placement = read_placement(k, it->placement);
-            if (k.has("translate"))
-                add_key(tracks.translate, t, placement.translate);
-            if (k.has("rotate"))
-                add_key(tracks.rotate, t, placement.rotate_degrees);
-            if (k.has("scale"))
-                add_key(tracks.scale, t, placement.scale);
-            k.finish();
-            last = std::max(last, t);
-            any = true;
+        const size_t object = size_t(it - scene.objects.begin());
+        int& index = tracks_of[object];
+        const double t = keys.time(k, object_previous[object], index < 0);
+        if (index < 0) {
+            index = int(a.objects.size());
+            a.objects.push_back(
+                {.object = int(object), .translate = {}, .rotate = {}, .scale = {}});
         }
-    }
+        Animation::ObjectTracks& tracks = a.objects[size_t(index)];
+        const Placement placement = read_placement(k, it->placement);
+        if (k.has("translate"))
+            add_key(tracks.translate, t, placement.translate);
+        if (k.has("rotate"))
+            add_key(tracks.rotate, t, placement.rotate_degrees);
+        if (k.has("scale"))
+            add_key(tracks.scale, t, placement.scale);
+        return t;
+    });
     if (!any) {
         fail(
             "{}: [animation] needs at least one key ([[animation.light]], [[animation.camera]] "
