@@ -19,11 +19,15 @@ for scene in toplight-orbit parallel-walk multiple-moving; do
             --frames "$frames" --size "$size" --out "$scratch/loops" >/dev/null
     done
 done
+# A picture to look at: multiple-moving at 2 s, the swapping pairs inside each other.
+"$build_dir/shaftlab" animate --scene multiple-moving --method hybrid3 --frames 61 --size 480x270 \
+    --mode pipelined --warmup 0 --out "$scratch/picture" >/dev/null
 latency=$(xvfb-run -a "$build_dir/shaftlab" view --scene parallel-walk --method hybrid2 \
     --frames 8 --size 640x360 --hidden | grep "scene changes")
 renderer=$("$build_dir/shaftlab" gl-info 2>/dev/null | grep -i renderer | head -1 || true)
 rm -rf "$out.tmp" && mkdir -p "$out.tmp"
 cp "$scratch"/loops/*.frames.csv "$out.tmp/"
+cp "$scratch/picture/multiple-moving.hybrid3.pipelined.last.png" "$out.tmp/multiple-moving.hybrid3.t2s.png"
 python3 - "$scratch/cpu.md" "$out.tmp" "$frames" "$size" "$latency" "$renderer" \
     >"$repo/results/moving.md.tmp" <<'PY'
 import csv, glob, os, statistics, sys
@@ -59,6 +63,9 @@ for scene in ["toplight-orbit", "parallel-walk", "multiple-moving"]:
             print(f"| {scene} | {method} | {mode} | {m['frame_ms']:.1f} | "
                   f"{m['critical_cpu_ms']:.2f} | {m['update_ms']:.1f} | {m['gpu_ms']:.1f} | "
                   f"{m['overlap_ms']:.1f} | {last} |")
+print("\n![multiple-moving at 2 s, hybrid3](moving/multiple-moving.hybrid3.t2s.png)\n")
+print("*multiple-moving* at t = 2 s (frame 60, `hybrid3`, pipelined): the four swapping pairs "
+      "are half way, inside each other's outer volumes.\n")
 print("\n## The viewer: from a change to the first frame that shows it\n")
 print("`shaftlab view --scene parallel-walk --method hybrid2 --frames 8 --size 640x360` "
       "(scripted, serial: the change, the method's update and the overlay's regions, then the "

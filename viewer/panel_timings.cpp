@@ -32,6 +32,7 @@ void Viewer::ui_timings() {
         row("CPU beam tree (viewer)", tree_ms_);
         row("CPU regions (viewer)", extract_ms_);
         row("CPU method prepare", prepare_ms_);
+        row("CPU method update (last change)", update_ms_);
         for (const auto& [name, value] : statistics_) {
             if (name.starts_with("cpu_ms_"))
                 row("CPU " + name.substr(7), value);
