@@ -6,8 +6,11 @@
 
 #include <chrono>
 #include <functional>
+#include <optional>
+#include <string>
 
 #include "experiments/measure.h"
+#include "scenes/scene.h"
 
 namespace sl::app {
 
@@ -30,6 +33,13 @@ using Clock = std::chrono::steady_clock;
 
 // Milliseconds of wall time since `start`, for the stage timings the commands report.
 using experiments::ms_since;
+
+// The scene by name or file, at `time` of its [animation] when one is given (--time): the still
+// frame of a moving scene. Throws sl::Error when the scene has no animation or the time is out of
+// its range.
+Scene load_scene_at(const std::string& name, const std::optional<double>& time);
+// Adds --time to a command that loads a scene.
+void add_time_option(CLI::App& command, std::optional<double>& time);
 
 // "WxH" with both positive; throws sl::Error otherwise.
 // Parses WIDTHxHEIGHT; errors name `option`.

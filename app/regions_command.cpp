@@ -38,6 +38,7 @@ struct RegionsArguments {
     std::string classify;
     int max_planes = -1;  // -1: the scene's setting
     bool no_automatic_inner = false;
+    std::optional<double> time;  // seconds into the scene's [animation]
 };
 
 std::vector<dvec3> read_points(const std::string& path) {
@@ -193,7 +194,7 @@ std::vector<unsigned char> draw_regions(const Scene& scene, const bt::BeamTree& 
 int run_regions(const RegionsArguments& args) {
     int width = 0, height = 0;
     parse_size(args.size, width, height);
-    const Scene scene = load_scene(args.scene, SceneSearchPaths::defaults());
+    const Scene scene = load_scene_at(args.scene, args.time);
     const std::vector<dvec3> points =
         args.classify.empty() ? std::vector<dvec3>() : read_points(args.classify);
 
@@ -319,6 +320,7 @@ Command add_regions_command(CLI::App& app) {
         ->check(CLI::Range(0, 100000) & !CLI::Range(1, 7));
     command->add_flag("--no-auto-inner", args->no_automatic_inner,
                       "Use only explicit inner boxes from the scene file");
+    add_time_option(*command, args->time);
     return [args] { return run_regions(*args); };
 }
 

@@ -16,6 +16,7 @@
 #include "gl/platform.h"
 #include "gl/renderer.h"
 #include "methods/registry.h"
+#include "scenes/animation.h"
 #include "scenes/scene_file.h"
 
 namespace sl::app {
@@ -34,6 +35,7 @@ struct RenderArguments {
     int frames = 5;
     std::string compare;                // "reference": score I_s against it
     std::vector<std::string> settings;  // NAME=VALUE for the method's parameters
+    std::optional<double> time;         // seconds into the scene's [animation]
 };
 
 int run_render(const RenderArguments& args) {
@@ -51,7 +53,7 @@ int run_render(const RenderArguments& args) {
     }
 
     auto start = Clock::now();
-    const Scene scene = load_scene(args.scene, SceneSearchPaths::defaults());
+    const Scene scene = load_scene_at(args.scene, args.time);
     const double load_ms = ms_since(start);
 
     start = Clock::now();
@@ -149,6 +151,9 @@ int run_render(const RenderArguments& args) {
          }()},
     };
 
+    if (args.time) {
+        json["time_s"] = *args.time;  // the still frame of the scene's [animation]
+    }
     if (error) {
         // JSON has no infinity: an exact match has psnr null.
         json["error"] = {
@@ -187,6 +192,22 @@ int run_render(const RenderArguments& args) {
 }
 
 }  // namespace
+
+Scene load_scene_at(const std::string& name, const std::optional<double>& time) {
+    const Scene scene = load_scene(name, SceneSearchPaths::defaults());
+    if (!time) {
+        return scene;
+    }
+    if (!scene.animation) {
+        fail("--time {}: scene {} has no [animation]", *time, quote(name));
+    }
+    return scene_at(scene, *time);
+}
+
+void add_time_option(CLI::App& command, std::optional<double>& time) {
+    command.add_option("--time", time,
+                       "Seconds into the scene's [animation]: the still frame of a moving scene");
+}
 
 void parse_size(const std::string& text, int& width, int& height, const char* option) {
     static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
@@ -234,6 +255,7 @@ Command add_render_command(CLI::App& app) {
     command->add_option("--compare", args->compare,
                         "Score I_s against this method (reference): rel_rmse, max_abs, psnr in the "
                         "JSON");
+    add_time_option(*command, args->time);
     return [args] { return run_render(*args); };
 }
 
