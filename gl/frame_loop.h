@@ -46,7 +46,7 @@ public:
     FrameLoop(SceneRenderer& renderer, VolumeMethod& method, Scene& live, FrameMode mode);
 
     // Draws `frames` frames: frame k shows state(k) (called once per frame, in order; when
-    // pipelined, state(k+1) is called while frame k draws). After each draw, on_frame(record)
+    // pipelined, state(k+1) is called just before frame k draws). After each draw, on_frame(record)
     // runs on the GL thread with the frame's images still in the renderer (read them back
     // there). An exception from state(), an update or on_frame() stops the loop after the
     // worker is joined, and propagates.
