@@ -37,6 +37,10 @@ print("Regenerate with `scripts/moving_bench.sh` on a quiet machine. The CPU tab
       "`build/moving_bench` on one core (`taskset -c 0`, TBB limited to one thread); the frame "
       f"loops from `shaftlab animate --mode both`, {frames} frames at {size} on this machine's "
       f"GL ({renderer.strip() or 'llvmpipe'}), per-frame CSVs in `results/moving/`.\n")
+print("The budget, at most 4 ms of CPU per frame for a light move, is measured twice. The first "
+      "tables time the update itself, stage by stage, as serial work. The frame-loop table's "
+      "*critical CPU* column is what the GL thread still waits for when the update runs on the "
+      "worker beside the GPU.\n")
 print(open(cpu).read())
 print("\n## Serial and pipelined frame loops\n")
 print("Medians over frames 1.. (frame 0 pays the first build). *update*: the method's CPU update "
