@@ -50,8 +50,10 @@ template struct Track<glm::vec3>;
 template struct Track<float>;
 
 int Animation::frame_count() const {
-    // A tiny slack so that (end - start)·fps computed in double still counts its last frame.
-    return int(std::floor((end - start) * fps * (1.0 + 1e-12) + 1e-9)) + 1;
+    // A tiny slack so that (end - start)·fps computed in double still counts its last frame;
+    // saturated, so that no range converts out of int (read_animation allows 10^6 frames).
+    const double steps = std::floor((end - start) * fps * (1.0 + 1e-12) + 1e-9);
+    return steps < double(kMaxFrames) ? int(steps) + 1 : kMaxFrames;
 }
 
 bool Animation::moves_light() const {
@@ -196,8 +198,9 @@ Animation read_animation(const toml::table& table, const std::string& origin, co
     if (last > a.end) {
         r.error("end", fmt::format("{} is before the last key's time {}", a.end, last));
     }
-    if (double(a.frame_count()) > 1e6) {
-        r.error("fps", "more than 10^6 frames between start and end");
+    if ((a.end - a.start) * a.fps >= double(Animation::kMaxFrames)) {
+        r.error("fps", fmt::format("{} fps from {} s to {} s is more than {} frames", a.fps,
+                                   a.start, a.end, Animation::kMaxFrames));
     }
     r.finish();
     return a;

@@ -58,7 +58,9 @@ public:
     Track<float> fov;
     std::vector<ObjectTracks> objects;
 
-    // Frames played at `fps` from start to end, both included when (end - start)·fps is whole.
+    // Frames played at `fps` from start to end, both included when (end - start)·fps is whole;
+    // a file may ask for at most kMaxFrames.
+    static constexpr int kMaxFrames = 1000000;
     int frame_count() const;
     double frame_time(int frame) const { return start + double(frame) / fps; }
     bool moves_light() const;

@@ -180,6 +180,9 @@ TEST(Animation, BadInputGivesOneClearErrorNamingFileLineAndKey) {
          "[animation] interpolation: unknown value 'cubic'"},
         {"[animation]\n[[animation.light]]\ntime = 0.0\ncone_angle = 95.0\n",
          "[[animation.light]] #1 cone_angle: must be in (0, 89]"},
+        // Found by the fuzzer: a range too long for an int frame count.
+        {"[animation]\n[[animation.light]]\ntime = 0.0\n[[animation.light]]\ntime = 2e113\n",
+         "[animation] fps: 30 fps from 0 s to 2e+113 s is more than 1000000 frames"},
     };
     for (const Case& c : cases) {
         try {
