@@ -1,7 +1,5 @@
 #include "analytic/region_pass.h"
 
-#include <algorithm>
-
 #include <fmt/format.h>
 
 #include "analytic/gpu_tables.h"
@@ -71,9 +69,7 @@ void AnalyticRegionPass::set_scene(const Scene& scene) {
 gl::MethodStatistics region_statistics(const bt::RegionStageTimes& ms) {
     gl::MethodStatistics stats = {{"cpu_ms_beamtree", ms.total()}};
     for (const auto& [stage, value] : ms.named()) {
-        std::string key = "cpu_ms_region_" + stage;
-        std::replace(key.begin(), key.end(), ' ', '_');
-        stats.push_back({key, value});
+        stats.push_back({"cpu_ms_region_" + stage, value});
     }
     return stats;
 }

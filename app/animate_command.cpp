@@ -33,10 +33,6 @@ struct AnimateArguments {
     std::vector<std::string> settings;
 };
 
-double median_of(std::vector<double> values) {
-    return values.empty() ? 0.0 : experiments::median(std::move(values));
-}
-
 int run_animate(const AnimateArguments& args) {
     gl::RenderOptions options;
     parse_size(args.size, options.width, options.height);
@@ -101,7 +97,7 @@ int run_animate(const AnimateArguments& args) {
             std::vector<double> v;
             for (size_t i = records.size() > 1 ? 1 : 0; i < records.size(); ++i)
                 v.push_back(get(records[i]));
-            return median_of(v);
+            return experiments::median(std::move(v));
         };
         fmt::print(
             "{} {} {} ({} frames, {}x{}, {}): median frame {:.2f} ms, CPU critical path {:.2f} "

@@ -34,7 +34,7 @@ struct RegionStageTimes {
     double uncertain = 0.0;  // the uncertain boundary mesh
     double gpu_tree = 0.0;   // the GPU's tree buffers
     double total() const { return volumes + tree + regions + lit + uncertain + gpu_tree; }
-    // (stage, ms) in pipeline order, for statistics and reports.
+    // (stage, ms) in pipeline order, the stage as a statistic's name ("lit_mesh").
     std::vector<std::pair<std::string, double>> named() const;
 };
 

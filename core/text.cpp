@@ -2,6 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <fstream>
+#include <iterator>
+
+#include "core/error.h"
+
 namespace sl {
 
 namespace {
@@ -87,6 +92,19 @@ std::string quote(std::string_view text, size_t max_bytes) {
         return fmt::format("'{}'", printable(text));
     }
     return fmt::format("'{}…' ({} bytes)", printable(cut(text, max_bytes)), text.size());
+}
+
+std::string read_text_file(const std::filesystem::path& path, std::string_view what) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        fail("{}: cannot read {} (no such file)", path.string(), what);
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) {
+        fail("{}: cannot read {}", path.string(), what);
+    }
+    return text;
 }
 
 }  // namespace sl

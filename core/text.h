@@ -5,6 +5,7 @@
 // for a value echoed inside an error message.
 
 #include <cstddef>
+#include <filesystem>
 #include <string>
 #include <string_view>
 
@@ -19,5 +20,9 @@ std::string printable(std::string_view text);
 std::string clipped(std::string_view text, size_t max_bytes = 64);
 // The same in single quotes: for a value echoed inside a message ("unknown shape 'sphre'").
 std::string quote(std::string_view text, size_t max_bytes = 64);
+
+// The whole of a text file (scene files, animation paths). Throws sl::Error "PATH: cannot read
+// WHAT", with "(no such file)" when it is not a regular file.
+std::string read_text_file(const std::filesystem::path& path, std::string_view what);
 
 }  // namespace sl

@@ -60,13 +60,14 @@ void FrameLoop::play(int frames, const std::function<Scene(int)>& state,
     Scene next;
     SceneChange change;
     Update update;
-    std::future<Update> pending;
+    std::optional<Update> ready;  // pipelined: this frame's update, done during the last draw
     for (int k = 0; k < frames; ++k) {
         FrameRecord record;
         record.frame = k;
         const Clock::time_point frame_start = Clock::now();
-        if (pending.valid()) {
-            update = pending.get();  // ready: the worker finished during the last frame
+        if (ready) {
+            update = std::move(*ready);
+            ready.reset();
         } else {
             next = state(k);
             change = scene_change(live_, next);
@@ -80,6 +81,7 @@ void FrameLoop::play(int frames, const std::function<Scene(int)>& state,
         record.apply_ms = ms_between(apply_start, Clock::now());
 
         // Pipelined: the next frame's state and CPU update run on the worker during this draw.
+        std::future<Update> pending;  // on a throw, ~future joins the worker
         if (pipelined && k + 1 < frames) {
             next = state(k + 1);
             change = scene_change(live_, next);
@@ -88,19 +90,15 @@ void FrameLoop::play(int frames, const std::function<Scene(int)>& state,
             });
         }
         const Clock::time_point draw_start = Clock::now();
-        record.gpu = renderer_.draw(method_).gpu;  // on a throw, ~future joins the worker
+        record.gpu = renderer_.draw(method_).gpu;
         const Clock::time_point draw_end = Clock::now();
         record.draw_ms = ms_between(draw_start, draw_end);
         if (pending.valid()) {
-            pending.wait();
+            ready = pending.get();  // rethrows the worker's sl::Error
             record.wait_ms = ms_between(draw_end, Clock::now());
-            // The worker's result is taken at the next frame's start; its timing is read here.
-            update = pending.get();
-            const Clock::time_point a = std::max(update.start, draw_start);
-            const Clock::time_point b = std::min(update.end, draw_end);
+            const Clock::time_point a = std::max(ready->start, draw_start);
+            const Clock::time_point b = std::min(ready->end, draw_end);
             record.overlap_ms = b > a ? ms_between(a, b) : 0.0;
-            pending = std::async(std::launch::deferred,
-                                 [u = std::move(update)]() mutable { return std::move(u); });
         }
         record.frame_ms = ms_between(frame_start, Clock::now());
         on_frame(record);

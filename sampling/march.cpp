@@ -31,8 +31,6 @@ constexpr GLint buffer_scale = 0, blur = 1;
 }
 
 constexpr double kScales[] = {1.0, 0.5, 0.25};
-// SSBO bindings of beamtree/shaders/classify.glsl.
-constexpr GLuint kTreeNodesBinding = 1, kTreePlanesBinding = 2;
 
 class MarchMethod final : public gl::VolumeMethod {
 public:
@@ -142,10 +140,7 @@ public:
             stages_ = r.ms;
             analytic_.upload_mesh(r.lit.positions, r.lit.triangles);
             lists_.upload(bt::RegionMesh{}, r.uncertain);
-            tree_nodes_ =
-                gl::create_buffer(r.gpu.nodes.data(), r.gpu.nodes.size() * sizeof(r.gpu.nodes[0]));
-            tree_planes_ = gl::create_buffer(r.gpu.planes.data(),
-                                             r.gpu.planes.size() * sizeof(r.gpu.planes[0]));
+            tree_.upload(r.gpu);
             built_ = true;
         }
         if (variant_ == MarchVariant::hybrid3) {
@@ -170,8 +165,7 @@ public:
             lists_.build(inputs);
             inputs.timeline.section("analytic");
             analytic_.draw(inputs);
-            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreeNodesBinding, tree_nodes_.id());
-            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreePlanesBinding, tree_planes_.id());
+            tree_.bind();
         }
 
         inputs.timeline.section("march");
@@ -277,8 +271,8 @@ private:
     gl::VertexArray empty_vertex_array_;
     gl::Texture march_target_;
     gl::Framebuffer march_framebuffer_;
-    RegionLists lists_;                    // hybrid3: where each ray is uncertain
-    gl::Buffer tree_nodes_, tree_planes_;  // and the tree, where a list overflows
+    RegionLists lists_;    // hybrid3: where each ray is uncertain
+    GpuTreeBuffers tree_;  // and the tree, where a list overflows
     std::vector<float> clip_planes_;
     int buffer_width_ = 0, buffer_height_ = 0, frame_width_ = 0, frame_height_ = 0;
     int frame_index_ = 0;

@@ -29,8 +29,6 @@ constexpr GLint kDzLocation = 0;
 constexpr GLint kKnownLitLocation = 1;
 constexpr GLint kJitterLocation = 2;
 constexpr GLint kClassifyLocation = 3;
-// SSBO bindings of beamtree/shaders/classify.glsl.
-constexpr GLuint kTreeNodesBinding = 1, kTreePlanesBinding = 2;
 
 double ms_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -135,10 +133,7 @@ public:
                 analytic_.upload_mesh(r.lit.positions, r.lit.triangles);
             }
             lists_.upload(r.lit, r.uncertain);
-            tree_nodes_ =
-                gl::create_buffer(r.gpu.nodes.data(), r.gpu.nodes.size() * sizeof(r.gpu.nodes[0]));
-            tree_planes_ = gl::create_buffer(r.gpu.planes.data(),
-                                             r.gpu.planes.size() * sizeof(r.gpu.planes[0]));
+            gpu_tree_.upload(r.gpu);
         }
         if (variant_ == PlanesVariant::hybrid2) {
             analytic_.set_scene(scene);
@@ -234,8 +229,7 @@ public:
                             : variant_ == PlanesVariant::hybrid1 ? 1
                                                                  : 2);
         if (classify_on_gpu) {
-            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreeNodesBinding, tree_nodes_.id());
-            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreePlanesBinding, tree_planes_.id());
+            gpu_tree_.bind();
         }
         GL.BindTextureUnit(0, inputs.surface_depth);
         GL.Enable(GL_BLEND);
@@ -315,7 +309,7 @@ private:
     analytic::AnalyticRegionPass analytic_;
     gl::Program program_;
     gl::Buffer vertex_buffer_;
-    gl::Buffer tree_nodes_, tree_planes_;  // the tree for the GPU's classify
+    GpuTreeBuffers gpu_tree_;  // the tree for the GPU's classify
     RegionLists lists_;
     // partition = gpu: the planes' own target and stencil, added into the frame's I_s.
     gl::Texture own_target_, own_stencil_;

@@ -11,10 +11,21 @@ namespace {
 
 using gl::GL;
 
-constexpr GLuint kCountsBinding = 3, kCrossingsBinding = 4;  // region_lists.glsl
-constexpr int kListSize = 16;                                // REGION_LIST_SIZE
+constexpr GLuint kCountsBinding = 3, kCrossingsBinding = 4;      // region_lists.glsl
+constexpr int kListSize = 16;                                    // REGION_LIST_SIZE
+constexpr GLuint kTreeNodesBinding = 1, kTreePlanesBinding = 2;  // classify.glsl
 
 }  // namespace
+
+void GpuTreeBuffers::upload(const bt::GpuTree& tree) {
+    nodes_ = gl::create_buffer(tree.nodes.data(), tree.nodes.size() * sizeof(tree.nodes[0]));
+    planes_ = gl::create_buffer(tree.planes.data(), tree.planes.size() * sizeof(tree.planes[0]));
+}
+
+void GpuTreeBuffers::bind() const {
+    GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreeNodesBinding, nodes_.id());
+    GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreePlanesBinding, planes_.id());
+}
 
 void RegionLists::upload(const bt::RegionMesh& lit, const bt::RegionMesh& uncertain) {
     if (!program_) {

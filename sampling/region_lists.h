@@ -9,11 +9,23 @@
 
 #include <glm/vec3.hpp>
 
+#include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
 #include "gl/objects.h"
 #include "gl/volume_method.h"
 
 namespace sl::sampling {
+
+// The beam tree as beamtree/shaders/classify.glsl reads it (bt::GpuTree in two storage
+// buffers): the hybrids classify plane samples with it, and fall back on it where a list
+// overflows.
+class GpuTreeBuffers {
+public:
+    void upload(const bt::GpuTree& tree);  // fresh buffers: the last frame's stay alive
+    void bind() const;                     // at classify.glsl's bindings
+private:
+    gl::Buffer nodes_, planes_;
+};
 
 class RegionLists {
 public:

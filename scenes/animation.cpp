@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include <glm/geometric.hpp>
 
@@ -222,14 +220,7 @@ Animation parse_animation(const std::string& text, const std::string& origin, co
 }
 
 Animation load_animation_file(const std::filesystem::path& path, const Scene& scene) {
-    std::error_code ec;
-    std::ifstream in(path, std::ios::binary);
-    if (!std::filesystem::is_regular_file(path, ec) || !in) {
-        fail("{}: cannot read the animation file", path.string());
-    }
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_animation(text.str(), path.string(), scene);
+    return parse_animation(read_text_file(path, "the animation file"), path.string(), scene);
 }
 
 Scene scene_at(const Scene& scene, const Animation& a, double time) {
@@ -320,23 +311,15 @@ SceneChange SceneChange::everything(const Scene& scene) {
 }
 
 SceneChange scene_change(const Scene& before, const Scene& after) {
-    const Camera& c0 = before.camera;
-    const Camera& c1 = after.camera;
     const SpotLight& l0 = before.light;
     const SpotLight& l1 = after.light;
-    const Medium& m0 = before.medium;
-    const Medium& m1 = after.medium;
     SceneChange change;
-    change.camera = c0.position != c1.position || c0.target != c1.target || c0.up != c1.up ||
-                    c0.fov_y_degrees != c1.fov_y_degrees || c0.near != c1.near ||
-                    c0.far != c1.far || c0.exposure != c1.exposure;
+    change.camera = before.camera != after.camera;
     change.light_geometry = l0.position != l1.position || l0.target != l1.target ||
                             l0.cone_half_angle_degrees != l1.cone_half_angle_degrees ||
                             l0.near != l1.near || l0.far != l1.far;
-    change.light = change.light_geometry || l0.intensity != l1.intensity ||
-                   l0.falloff_degrees != l1.falloff_degrees;
-    change.medium = m0.sigma_s != m1.sigma_s || m0.sigma_a != m1.sigma_a || m0.phase != m1.phase ||
-                    m0.g != m1.g || m0.model != m1.model || m0.a0 != m1.a0 || m0.a1 != m1.a1;
+    change.light = l0 != l1;
+    change.medium = before.medium != after.medium;
     const size_t n = std::min(before.objects.size(), after.objects.size());
     for (size_t i = 0; i < n; ++i) {
         if (before.objects[i].transform != after.objects[i].transform ||

@@ -72,6 +72,7 @@ struct Camera {
     float far = 100.0f;
     float exposure = 1.0f;  // linear scale before tone mapping
 
+    bool operator==(const Camera&) const = default;
     glm::mat4 view() const;
     glm::mat4 projection(float aspect) const;
 };
@@ -100,6 +101,7 @@ struct SpotLight {
     glm::vec3 intensity{1.0f};
     float falloff_degrees = 0.0f;  // 0: hard edge (Nilsson eq. 2.9); else smooth over this width
 
+    bool operator==(const SpotLight&) const = default;
     glm::vec3 direction() const;
     // An up vector not parallel to the axis, fixed so that the shadow map never flips.
     glm::vec3 up() const;

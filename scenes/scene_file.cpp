@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <set>
 
@@ -425,19 +424,6 @@ struct SceneText {
     fs::path dir;
 };
 
-std::string read_text_file(const fs::path& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
-        fail("{}: cannot read scene file (no such file)", path.string());
-    }
-    std::ifstream in(path, std::ios::binary);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (!in && !in.eof()) {
-        fail("{}: cannot read scene file", path.string());
-    }
-    return text;
-}
-
 // A canonical name, multiple:N, or a file (relative paths from `dir` first, then as given).
 SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSearchPaths& paths) {
     constexpr std::string_view kMultiple = "multiple:";
@@ -458,7 +444,7 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
     names.insert(names.end(), animated.begin(), animated.end());
     if (std::find(names.begin(), names.end(), name) != names.end()) {
         const fs::path path = paths.scenes / (name + ".toml");
-        return {read_text_file(path), path.string(), paths.scenes};
+        return {read_text_file(path, "scene file"), path.string(), paths.scenes};
     }
     if (fs::path(name).extension() == ".toml" || name.find('/') != std::string::npos) {
         fs::path path = name;
@@ -466,7 +452,7 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
         if (path.is_relative() && !dir.empty() && fs::is_regular_file(dir / path, ec)) {
             path = dir / path;
         }
-        return {read_text_file(path), path.string(), path.parent_path()};
+        return {read_text_file(path, "scene file"), path.string(), path.parent_path()};
     }
     std::string effect_list;
     for (const std::string& effect : effects) {
@@ -654,7 +640,8 @@ fs::path environment_file(const std::string& name, const fs::path& dir,
 }
 
 Scene load_scene_file(const fs::path& path, const SceneSearchPaths& paths) {
-    Scene scene = parse_scene(read_text_file(path), path.string(), path.parent_path(), paths);
+    Scene scene =
+        parse_scene(read_text_file(path, "scene file"), path.string(), path.parent_path(), paths);
     scene.source = path;
     return scene;
 }
