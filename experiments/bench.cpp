@@ -2,6 +2,7 @@
 
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -15,12 +16,16 @@
 #include "core/image.h"
 #include "core/metrics.h"
 #include "core/output_files.h"
+#include "core/temporal_metrics.h"
 #include "experiments/equal_error.h"
 #include "experiments/measure.h"
 #include "experiments/report.h"
+#include "experiments/sequence.h"
+#include "gl/frame_loop.h"
 #include "gl/platform.h"
 #include "gl/renderer.h"
 #include "methods/registry.h"
+#include "reference/cache.h"
 #include "scenes/scene_file.h"
 
 extern char** environ;
@@ -46,7 +51,7 @@ fs::path row_path(const fs::path& out, const Cell& cell, int rep) {
 // What one process keeps between cells: scenes, and the region statistics of each view.
 struct Caches {
     std::map<std::string, Scene> scenes;
-    std::map<std::tuple<std::string, int, int>, RegionStatistics> regions;
+    std::map<std::tuple<std::string, int, int, bool>, RegionStatistics> regions;
 
     const Scene& scene(const std::string& name) {
         auto found = scenes.find(name);
@@ -55,74 +60,70 @@ struct Caches {
         }
         return found->second;
     }
+    // The region statistics of the cell's view (an animation cell: of its first frame).
+    const RegionStatistics& region(const Cell& cell, const Scene& view, bool animated) {
+        const auto key = std::make_tuple(cell.scene, cell.width, cell.height, animated);
+        if (!regions.contains(key)) {
+            regions[key] = region_statistics(view, cell.width, cell.height);
+        }
+        return regions[key];
+    }
 };
 
-// Renders one cell and repetition in a fresh GL context and returns its result row.
-Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path& out,
-                  Caches& caches) {
-    auto start = Clock::now();
-    const Scene& scene = caches.scene(cell.scene);
-    const double load_ms = ms_since(start);
+// What every cell sets up: the scene, the configured method, a fresh GL context and renderer.
+struct CellSetup {
+    const Scene* scene = nullptr;
+    gl::RenderOptions options;
+    std::unique_ptr<gl::VolumeMethod> method;
+    double load_ms = 0.0;
+};
 
-    const gl::RenderOptions options{.width = cell.width,
-                                    .height = cell.height,
-                                    .shadow = {.filter = gl::parse_shadow_filter(x.render.shadow),
-                                               .map_size = x.render.shadow_map_size,
-                                               .radius = x.render.pcf_radius}};
+CellSetup set_up(const Experiment& x, const Cell& cell, Caches& caches) {
+    CellSetup s;
+    const auto start = Clock::now();
+    s.scene = &caches.scene(cell.scene);
+    s.load_ms = ms_since(start);
+    s.options = {.width = cell.width,
+                 .height = cell.height,
+                 .shadow = {.filter = gl::parse_shadow_filter(x.render.shadow),
+                            .map_size = x.render.shadow_map_size,
+                            .radius = x.render.pcf_radius}};
     std::vector<std::pair<std::string, std::string>> settings;
-    for (const Setting& s : cell.settings) {
-        settings.emplace_back(s.name, s.value);
+    for (const Setting& setting : cell.settings) {
+        settings.emplace_back(setting.name, setting.value);
     }
-    const std::unique_ptr<gl::VolumeMethod> method =
-        create_configured_method(cell.method, options.shadow, settings);
+    s.method = create_configured_method(cell.method, s.options.shadow, settings);
+    return s;
+}
 
-    start = Clock::now();
-    const auto platform = gl::create_headless_platform();
-    const gl::ContextInfo context = platform->info();
-    gl::SceneRenderer renderer(scene, options);
-    const double setup_ms = ms_since(start);
-    start = Clock::now();
-    method->prepare(scene);
-    const double prepare_ms = ms_since(start);
-
-    const FrameMeasurement m =
-        measure_frames(renderer, *method, x.protocol.warmup, x.protocol.frames);
-    const gl::Frame frame = renderer.read_back();
-
-    std::optional<ErrorMetrics> error;
-    if (!x.reference.empty()) {
-        const auto reference = methods::create_volume_method(x.reference);
-        error = compare_images(frame.in_scattering, renderer.render(*reference).in_scattering);
-    }
-
-    start = Clock::now();
-    const auto region_key = std::make_tuple(cell.scene, cell.width, cell.height);
-    if (!caches.regions.contains(region_key)) {
-        caches.regions[region_key] = region_statistics(scene, cell.width, cell.height);
-    }
-    const RegionStatistics& regions = caches.regions[region_key];
-    const double regions_ms = ms_since(start);
-
+// I_s (EXR) and the tone-mapped frame (PNG) of repetition 0; returns the row's image path.
+std::string write_images(const Experiment& x, const Cell& cell, int rep, const fs::path& out,
+                         const gl::Frame& frame) {
     std::string image;
-    if (rep == 0) {
-        OutputFiles images(out / "images");
-        if (x.images) {
-            images.add(cell.id() + ".inscatter.exr",
-                       [&](const fs::path& path) { write_exr(frame.in_scattering, path); });
-        }
-        if (x.previews && std::max(cell.width, cell.height) <= x.preview_max_size) {
-            image = "images/" + cell.id() + ".png";
-            images.add(cell.id() + ".png", [&](const fs::path& path) {
-                write_png(frame.display_srgb8, cell.width, cell.height, path);
-            });
-        } else if (x.images) {
-            image = "images/" + cell.id() + ".inscatter.exr";
-        }
-        images.commit();
+    if (rep != 0) {
+        return image;
     }
+    OutputFiles images(out / "images");
+    if (x.images) {
+        images.add(cell.id() + ".inscatter.exr",
+                   [&](const fs::path& path) { write_exr(frame.in_scattering, path); });
+    }
+    if (x.previews && std::max(cell.width, cell.height) <= x.preview_max_size) {
+        image = "images/" + cell.id() + ".png";
+        images.add(cell.id() + ".png", [&](const fs::path& path) {
+            write_png(frame.display_srgb8, cell.width, cell.height, path);
+        });
+    } else if (x.images) {
+        image = "images/" + cell.id() + ".inscatter.exr";
+    }
+    images.commit();
+    return image;
+}
 
-    const double frame_ms = m.frame_ms_median();
-    Json row = {
+Json row_head(const Experiment& x, const Cell& cell, int rep, int frames,
+              const std::vector<double>& frame_ms) {
+    const double median_ms = median(frame_ms);
+    return {
         {"experiment", x.name},
         {"cell", cell.id()},
         {"scene", cell.scene},
@@ -131,48 +132,52 @@ Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path
         {"height", cell.height},
         {"params", cell.settings_text()},
         {"rep", rep},
-        {"frames", x.protocol.frames},
-        {"fps", 1000.0 / frame_ms},
-        {"frame_ms_median", frame_ms},
-        {"frame_ms_p5", percentile(m.frame_ms, 5.0)},
-        {"frame_ms_p95", percentile(m.frame_ms, 95.0)},
-        {"gpu_ms_total", m.gpu_total_ms},
-        {"gpu_ms_shadow", m.gpu.shadow_ms},
-        {"gpu_ms_surface", m.gpu.surface_ms},
-        {"gpu_ms_volume", m.gpu.volume_ms},
-        {"gpu_ms_composite", m.gpu.composite_ms},
-        {"gpu_ms_subsurface", m.gpu.subsurface_ms},
+        {"frames", frames},
+        {"fps", 1000.0 / median_ms},
+        {"frame_ms_median", median_ms},
+        {"frame_ms_p5", percentile(frame_ms, 5.0)},
+        {"frame_ms_p95", percentile(frame_ms, 95.0)},
     };
-    for (const auto& [section, ms] : m.gpu.volume_sections) {
+}
+
+void add_gpu(Json& row, const gl::PassTimings& gpu, double total_ms) {
+    row["gpu_ms_total"] = total_ms;
+    row["gpu_ms_shadow"] = gpu.shadow_ms;
+    row["gpu_ms_surface"] = gpu.surface_ms;
+    row["gpu_ms_volume"] = gpu.volume_ms;
+    row["gpu_ms_composite"] = gpu.composite_ms;
+    row["gpu_ms_subsurface"] = gpu.subsurface_ms;
+    for (const auto& [section, ms] : gpu.volume_sections) {
         row["gpu_ms_volume_" + section] = ms;
     }
-    // The volume cost (DESIGN.md §11): the volume pass's GPU time plus the method's CPU work per
-    // frame (slicing and partitioning sampling planes); what the regions must make cheaper.
-    double cpu_frame_ms = 0.0;
-    for (const auto& [name, value] : m.statistics) {
-        if (name == "cpu_ms_frame") {
-            cpu_frame_ms = value;
+}
+
+double statistic(const gl::MethodStatistics& statistics, const std::string& name) {
+    for (const auto& [key, value] : statistics) {
+        if (key == name) {
+            return value;
         }
     }
-    row["volume_cost_ms"] = m.gpu.volume_ms + cpu_frame_ms;
-    row["cpu_ms_scene_load"] = load_ms;
-    row["cpu_ms_gl_setup"] = setup_ms;
-    row["cpu_ms_prepare"] = prepare_ms;
-    row["cpu_ms_region_statistics"] = regions_ms;
+    return 0.0;
+}
+
+Json metric_value(const Experiment& x, const char* name, bool scored, double value) {
+    const bool wanted =
+        scored && std::find(x.metrics.begin(), x.metrics.end(), name) != x.metrics.end();
+    return wanted && std::isfinite(value) ? Json(value) : Json();
+}
+
+// The region statistics, the method's counters and parameters, the shadow map and the context.
+void add_tail(Json& row, const Experiment& x, const gl::VolumeMethod& method,
+              const gl::MethodStatistics& statistics, const RegionStatistics& regions,
+              const gl::ShadowSettings& shadow, const gl::ContextInfo& context,
+              const std::string& image) {
     row["cpu_ms_beamtree_regions"] = regions.build_ms;
-    for (const auto& [name, value] : m.statistics) {
+    for (const auto& [name, value] : statistics) {
         if (name.starts_with("cpu_ms_")) {
             row[name] = value;
         }
     }
-    auto metric = [&](const char* name, double value) -> Json {
-        const bool wanted =
-            error && std::find(x.metrics.begin(), x.metrics.end(), name) != x.metrics.end();
-        return wanted && std::isfinite(value) ? Json(value) : Json();
-    };
-    row["rel_rmse"] = metric("rel_rmse", error ? error->rel_rmse : 0.0);
-    row["max_abs"] = metric("max_abs", error ? error->max_abs : 0.0);
-    row["psnr"] = metric("psnr", error ? error->psnr : 0.0);  // empty when exact (infinite)
     for (size_t r = 0; r < 3; ++r) {
         const char* region = std::array{"lit", "uncertain", "unlit"}[r];
         row[fmt::format("ray_frac_{}", region)] = regions.ray_fraction[r];
@@ -184,25 +189,24 @@ Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path
     row["beams"] = regions.beams;
     row["region_faces"] = regions.region_faces;
     Json samples_or_slices;
-    for (const auto& [name, value] : m.statistics) {
+    for (const auto& [name, value] : statistics) {
         if (name == "slices") {
             samples_or_slices = value;
         }
     }
-    if (samples_or_slices.is_null() && method->has_parameter("samples")) {
-        samples_or_slices = method->parameter("samples");
+    if (samples_or_slices.is_null() && method.has_parameter("samples")) {
+        samples_or_slices = method.parameter("samples");
     }
     row["samples_or_slices"] = samples_or_slices;
     row["image"] = image;
-    for (const auto& [name, value] : m.statistics) {
+    for (const auto& [name, value] : statistics) {
         if (!name.starts_with("cpu_ms_")) {
             row["stat_" + name] = value;
         }
     }
-    for (const gl::Parameter& p : method->parameters()) {
+    for (const gl::Parameter& p : method.parameters()) {
         row["param_" + p.name] = p.text();
     }
-    const gl::ShadowSettings shadow = renderer.shadow();
     row["shadow"] = gl::to_string(shadow.filter);
     row["shadow_map_size"] = shadow.map_size;
     row["shadow_radius"] = shadow.radius;
@@ -212,7 +216,243 @@ Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path
     row["gl_vendor"] = context.vendor;
     row["gl_renderer"] = context.renderer;
     row["gl_version"] = context.version;
+}
+
+// Renders one still cell and repetition in a fresh GL context and returns its result row.
+Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs::path& out,
+                        Caches& caches) {
+    CellSetup s = set_up(x, cell, caches);
+    const Scene& scene = *s.scene;
+    auto start = Clock::now();
+    const auto platform = gl::create_headless_platform();
+    const gl::ContextInfo context = platform->info();
+    gl::SceneRenderer renderer(scene, s.options);
+    const double setup_ms = ms_since(start);
+    start = Clock::now();
+    s.method->prepare(scene);
+    const double prepare_ms = ms_since(start);
+
+    const FrameMeasurement m =
+        measure_frames(renderer, *s.method, x.protocol.warmup, x.protocol.frames);
+    const gl::Frame frame = renderer.read_back();
+
+    std::optional<ErrorMetrics> error;
+    if (!x.reference.empty()) {
+        const auto reference = methods::create_volume_method(x.reference);
+        error = compare_images(frame.in_scattering, renderer.render(*reference).in_scattering);
+    }
+
+    start = Clock::now();
+    const RegionStatistics& regions = caches.region(cell, scene, false);
+    const double regions_ms = ms_since(start);
+    const std::string image = write_images(x, cell, rep, out, frame);
+
+    Json row = row_head(x, cell, rep, x.protocol.frames, m.frame_ms);
+    add_gpu(row, m.gpu, m.gpu_total_ms);
+    // The volume cost (DESIGN.md §11): the volume pass's GPU time plus the method's CPU work per
+    // frame (slicing and partitioning sampling planes); what the regions must make cheaper.
+    row["volume_cost_ms"] = m.gpu.volume_ms + statistic(m.statistics, "cpu_ms_frame");
+    row["cpu_ms_scene_load"] = s.load_ms;
+    row["cpu_ms_gl_setup"] = setup_ms;
+    row["cpu_ms_prepare"] = prepare_ms;
+    row["cpu_ms_region_statistics"] = regions_ms;
+    row["rel_rmse"] = metric_value(x, "rel_rmse", error.has_value(), error ? error->rel_rmse : 0.0);
+    row["max_abs"] = metric_value(x, "max_abs", error.has_value(), error ? error->max_abs : 0.0);
+    // psnr is empty when exact (infinite).
+    row["psnr"] = metric_value(x, "psnr", error.has_value(), error ? error->psnr : 0.0);
+    add_tail(row, x, *s.method, m.statistics, regions, renderer.shadow(), context, image);
+    row["protocol"] = "still";
+    row["frame_ms_samples"] = m.frame_ms;  // for the confidence intervals (statistics.h)
     return row;
+}
+
+// Plays one animation cell and repetition (DESIGN.md §11) in a fresh GL context: every frame's
+// CPU update, apply, draw and GPU passes through gl::FrameLoop, and every stride-th frame scored
+// against the reference of that frame (computed first, multithreaded, cached on disk, so that
+// the measured frames run undisturbed and a second repetition or an interrupted run pays for
+// nothing again). Returns its row, with the per-frame series in `per_frame`.
+Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const fs::path& out,
+                           Caches& caches, const BenchOptions* options) {
+    CellSetup s = set_up(x, cell, caches);
+    const Sequence sequence(*s.scene, x.protocol);
+    const int frames = sequence.frames();
+    const int stride = x.scoring.stride;
+    const bool scoring = !x.reference.empty();
+
+    // The reference sequence, before anything is measured.
+    auto start = Clock::now();
+    if (scoring && x.reference == "reference") {
+        for (int k = 0; k < frames; k += stride) {
+            reference::cached_reference(sequence.state(k), cell.width, cell.height, {});
+        }
+    }
+    const double reference_ms = ms_since(start);
+
+    start = Clock::now();
+    Scene live = sequence.state(0);
+    const auto platform = gl::create_headless_platform();
+    const gl::ContextInfo context = platform->info();
+    gl::SceneRenderer renderer(live, s.options);
+    const double setup_ms = ms_since(start);
+    start = Clock::now();
+    s.method->prepare(live);
+    const double prepare_ms = ms_since(start);
+    for (int i = 0; i < x.protocol.warmup; ++i) {
+        renderer.draw(*s.method);  // shader compilation and first-use costs
+    }
+
+    const std::unique_ptr<gl::VolumeMethod> reference =
+        scoring ? methods::create_volume_method(x.reference) : nullptr;
+    Scene reference_scene = live;
+    if (reference) {
+        reference->prepare(reference_scene);
+    }
+    std::vector<gl::FrameRecord> records;
+    NamedSeries statistics;
+    std::vector<std::optional<ErrorMetrics>> errors(static_cast<size_t>(frames));
+    TemporalMetrics temporal;
+    std::optional<gl::Frame> worst;
+    int worst_frame = -1;
+    gl::FrameLoop loop(renderer, *s.method, live,
+                       x.protocol.pipelined ? gl::FrameMode::pipelined : gl::FrameMode::serial);
+    loop.play(
+        frames, [&](int k) { return sequence.state(k); },
+        [&](const gl::FrameRecord& record) {
+            records.push_back(record);
+            collect(statistics, s.method->statistics());
+            const int k = record.frame;
+            if (reference && k % stride == 0) {
+                gl::Frame frame = renderer.read_back();
+                reference->update(live, scene_change(reference_scene, live));
+                reference_scene = live;
+                const Image truth = renderer.render(*reference).in_scattering;
+                errors[size_t(k)] = compare_images(frame.in_scattering, truth);
+                temporal.add(frame.in_scattering, truth);
+                if (!worst || errors[size_t(k)]->rel_rmse > errors[size_t(worst_frame)]->rel_rmse) {
+                    worst = std::move(frame);
+                    worst_frame = k;
+                }
+            } else if (!reference && k + 1 == frames) {
+                worst = renderer.read_back();  // no scores: the last frame is the picture
+                worst_frame = k;
+            }
+            if (options && options->on_frame) {
+                options->on_frame(cell, rep, k);
+            }
+            if (isatty(STDERR_FILENO) && (k % 10 == 9 || k + 1 == frames)) {
+                fmt::print(stderr, "\r  {} rep {}: frame {}/{}{}", cell.id(), rep, k + 1, frames,
+                           k + 1 == frames ? "\n" : "");
+            }
+        });
+
+    auto series = [&](auto get) {
+        std::vector<double> v;
+        for (const gl::FrameRecord& r : records) {
+            v.push_back(get(r));
+        }
+        return v;
+    };
+    const std::vector<double> frame_ms = series([](const auto& r) { return r.frame_ms; });
+    const std::vector<double> critical = series([](const auto& r) { return r.critical_cpu_ms(); });
+    std::vector<double> passes[5], totals;
+    NamedSeries sections;
+    for (const gl::FrameRecord& r : records) {
+        passes[0].push_back(r.gpu.shadow_ms);
+        passes[1].push_back(r.gpu.surface_ms);
+        passes[2].push_back(r.gpu.volume_ms);
+        passes[3].push_back(r.gpu.composite_ms);
+        passes[4].push_back(r.gpu.subsurface_ms);
+        totals.push_back(r.gpu.total_ms());
+        collect(sections, r.gpu.volume_sections);
+    }
+    const gl::PassTimings gpu{median(passes[0]), median(passes[1]), median(passes[2]),
+                              median(passes[3]), medians(sections), median(passes[4])};
+    const gl::MethodStatistics method_statistics = medians(statistics);
+
+    std::vector<double> rel_rmse, max_abs, psnr;
+    for (const auto& e : errors) {
+        if (e) {
+            rel_rmse.push_back(e->rel_rmse);
+            max_abs.push_back(e->max_abs);
+            if (std::isfinite(e->psnr)) {
+                psnr.push_back(e->psnr);
+            }
+        }
+    }
+    start = Clock::now();
+    const RegionStatistics& regions = caches.region(cell, sequence.state(0), true);
+    const double regions_ms = ms_since(start);
+    const std::string image = worst ? write_images(x, cell, rep, out, *worst) : std::string();
+
+    Json row = row_head(x, cell, rep, frames, frame_ms);
+    const size_t slowest =
+        size_t(std::max_element(frame_ms.begin(), frame_ms.end()) - frame_ms.begin());
+    row["frame_ms_worst"] = frame_ms[slowest];
+    row["frame_worst"] = int(slowest);
+    add_gpu(row, gpu, median(totals));
+    row["volume_cost_ms"] =
+        gpu.volume_ms + statistic(method_statistics, "cpu_ms_frame") + median(critical);
+    row["cpu_ms_update"] = median(series([](const auto& r) { return r.update_ms; }));
+    row["cpu_ms_update_p95"] = percentile(series([](const auto& r) { return r.update_ms; }), 95.0);
+    row["cpu_ms_apply"] = median(series([](const auto& r) { return r.apply_ms; }));
+    row["cpu_ms_wait"] = median(series([](const auto& r) { return r.wait_ms; }));
+    row["cpu_ms_critical"] = median(critical);
+    row["cpu_ms_draw"] = median(series([](const auto& r) { return r.draw_ms; }));
+    row["cpu_ms_scene_load"] = s.load_ms;
+    row["cpu_ms_gl_setup"] = setup_ms;
+    row["cpu_ms_prepare"] = prepare_ms;
+    row["cpu_ms_region_statistics"] = regions_ms;
+    const bool scored = !rel_rmse.empty();
+    // Per frame: the median and p95 relative RMSE, the worst frame; max_abs the sequence's
+    // largest, psnr the median.
+    row["rel_rmse"] = metric_value(x, "rel_rmse", scored, median(rel_rmse));
+    row["max_abs"] =
+        metric_value(x, "max_abs", scored,
+                     max_abs.empty() ? 0.0 : *std::max_element(max_abs.begin(), max_abs.end()));
+    row["psnr"] = metric_value(x, "psnr", !psnr.empty(), median(psnr));
+    if (scored) {
+        row["rel_rmse_p95"] = percentile(rel_rmse, 95.0);
+        row["rel_rmse_worst"] = *std::max_element(rel_rmse.begin(), rel_rmse.end());
+        row["error_worst_frame"] = worst_frame;
+        row["temporal_error"] = temporal.temporal_error();
+        row["flicker"] = temporal.flicker();
+        row["pops"] = count_pops(rel_rmse, x.scoring.pop_factor, x.scoring.pop_floor);
+        row["scored_frames"] = int(rel_rmse.size());
+    }
+    add_tail(row, x, *s.method, method_statistics, regions, renderer.shadow(), context, image);
+    row["protocol"] = "animation";
+    row["sequence"] = sequence.description();
+    row["frame_mode"] = x.protocol.pipelined ? "pipelined" : "serial";
+    row["step_s"] = sequence.step();
+    row["stride"] = stride;
+    row["reference_sequence_ms"] = reference_ms;
+    row["frame_ms_samples"] = frame_ms;
+    Json per_frame = {{"frame", Json::array()},         {"time_s", Json::array()},
+                      {"frame_ms", Json::array()},      {"update_ms", Json::array()},
+                      {"apply_ms", Json::array()},      {"wait_ms", Json::array()},
+                      {"draw_ms", Json::array()},       {"gpu_ms", Json::array()},
+                      {"gpu_ms_volume", Json::array()}, {"rel_rmse", Json::array()}};
+    for (const gl::FrameRecord& r : records) {
+        per_frame["frame"].push_back(r.frame);
+        per_frame["time_s"].push_back(sequence.time(r.frame));
+        per_frame["frame_ms"].push_back(r.frame_ms);
+        per_frame["update_ms"].push_back(r.update_ms);
+        per_frame["apply_ms"].push_back(r.apply_ms);
+        per_frame["wait_ms"].push_back(r.wait_ms);
+        per_frame["draw_ms"].push_back(r.draw_ms);
+        per_frame["gpu_ms"].push_back(r.gpu.total_ms());
+        per_frame["gpu_ms_volume"].push_back(r.gpu.volume_ms);
+        const auto& e = errors[size_t(r.frame)];
+        per_frame["rel_rmse"].push_back(e ? Json(e->rel_rmse) : Json());
+    }
+    row["per_frame"] = std::move(per_frame);
+    return row;
+}
+
+Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path& out,
+                  Caches& caches, const BenchOptions* options = nullptr) {
+    return x.protocol.animated() ? measure_animated_cell(x, cell, rep, out, caches, options)
+                                 : measure_still_cell(x, cell, rep, out, caches);
 }
 
 void write_row(const fs::path& out, const Cell& cell, int rep, const Json& row) {
@@ -365,6 +605,7 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
         for (int rep = 0; rep < x.protocol.repetitions; ++rep) {
             const fs::path path = row_path(out, cell, rep);
             std::optional<Json> row = read_row(path);
+            const bool fresh = !row;
             if (!row) {
                 const auto cell_start = Clock::now();
                 try {
@@ -380,10 +621,12 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
                             fail("the cell's process wrote no row");
                         }
                     } else {
-                        const Json measured_row = measure_cell(x, cell, rep, out, caches);
+                        const Json measured_row = measure_cell(x, cell, rep, out, caches, &options);
                         write_row(out, cell, rep, measured_row);
                         row = Json{{"row", measured_row}};
                     }
+                } catch (const Interrupted&) {
+                    throw;  // the run stops here, as if killed: the cell left nothing behind
                 } catch (const std::exception& e) {
                     ++failed;
                     fmt::print(stderr, "  FAILED {} rep {}: {}\n", cell_label(cell), rep, e.what());
@@ -397,12 +640,18 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
             volume_times.push_back(r.value("volume_cost_ms", 0.0));
             errors.push_back(r.at("rel_rmse").is_number() ? r.at("rel_rmse").get<double>() : 0.0);
             const double elapsed = ms_since(started) / 1000.0;
-            fmt::print(stderr, "{} {} rep {}: {:.2f} fps{}  [{} elapsed{}]\n", progress,
+            std::string temporal;
+            if (r.contains("flicker")) {
+                temporal = fmt::format(", p95 frame {:.1f} ms, flicker {:.3g}%, {} pops",
+                                       r.value("frame_ms_p95", 0.0),
+                                       100.0 * r.value("flicker", 0.0), r.value("pops", 0));
+            }
+            fmt::print(stderr, "{} {} rep {}: {:.2f} fps{}{}  [{} elapsed{}]\n", progress,
                        cell_label(cell), rep, 1000.0 / times.back(),
                        r.at("rel_rmse").is_number()
                            ? fmt::format(", rel_rmse {:.3g}%", 100.0 * errors.back())
                            : std::string(),
-                       duration_text(elapsed), measured ? "" : ", from an earlier run");
+                       temporal, duration_text(elapsed), fresh ? "" : ", from an earlier run");
         }
         double error = 0.0;
         for (const double e : errors) {

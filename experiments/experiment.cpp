@@ -398,8 +398,34 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
     };
     {
         TomlTableReader r(section("protocol"), origin, "[protocol]");
+        const std::string kind = r.string("kind", "still");
+        if (kind != "still" && kind != "animation") {
+            r.error("kind", fmt::format("{}: expected \"still\" (one frame measured again and "
+                                        "again) or \"animation\" (the scene played frame by "
+                                        "frame)",
+                                        quote(kind)));
+        }
+        x.protocol.kind = kind == "animation" ? ProtocolKind::animation : ProtocolKind::still;
+        const bool animated = x.protocol.animated();
         x.protocol.warmup = r.integer_in("warmup", x.protocol.warmup, 0, 1000);
-        x.protocol.frames = r.integer_in("frames", x.protocol.frames, 1, 100000);
+        x.protocol.frames =
+            r.integer_in("frames", animated ? 0 : x.protocol.frames, animated ? 0 : 1, 100000);
+        if (animated) {
+            x.protocol.step = r.number_in("step", 0.0, 0.0, 3600.0);
+            x.protocol.orbit_degrees = r.number_in("orbit_degrees", 90.0, -3600.0, 3600.0);
+            const std::string mode = r.string("frame_mode", "serial");
+            if (mode != "serial" && mode != "pipelined") {
+                r.error("frame_mode",
+                        fmt::format("{}: expected \"serial\" or \"pipelined\"", quote(mode)));
+            }
+            x.protocol.pipelined = mode == "pipelined";
+        } else {
+            for (const char* key : {"step", "orbit_degrees", "frame_mode"}) {
+                if (r.has(key)) {
+                    r.error(key, "only for kind = \"animation\"");
+                }
+            }
+        }
         x.protocol.repetitions = r.integer_in("repetitions", x.protocol.repetitions, 1, 1000);
         const std::string isolation = r.string("isolation", "context");
         if (isolation != "context" && isolation != "process") {
@@ -555,6 +581,14 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
                 r.error("method", e.what());
             }
         }
+        for (const char* key : {"stride", "pop_factor", "pop_floor"}) {
+            if (r.has(key) && !x.protocol.animated()) {
+                r.error(key, "only for [protocol] kind = \"animation\"");
+            }
+        }
+        x.scoring.stride = r.integer_in("stride", x.scoring.stride, 1, 100000);
+        x.scoring.pop_factor = r.number_in("pop_factor", x.scoring.pop_factor, 1.01, 1e6);
+        x.scoring.pop_floor = r.number_in("pop_floor", x.scoring.pop_floor, 0.0, 1.0);
         if (r.has("metrics")) {
             x.metrics = strings(r, "metrics");
             for (const std::string& metric : x.metrics) {

@@ -7,8 +7,13 @@
 //   name = "nilsson_table61"          out = "out/{name}"  (the default output directory; the
 //                                     committed runs are written to results/NAME with --out)
 //   description = "..."
-//   [protocol]    warmup = 2, frames = 10, repetitions = 1, isolation = "context" | "process",
-//                 order = "sweep" | "shuffled", seed = 1 (of the shuffle)
+//   [protocol]    kind = "still" | "animation", warmup = 2, frames = 10, repetitions = 1,
+//                 isolation = "context" | "process", order = "sweep" | "shuffled", seed = 1 (of
+//                 the shuffle); for kind = "animation" (DESIGN.md §11): frames = 0 (the whole
+//                 animation; 120 for an orbit), step = 0 (seconds per frame; 0: 1/fps of the
+//                 scene's [animation]), orbit_degrees = 90 (a scene without [animation]: the
+//                 camera circles its target this far over the frames), frame_mode = "serial" |
+//                 "pipelined" (gl/frame_loop.h)
 //   [render]      shadow = "hard" | "pcf" | "vsm", shadow_map_size = 2048, pcf_radius = 1
 //   [sweep]       scenes = [...], methods = [...], sizes = ["256x256", ...]   (scene files
 //                 relative to the experiment file are found beside it first)
@@ -17,7 +22,9 @@
 //   [sweep.params.march]    samples = [16, 64]               (for one method only)
 //   [[exclude]]   method = "hybrid1", size = ["1024x1024"]   (a cell matching every key is
 //                 skipped; keys: scene, method, size, any parameter; values or lists of values)
-//   [reference]   method = "reference" (or "" for none), metrics = ["rel_rmse", "max_abs", "psnr"]
+//   [reference]   method = "reference" (or "" for none), metrics = ["rel_rmse", "max_abs", "psnr"],
+//                 animation cells: stride = 1 (every k-th frame scored), pop_factor = 3,
+//                 pop_floor = 0.002 (core/temporal_metrics.h)
 //   [outputs]     images = true (I_s EXR per cell), previews = true (PNG), plots = true,
 //                 preview_max_size = 512 (no PNG for larger cells: committed runs stay small)
 //   [table]       rows = ["dz", "scene", "size"], metric = "rel_rmse"
@@ -38,16 +45,31 @@
 namespace sl::experiments {
 
 enum class Isolation { context, process };
+enum class ProtocolKind { still, animation };
 
 struct Protocol {
+    ProtocolKind kind = ProtocolKind::still;
     int warmup = 2;       // frames drawn before measuring (shader compilation, first use)
-    int frames = 10;      // measured frames per repetition
+    int frames = 10;      // measured frames per repetition (animation: frames played, 0: all)
     int repetitions = 1;  // fresh GL context (or process) per repetition
     Isolation isolation = Isolation::context;
     // The order cells run in: as swept, or shuffled (seeded) so that slow drifts of the machine
     // (thermal, other load) do not line up with one method or size.
     bool order_shuffled = false;
     uint64_t seed = 1;
+    // Animation cells: the time step (0: 1/fps of the scene's [animation]), the orbit of a scene
+    // without one, and whether frame k+1's CPU update runs beside frame k's draw.
+    double step = 0.0;
+    double orbit_degrees = 90.0;
+    bool pipelined = false;
+    bool animated() const { return kind == ProtocolKind::animation; }
+};
+
+// Scoring an animation against the reference sequence (core/temporal_metrics.h).
+struct AnimationScoring {
+    int stride = 1;  // every stride-th frame (0, k, 2k, ...) is scored
+    double pop_factor = 3.0;
+    double pop_floor = 0.002;
 };
 
 struct RenderSettings {
@@ -120,6 +142,7 @@ struct Experiment {
 
     std::string reference = "reference";  // empty: no error metrics
     std::vector<std::string> metrics = {"rel_rmse", "max_abs", "psnr"};
+    AnimationScoring scoring;
     bool images = true;
     bool previews = true;
     int preview_max_size = 16384;  // no PNG for cells wider or taller than this

@@ -17,11 +17,7 @@
 
 namespace sl::experiments {
 
-namespace {
-
-// Appends each named value to its series, keeping first-seen order.
-void collect(std::vector<std::pair<std::string, std::vector<double>>>& series,
-             const std::vector<std::pair<std::string, double>>& values) {
+void collect(NamedSeries& series, const std::vector<std::pair<std::string, double>>& values) {
     for (const auto& [name, value] : values) {
         auto same = std::find_if(series.begin(), series.end(),
                                  [&](const auto& s) { return s.first == name; });
@@ -33,16 +29,13 @@ void collect(std::vector<std::pair<std::string, std::vector<double>>>& series,
     }
 }
 
-std::vector<std::pair<std::string, double>> medians(
-    const std::vector<std::pair<std::string, std::vector<double>>>& series) {
+std::vector<std::pair<std::string, double>> medians(const NamedSeries& series) {
     std::vector<std::pair<std::string, double>> out;
     for (const auto& [name, values] : series) {
         out.emplace_back(name, median(values));
     }
     return out;
 }
-
-}  // namespace
 
 std::vector<std::pair<std::string, std::string>> parse_settings(
     const std::vector<std::string>& name_value) {
@@ -93,7 +86,7 @@ FrameMeasurement measure_frames(gl::SceneRenderer& renderer, gl::VolumeMethod& m
     }
     FrameMeasurement m;
     std::vector<double> passes[5], totals;
-    std::vector<std::pair<std::string, std::vector<double>>> sections, statistics;
+    NamedSeries sections, statistics;
     for (int i = 0; i < frames; ++i) {
         const gl::FrameTimings timings = renderer.draw(method);
         m.frame_ms.push_back(timings.cpu_ms);

@@ -37,6 +37,12 @@ double median(std::vector<double> values);
 // The p-th percentile (p in [0, 100]) with linear interpolation between order statistics.
 double percentile(std::vector<double> values, double p);
 
+// Named values per frame, each name's series in first-seen order: collect() appends one frame's
+// values, medians() reduces each series.
+using NamedSeries = std::vector<std::pair<std::string, std::vector<double>>>;
+void collect(NamedSeries& series, const std::vector<std::pair<std::string, double>>& values);
+std::vector<std::pair<std::string, double>> medians(const NamedSeries& series);
+
 struct FrameMeasurement {
     std::vector<double> frame_ms;     // wall time of each measured frame (CPU work + GPU wait)
     gl::PassTimings gpu;              // median GPU time of each pass and volume section

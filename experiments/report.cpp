@@ -26,6 +26,7 @@
 #include "experiments/bench.h"
 #include "experiments/equal_error.h"
 #include "experiments/measure.h"
+#include "experiments/statistics.h"
 
 #ifndef SHAFTLAB_SOURCE_DIR
 #error "SHAFTLAB_SOURCE_DIR must be defined by the build"
@@ -118,36 +119,76 @@ std::string proc_field(const char* file, const std::string& key) {
     return {};
 }
 
-// Per cell, over its repetitions: the median frame time and the mean error.
+// Per cell, over its repetitions: the median frame time with its confidence interval (the
+// bootstrap over repetitions and frames, statistics.h) and the mean error.
 struct Entry {
     Cell cell;
     double frame_ms = 0.0;
     std::optional<double> error;
     double volume_ms = 0.0;  // volume_cost_ms
+    Interval frame_ms_interval;
+    bool has_interval = false;  // rows written before the frames were kept have none
+    std::vector<const StoredRow*> rows;
 };
+
+// A row's frame times: its per-frame samples, or its median alone (an older row).
+std::vector<double> frame_samples(const Json& row, bool& complete) {
+    std::vector<double> samples;
+    if (row.contains("frame_ms_samples") && row["frame_ms_samples"].is_array()) {
+        for (const Json& v : row["frame_ms_samples"]) {
+            samples.push_back(v.get<double>());
+        }
+    }
+    if (samples.empty()) {
+        complete = false;
+        samples.push_back(row.at("frame_ms_median").get<double>());
+    }
+    return samples;
+}
 
 std::vector<Entry> aggregate(const std::vector<StoredRow>& rows, const std::string& metric) {
     std::vector<Entry> entries;
     std::vector<std::vector<double>> times, errors, volume_times;
+    std::vector<std::vector<std::vector<double>>> samples;
+    std::vector<bool> complete;
     for (const StoredRow& r : rows) {
         auto found = std::find_if(entries.begin(), entries.end(),
                                   [&](const Entry& e) { return e.cell == r.cell; });
         size_t i = size_t(found - entries.begin());
         if (found == entries.end()) {
-            entries.push_back({r.cell, 0.0, std::nullopt});
+            Entry entry;
+            entry.cell = r.cell;
+            entries.push_back(std::move(entry));
             times.emplace_back();
             errors.emplace_back();
             volume_times.emplace_back();
+            samples.emplace_back();
+            complete.push_back(true);
         }
+        entries[i].rows.push_back(&r);
         times[i].push_back(r.row.at("frame_ms_median").get<double>());
+        bool whole = true;
+        samples[i].push_back(frame_samples(r.row, whole));
+        complete[i] = complete[i] && whole;
         volume_times[i].push_back(r.row.value("volume_cost_ms", 0.0));
         if (!metric.empty() && r.row.contains(metric) && r.row.at(metric).is_number()) {
             errors[i].push_back(r.row.at(metric).get<double>());
         }
     }
     for (size_t i = 0; i < entries.size(); ++i) {
-        entries[i].frame_ms = median(times[i]);
         entries[i].volume_ms = median(volume_times[i]);
+        if (complete[i]) {
+            // The pooled median of every frame, and its interval.
+            std::vector<double> pooled;
+            for (const auto& group : samples[i]) {
+                pooled.insert(pooled.end(), group.begin(), group.end());
+            }
+            entries[i].frame_ms = median(pooled);
+            entries[i].frame_ms_interval = median_interval(samples[i]);
+            entries[i].has_interval = true;
+        } else {
+            entries[i].frame_ms = median(times[i]);
+        }
         if (!errors[i].empty()) {
             double sum = 0.0;
             for (const double e : errors[i]) {
@@ -159,6 +200,42 @@ std::vector<Entry> aggregate(const std::vector<StoredRow>& rows, const std::stri
     return entries;
 }
 
+// FPS with its interval ("30.9 [29.8–31.5]"; the interval of the median frame time inverted).
+std::string fps_text(const Entry& e) {
+    const std::string fps = fmt::format("{:.1f}", 1000.0 / e.frame_ms);
+    if (!e.has_interval) {
+        return fps;
+    }
+    return fmt::format("{} [{:.1f}–{:.1f}]", fps, 1000.0 / e.frame_ms_interval.high,
+                       1000.0 / e.frame_ms_interval.low);
+}
+
+// The fastest of a row's entries when it is significantly faster than the next: its interval
+// does not overlap the runner-up's (a row of one is its own fastest); null otherwise.
+const Entry* significant_fastest(const std::vector<const Entry*>& cells) {
+    std::vector<const Entry*> present;
+    for (const Entry* e : cells) {
+        if (e) {
+            present.push_back(e);
+        }
+    }
+    if (present.empty()) {
+        return nullptr;
+    }
+    std::sort(present.begin(), present.end(),
+              [](const Entry* a, const Entry* b) { return a->frame_ms < b->frame_ms; });
+    if (present.size() == 1) {
+        return present.front();
+    }
+    const Entry& first = *present[0];
+    const Entry& second = *present[1];
+    if (!first.has_interval || !second.has_interval ||
+        first.frame_ms_interval.overlaps(second.frame_ms_interval)) {
+        return nullptr;
+    }
+    return &first;
+}
+
 std::string format_error(const std::string& metric, double value) {
     return metric == "psnr"       ? fmt::format("{:.1f} dB", value)
            : metric == "rel_rmse" ? fmt::format("{:.2f}%", 100.0 * value)
@@ -166,6 +243,20 @@ std::string format_error(const std::string& metric, double value) {
 }
 
 std::string protocol_text(const Experiment& x) {
+    if (x.protocol.animated()) {
+        return fmt::format(
+            "Animation cells: {} warm-up frames, then each scene's animation played ({}; "
+            "frames = {}), {} repetition(s) in fresh GL {}s, {} frame mode; shadow maps {} {}² "
+            "(r = {}) unless a method's `shadow` parameter says otherwise",
+            x.protocol.warmup,
+            x.protocol.step > 0.0 ? fmt::format("{} s per frame", x.protocol.step)
+                                  : std::string("at its own fps; a scene without one orbits"),
+            x.protocol.frames == 0 ? std::string("all") : std::to_string(x.protocol.frames),
+            x.protocol.repetitions,
+            x.protocol.isolation == Isolation::process ? "process" : "context",
+            x.protocol.pipelined ? "pipelined" : "serial", x.render.shadow,
+            x.render.shadow_map_size, x.render.pcf_radius);
+    }
     return fmt::format(
         "{} warm-up and {} measured frames per repetition, {} repetition(s) in fresh GL {}s; "
         "shadow maps {} {}² (r = {}) unless a method's `shadow` parameter says otherwise",
@@ -505,14 +596,42 @@ std::vector<StoredRow> load_rows(const Experiment& x, const fs::path& out) {
             fail("{}: not a result row: {}", entry.path().string(), e.what());
         }
     }
+    // Sweep order (Experiment::cells(): scene, size, method, then each parameter in the order the
+    // file lists its values, Nilsson's dz 0.5 before 0.1), then repetition. Values the file does
+    // not list (equal-error probes) follow the listed ones, as numbers.
     auto key = [&](const StoredRow& r) {
         return std::tuple(rank(x.scenes, r.cell.scene),
                           rank(x.sizes, std::pair(r.cell.width, r.cell.height)),
                           rank(x.methods, r.cell.method));
     };
+    std::map<std::string, std::vector<std::string>> listed;
+    auto value_rank = [&](const std::string& name, const std::string& value) {
+        auto found = listed.find(name);
+        if (found == listed.end()) {
+            found = listed.emplace(name, x.listed_values(name)).first;
+        }
+        const std::vector<std::string>& values = found->second;
+        for (size_t i = 0; i < values.size(); ++i) {
+            if (same_value(values[i], value)) {
+                return i;
+            }
+        }
+        return values.size();
+    };
+    std::map<std::string, size_t> swept;  // cell id → position in the sweep
+    for (const Cell& cell : x.cells()) {
+        swept.emplace(cell.id(), swept.size());
+    }
+    auto position = [&](const StoredRow& r) {
+        const auto found = swept.find(r.cell.id());
+        return found == swept.end() ? swept.size() : found->second;
+    };
     std::sort(rows.begin(), rows.end(), [&](const StoredRow& a, const StoredRow& b) {
         if (key(a) != key(b)) {
             return key(a) < key(b);
+        }
+        if (position(a) != position(b)) {
+            return position(a) < position(b);
         }
         const auto& s = a.cell.settings;
         const auto& t = b.cell.settings;
@@ -520,8 +639,10 @@ std::vector<StoredRow> load_rows(const Experiment& x, const fs::path& out) {
             if (s[i].name != t[i].name) {
                 return s[i].name < t[i].name;
             }
-            if (s[i].value != t[i].value) {
-                return value_less(s[i].value, t[i].value);
+            if (!same_value(s[i].value, t[i].value)) {
+                const size_t p = value_rank(s[i].name, s[i].value);
+                const size_t q = value_rank(t[i].name, t[i].value);
+                return p != q ? p < q : value_less(s[i].value, t[i].value);
             }
         }
         if (s.size() != t.size()) {
@@ -553,15 +674,17 @@ std::string results_csv(const std::vector<StoredRow>& rows) {
                                                     "region_faces",
                                                     "samples_or_slices",
                                                     "image"};
+    // Series (an animation's per_frame, the frame times) go to frames.csv, not here.
     std::vector<std::string> seen;
     for (const StoredRow& r : rows) {
         for (const auto& [key, value] : r.row.items()) {
-            if (std::find(seen.begin(), seen.end(), key) == seen.end()) {
+            if (!value.is_structured() && std::find(seen.begin(), seen.end(), key) == seen.end()) {
                 seen.push_back(key);
             }
         }
     }
     std::vector<std::string> columns = head;
+    columns.insert(columns.begin() + 3, "scene_file");
     auto family = [&](const std::string& prefix) {
         for (const std::string& key : seen) {
             if (key.starts_with(prefix) && rank(columns, key) == columns.size()) {
@@ -579,12 +702,168 @@ std::string results_csv(const std::vector<StoredRow>& rows) {
     for (const StoredRow& r : rows) {
         std::vector<std::string> fields;
         for (const std::string& column : columns) {
+            // The scene by its name (a scene file by its stem), the file in scene_file.
+            if (column == "scene" || column == "scene_file") {
+                const std::string scene = r.cell.scene;
+                fields.push_back(csv_field(Json(column == "scene"          ? scene_label(scene)
+                                                : scene.ends_with(".toml") ? scene
+                                                                           : std::string())));
+                continue;
+            }
             fields.push_back(r.row.contains(column) ? csv_field(r.row.at(column)) : "");
         }
         csv += fmt::format("{}\n", fmt::join(fields, ","));
     }
     return csv;
 }
+
+std::string frames_csv(const std::vector<StoredRow>& rows) {
+    static const std::vector<std::string> series = {"time_s",   "frame_ms",      "update_ms",
+                                                    "apply_ms", "wait_ms",       "draw_ms",
+                                                    "gpu_ms",   "gpu_ms_volume", "rel_rmse"};
+    std::string csv =
+        fmt::format("cell,scene,method,width,height,params,rep,frame,{}\n", fmt::join(series, ","));
+    for (const StoredRow& r : rows) {
+        if (!r.row.contains("per_frame")) {
+            continue;
+        }
+        const Json& f = r.row.at("per_frame");
+        const Json& frames = f.at("frame");
+        for (size_t i = 0; i < frames.size(); ++i) {
+            std::vector<std::string> fields = {csv_field(r.row.at("cell")),
+                                               csv_field(Json(scene_label(r.cell.scene))),
+                                               r.cell.method,
+                                               std::to_string(r.cell.width),
+                                               std::to_string(r.cell.height),
+                                               csv_field(Json(r.cell.settings_text())),
+                                               std::to_string(r.rep),
+                                               frames[i].dump()};
+            for (const std::string& name : series) {
+                fields.push_back(f.contains(name) && i < f[name].size() ? csv_field(f[name][i])
+                                                                        : "");
+            }
+            csv += fmt::format("{}\n", fmt::join(fields, ","));
+        }
+    }
+    return csv;
+}
+
+namespace {
+
+// Animation cells (DESIGN.md §11): per cell, over its repetitions, the frame time's median with
+// its interval, p95 and worst frame, the CPU update and what of it the frame waited for, the
+// error per frame (median, p95, worst) and the temporal metrics (core/temporal_metrics.h).
+std::string animation_table(const Experiment& x, const std::vector<Entry>& entries) {
+    std::string md;
+    for (const Entry& e : entries) {
+        if (e.rows.empty() || !e.rows.front()->row.contains("per_frame")) {
+            continue;
+        }
+        auto over_reps = [&](const char* key) -> std::optional<double> {
+            std::vector<double> values;
+            for (const StoredRow* r : e.rows) {
+                if (r->row.contains(key) && r->row[key].is_number()) {
+                    values.push_back(r->row[key].get<double>());
+                }
+            }
+            if (values.empty()) {
+                return std::nullopt;
+            }
+            return median(values);
+        };
+        auto worst = [&](const char* key, const char* frame_key) -> std::string {
+            const StoredRow* at = nullptr;
+            for (const StoredRow* r : e.rows) {
+                if (r->row.contains(key) && r->row[key].is_number() &&
+                    (!at || r->row[key].get<double>() > at->row[key].get<double>())) {
+                    at = r;
+                }
+            }
+            if (!at) {
+                return "–";
+            }
+            const double v = at->row[key].get<double>();
+            return fmt::format("{} (#{})",
+                               std::string(key).find("rel_rmse") != std::string::npos
+                                   ? format_error("rel_rmse", v)
+                                   : fmt::format("{:.1f}", v),
+                               at->row.value(frame_key, -1));
+        };
+        auto percent = [&](const char* key) {
+            const auto v = over_reps(key);
+            return v ? fmt::format("{:.3f}%", 100.0 * *v) : std::string("–");
+        };
+        const auto pops = over_reps("pops");
+        md += fmt::format(
+            "| {} | {} | {} | {:.1f} [{:.1f}–{:.1f}] | {:.1f} | {} | {:.1f} / {:.2f} | {} | {} | "
+            "{} "
+            "| {} | {} | {} |\n",
+            scene_label(e.cell.scene), e.cell.method, e.cell.settings_text(), e.frame_ms,
+            e.frame_ms_interval.low, e.frame_ms_interval.high,
+            over_reps("frame_ms_p95").value_or(0.0), worst("frame_ms_worst", "frame_worst"),
+            over_reps("cpu_ms_update").value_or(0.0), over_reps("cpu_ms_critical").value_or(0.0),
+            percent("rel_rmse"), percent("rel_rmse_p95"),
+            worst("rel_rmse_worst", "error_worst_frame"), percent("temporal_error"),
+            percent("flicker"), pops ? fmt::format("{:g}", *pops) : "–");
+    }
+    if (md.empty()) {
+        return md;
+    }
+    // What each scene played (its animation, or an orbit of a still scene).
+    std::vector<std::string> played;
+    const StoredRow* any = nullptr;
+    for (const Entry& e : entries) {
+        if (e.rows.empty() || !e.rows.front()->row.contains("per_frame")) {
+            continue;
+        }
+        any = e.rows.front();
+        const std::string text = fmt::format("{}: {}", scene_label(e.cell.scene),
+                                             any->row.value("sequence", std::string("?")));
+        if (rank(played, text) == played.size()) {
+            played.push_back(text);
+        }
+    }
+    return fmt::format(
+               "\n## Along the animation\n\nEach cell played its scene ({}; {} frame mode), every "
+               "frame "
+               "measured; the error scored on every {} frame(s) against the reference of that "
+               "frame. Frame ms: median over every frame of every repetition, with its 95% "
+               "bootstrap interval, the 95th percentile, and the slowest frame (#index). CPU: the "
+               "median update (beam tree, regions, meshes, partitions) and the part of it the "
+               "frame waited for (the critical path; pipelined, the rest ran beside the draw). "
+               "Error: relative RMSE of I_s per scored frame, median, p95 and worst (#frame). "
+               "Temporal error, flicker and popping as defined in the README (pops: frames above "
+               "{}× the median error and {} above it).\n\n"
+               "| scene | method | params | frame ms [95% CI] | p95 | worst | CPU update / "
+               "critical ms | error median | p95 | worst | temporal error | flicker | pops |\n"
+               "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+               fmt::join(played, "; "), any->row.value("frame_mode", std::string("serial")),
+               any->row.value("stride", 1), x.scoring.pop_factor,
+               format_error("rel_rmse", x.scoring.pop_floor)) +
+           md;
+}
+
+// The equal-error search's probes, one row each: the cell, its frame time with its interval,
+// its volume cost and its error.
+std::string probes_table(const Experiment& x, const std::vector<StoredRow>& rows) {
+    const std::vector<Entry> entries = aggregate(rows, x.table_metric);
+    std::string md =
+        "| scene | size | method | params | frame ms [95% CI] | FPS | volume cost ms | error |\n"
+        "|---|---|---|---|---:|---:|---:|---:|\n";
+    for (const Entry& e : entries) {
+        md += fmt::format(
+            "| {} | {} | {} | {} | {:.2f}{} | {:.3g} | {:.2f} | {} |\n", scene_label(e.cell.scene),
+            e.cell.size(), e.cell.method, e.cell.settings_text(), e.frame_ms,
+            e.has_interval
+                ? fmt::format(" [{:.2f}–{:.2f}]", e.frame_ms_interval.low, e.frame_ms_interval.high)
+                : std::string(),
+            1000.0 / e.frame_ms, e.volume_ms,
+            e.error ? format_error(x.table_metric, *e.error) : "–");
+    }
+    return md;
+}
+
+}  // namespace
 
 std::string sweep_table(const Experiment& x, const std::vector<StoredRow>& rows) {
     const std::vector<Entry> entries = aggregate(rows, x.table_metric);
@@ -731,10 +1010,7 @@ std::string sweep_table(const Experiment& x, const std::vector<StoredRow>& rows)
                 cells[c] = &e;
             }
         }
-        double fastest = 1e300;
-        for (const Entry* e : cells) {
-            fastest = e ? std::min(fastest, e->frame_ms) : fastest;
-        }
+        const Entry* fastest = significant_fastest(cells);
         std::vector<std::string> shown = key;
         for (size_t d = 0; d < dims.size(); ++d) {
             if (dims[d] == "scene") {
@@ -747,8 +1023,8 @@ std::string sweep_table(const Experiment& x, const std::vector<StoredRow>& rows)
                 md += " – |";
                 continue;
             }
-            const std::string fps = fmt::format("{:.1f}", 1000.0 / e->frame_ms);
-            md += fmt::format(" {}{} |", e->frame_ms == fastest ? "**" + fps + "**" : fps,
+            const std::string fps = fps_text(*e);
+            md += fmt::format(" {}{} |", e == fastest ? "**" + fps + "**" : fps,
                               e->error ? " (" + format_error(x.table_metric, *e->error) + ")" : "");
         }
         md += "\n";
@@ -818,7 +1094,9 @@ void write_summary(const Experiment& x, const fs::path& out) {
     md += fmt::format(
         "Generated by `shaftlab bench {}`{} on {} ({} cores), GL: {} ({}). {}. Each cell: frames "
         "per second from the median wall time of a frame (CPU work of the method and the wait for "
-        "the GPU){}; the fastest in each row in bold.\n\n",
+        "the GPU) over every frame of every repetition, with its 95% interval (a bootstrap over "
+        "repetitions and frames){}; the fastest in each row in bold only when its interval does "
+        "not overlap the next one's.\n\n",
         x.source.filename().string(),
         x.overrides.empty() ? "" : fmt::format(" ({})", fmt::join(x.overrides, ", ")),
         env["cpu"]["model"].get<std::string>(), env["cpu"]["cores"].get<unsigned>(),
@@ -829,10 +1107,11 @@ void write_summary(const Experiment& x, const fs::path& out) {
     std::string equal_error_csv;
     if (x.equal_error) {
         auto [section, csv] = equal_error_report(x, rows);
-        md += section + "\n## All probes\n\n" + sweep_table(x, rows);
+        md += section + "\n## All probes\n\n" + probes_table(x, rows);
         equal_error_csv = std::move(csv);
     } else {
         md += sweep_table(x, rows);
+        md += animation_table(x, aggregate(rows, x.table_metric));
     }
     md +=
         "\n## Regions\n\nThe beam tree of each scene and the fractions of the eye-ray length "
@@ -841,6 +1120,9 @@ void write_summary(const Experiment& x, const fs::path& out) {
         regions_table(rows) + fragments_table(rows);
     OutputFiles files(out);
     files.add_text("results.csv", results_csv(rows));
+    if (x.protocol.animated()) {
+        files.add_text("frames.csv", frames_csv(rows));
+    }
     files.add_text("table.md", md);
     files.add_text("env.json", env.dump(2) + "\n");
     if (x.equal_error) {

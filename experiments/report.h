@@ -1,5 +1,5 @@
 #pragma once
-// The summary outputs of a bench directory (see bench.h): results.csv, table.md,
+// The summary outputs of a bench directory (see bench.h): results.csv, frames.csv, table.md,
 // equal_error.csv, env.json and plots/, all from the rows in cells/, each written atomically.
 
 #include <filesystem>
@@ -30,6 +30,8 @@ std::string baseline_comparison(const Experiment& experiment, const std::filesys
 
 // results.csv's text: the union of the rows' columns, fixed ones first.
 std::string results_csv(const std::vector<StoredRow>& rows);
+// frames.csv's text: every frame of every animation row (its per_frame series), long format.
+std::string frames_csv(const std::vector<StoredRow>& rows);
 // Nilsson Table 6.1's layout: rows (dz ×) scene × size, columns methods, FPS with the error.
 std::string sweep_table(const Experiment& experiment, const std::vector<StoredRow>& rows);
 

@@ -269,13 +269,17 @@ dz = [0.5, 0.1]
     std::vector<experiments::StoredRow> rows;
     for (const Cell& cell : x.cells()) {
         const double ms = cell.method == "beamtree" ? 10.0 : std::stod(*cell.setting("dz")) * 40;
-        rows.push_back({cell, 0, {{"frame_ms_median", ms}, {"rel_rmse", 0.01}}});
+        rows.push_back(
+            {cell,
+             0,
+             {{"frame_ms_median", ms}, {"frame_ms_samples", {ms, ms, ms}}, {"rel_rmse", 0.01}}});
     }
     const std::string table = experiments::sweep_table(x, rows);
-    const size_t first =
-        table.find("| 0.5 | toplight | 32x16 | **100.0** (1.00%) | 50.0 (1.00%) |");
-    const size_t second =
-        table.find("| 0.1 | toplight | 32x16 | 100.0 (1.00%) | **250.0** (1.00%) |");
+    const size_t first = table.find(
+        "| 0.5 | toplight | 32x16 | **100.0 [100.0–100.0]** (1.00%) | 50.0 [50.0–50.0] (1.00%) |");
+    const size_t second = table.find(
+        "| 0.1 | toplight | 32x16 | 100.0 [100.0–100.0] (1.00%) | **250.0 [250.0–250.0]** (1.00%) "
+        "|");
     EXPECT_NE(first, std::string::npos) << table;
     EXPECT_NE(second, std::string::npos) << table;
     EXPECT_LT(first, second) << "dz rows in the file's order";
