@@ -1,6 +1,10 @@
 #include "analytic/region_pass.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
+#include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 
 #include "analytic/gpu_tables.h"
 #include "analytic/in_scattering.h"
@@ -41,9 +45,28 @@ void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>
     set_scene(scene);
 }
 
+double winding_number(const std::vector<glm::vec3>& positions,
+                      const std::vector<glm::uvec3>& triangles, const glm::dvec3& point) {
+    double sum = 0.0;
+    for (const glm::uvec3& t : triangles) {
+        const glm::dvec3 a = glm::dvec3(positions[t.x]) - point;
+        const glm::dvec3 b = glm::dvec3(positions[t.y]) - point;
+        const glm::dvec3 c = glm::dvec3(positions[t.z]) - point;
+        const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+        // tan(Ω/2) = a·(b×c) / (|a||b||c| + (a·b)|c| + (a·c)|b| + (b·c)|a|).
+        const double numerator = glm::dot(a, glm::cross(b, c));
+        const double denominator =
+            la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+        sum += 2.0 * std::atan2(numerator, denominator);
+    }
+    return sum / (4.0 * glm::pi<double>());
+}
+
 void AnalyticRegionPass::upload_mesh(const std::vector<glm::vec3>& positions,
                                      const std::vector<glm::uvec3>& triangles) {
     mesh_ = gl::create_triangle_mesh(positions, triangles);
+    positions_ = positions;
+    triangles_ = triangles;
     if (mesh_.index_count > 0) {
         mesh_.vertex_array.label("lit regions");
     }  // else no lit region (or only slivers): draw() adds nothing
@@ -55,7 +78,14 @@ void AnalyticRegionPass::set_scene(const Scene& scene) {
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
                                        {GL_FRAGMENT_SHADER, "analytic/shaders/regions.frag"}},
                                       edge_defines(scene.light));
+        eye_program_ =
+            gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                {GL_FRAGMENT_SHADER, "analytic/shaders/regions_eye.frag"}},
+                               edge_defines(scene.light));
         smooth_edge_ = smooth_edge;
+    }
+    if (!eye_vertex_array_) {
+        eye_vertex_array_ = gl::create_vertex_array();
     }
     if (!fragments_) {
         fragments_ = gl::create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
@@ -96,6 +126,15 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     GL.BindVertexArray(mesh_.vertex_array.id());
     GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
     GL.DrawElements(GL_TRIANGLES, mesh_.index_count, GL_UNSIGNED_INT, nullptr);
+    // The eye inside the regions: every ray's missing front face at z = 0.
+    eye_windings_ = int(std::lround(
+        winding_number(positions_, triangles_, glm::dvec3(inputs.scene.camera.position))));
+    if (eye_windings_ != 0) {
+        GL.UseProgram(eye_program_.id());
+        GL.ProgramUniform1f(eye_program_.id(), 0, float(eye_windings_));
+        GL.BindVertexArray(eye_vertex_array_.id());
+        GL.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
     GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
     GL.Disable(GL_DEPTH_CLAMP);
     GL.Disable(GL_BLEND);

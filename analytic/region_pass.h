@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "beamtree/frame_regions.h"
 
@@ -27,6 +28,12 @@ using gl::VolumeInputs;
 // SL_SMOOTH_CONE_EDGE and FALLOFF_PIECES (= kFalloffPieces) where it has a smooth edge.
 std::vector<std::string> edge_defines(const SpotLight& light);
 
+// The generalized winding number of a closed, outward-wound triangle mesh about `point`: the sum
+// of the triangles' signed solid angles over 4π (van Oosterom & Strackee 1983), 1 inside a closed
+// region, 0 outside, n inside n overlapping ones (every cell's faces: each lit cell counts).
+double winding_number(const std::vector<glm::vec3>& positions,
+                      const std::vector<glm::uvec3>& triangles, const glm::dvec3& point);
+
 class AnalyticRegionPass {
 public:
     // Throws sl::Error when the closed forms do not cover the scene's light model: only the
@@ -45,8 +52,14 @@ public:
     void upload_mesh(const std::vector<glm::vec3>& positions,
                      const std::vector<glm::uvec3>& triangles);
     void set_scene(const Scene& scene);
-    // Adds ∫ e over the regions' part of every eye ray, up to the first surface.
+    // Adds ∫ e over the regions' part of every eye ray, up to the first surface. A ray that
+    // starts inside a region has no front face to subtract G at its start (it lies behind the
+    // eye): when the eye is inside the regions, a full-screen pass subtracts G(0) once per
+    // region about it (the winding number, on the CPU) — the closed form's antiderivative is
+    // not 0 at the eye.
     void draw(const VolumeInputs& inputs) const;
+    // The regions about the eye at the last draw (the winding number rounded).
+    int eye_windings() const { return eye_windings_; }
     size_t triangle_count() const { return size_t(mesh_.index_count) / 3; }
     // Its lookup tables, named "<owner>/...".
     TextureViews textures(const std::string& owner) const;
@@ -55,7 +68,12 @@ public:
 
 private:
     gl::TriangleMesh mesh_;
+    std::vector<glm::vec3> positions_;  // the mesh, for the eye's winding number
+    std::vector<glm::uvec3> triangles_;
+    mutable int eye_windings_ = 0;
     Program program_;
+    Program eye_program_;  // the full-screen -G(0) of rays that start inside a region
+    gl::VertexArray eye_vertex_array_;
     Texture medium_table_;
     Query fragments_;
     bool smooth_edge_ = false;      // what program_ was made for

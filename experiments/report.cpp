@@ -754,11 +754,36 @@ namespace {
 // its interval, p95 and worst frame, the CPU update and what of it the frame waited for, the
 // error per frame (median, p95, worst) and the temporal metrics (core/temporal_metrics.h).
 std::string animation_table(const Experiment& x, const std::vector<Entry>& entries) {
+    // The fastest cell of each scene (and size), marked only when significant.
+    std::map<std::pair<std::string, std::string>, std::vector<const Entry*>> by_view;
+    for (const Entry& e : entries) {
+        by_view[{e.cell.scene, e.cell.size()}].push_back(&e);
+    }
+    std::set<const Entry*> fastest;
+    for (const auto& [view, cells] : by_view) {
+        if (const Entry* f = significant_fastest(cells)) {
+            fastest.insert(f);
+        }
+    }
     std::string md;
     for (const Entry& e : entries) {
         if (e.rows.empty() || !e.rows.front()->row.contains("per_frame")) {
             continue;
         }
+        // The CPU update per frame, pooled over the repetitions, with its interval.
+        std::vector<std::vector<double>> updates;
+        for (const StoredRow* r : e.rows) {
+            std::vector<double> u;
+            for (const Json& v : r->row["per_frame"].value("update_ms", Json::array())) {
+                u.push_back(v.get<double>());
+            }
+            updates.push_back(std::move(u));
+        }
+        std::vector<double> pooled_updates;
+        for (const auto& u : updates) {
+            pooled_updates.insert(pooled_updates.end(), u.begin(), u.end());
+        }
+        const Interval update_interval = median_interval(updates);
         auto over_reps = [&](const char* key) -> std::optional<double> {
             std::vector<double> values;
             for (const StoredRow* r : e.rows) {
@@ -794,17 +819,18 @@ std::string animation_table(const Experiment& x, const std::vector<Entry>& entri
             return v ? fmt::format("{:.3f}%", 100.0 * *v) : std::string("–");
         };
         const auto pops = over_reps("pops");
+        const std::string frame_ms = fmt::format("{:.1f} [{:.1f}–{:.1f}]", e.frame_ms,
+                                                 e.frame_ms_interval.low, e.frame_ms_interval.high);
         md += fmt::format(
-            "| {} | {} | {} | {:.1f} [{:.1f}–{:.1f}] | {:.1f} | {} | {:.1f} / {:.2f} | {} | {} | "
-            "{} "
+            "| {} | {} | {} | {} | {:.1f} | {} | {:.1f} [{:.1f}–{:.1f}] / {:.2f} | {} | {} | {} "
             "| {} | {} | {} |\n",
-            scene_label(e.cell.scene), e.cell.method, e.cell.settings_text(), e.frame_ms,
-            e.frame_ms_interval.low, e.frame_ms_interval.high,
+            scene_label(e.cell.scene), e.cell.method, e.cell.settings_text(),
+            fastest.contains(&e) ? "**" + frame_ms + "**" : frame_ms,
             over_reps("frame_ms_p95").value_or(0.0), worst("frame_ms_worst", "frame_worst"),
-            over_reps("cpu_ms_update").value_or(0.0), over_reps("cpu_ms_critical").value_or(0.0),
-            percent("rel_rmse"), percent("rel_rmse_p95"),
-            worst("rel_rmse_worst", "error_worst_frame"), percent("temporal_error"),
-            percent("flicker"), pops ? fmt::format("{:g}", *pops) : "–");
+            median(pooled_updates), update_interval.low, update_interval.high,
+            over_reps("cpu_ms_critical").value_or(0.0), percent("rel_rmse"),
+            percent("rel_rmse_p95"), worst("rel_rmse_worst", "error_worst_frame"),
+            percent("temporal_error"), percent("flicker"), pops ? fmt::format("{:g}", *pops) : "–");
     }
     if (md.empty()) {
         return md;
@@ -828,9 +854,11 @@ std::string animation_table(const Experiment& x, const std::vector<Entry>& entri
                "frame "
                "measured; the error scored on every {} frame(s) against the reference of that "
                "frame. Frame ms: median over every frame of every repetition, with its 95% "
-               "bootstrap interval, the 95th percentile, and the slowest frame (#index). CPU: the "
-               "median update (beam tree, regions, meshes, partitions) and the part of it the "
-               "frame waited for (the critical path; pipelined, the rest ran beside the draw). "
+               "bootstrap interval (in bold the scene's fastest, when its interval does not "
+               "overlap the next one's), the 95th percentile, and the slowest frame (#index). "
+               "CPU: the median update (beam tree, regions, meshes, partitions) with its interval, "
+               "and the part of it the frame waited for (the critical path; pipelined, the rest "
+               "ran beside the draw). "
                "Error: relative RMSE of I_s per scored frame, median, p95 and worst (#frame). "
                "Temporal error, flicker and popping as defined in the README (pops: frames above "
                "{}× the median error and {} above it).\n\n"
