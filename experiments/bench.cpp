@@ -534,9 +534,10 @@ void claim_directory(const Experiment& x, const fs::path& out) {
 }
 
 std::string cell_label(const Cell& cell) {
-    return cell.settings.empty() ? fmt::format("{} {} {}", cell.scene, cell.size(), cell.method)
-                                 : fmt::format("{} {} {} {}", cell.scene, cell.size(), cell.method,
-                                               cell.settings_text());
+    const std::string scene = scene_label(cell.scene);
+    return cell.settings.empty()
+               ? fmt::format("{} {} {}", scene, cell.size(), cell.method)
+               : fmt::format("{} {} {} {}", scene, cell.size(), cell.method, cell.settings_text());
 }
 
 }  // namespace

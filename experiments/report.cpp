@@ -50,9 +50,8 @@ size_t rank(const std::vector<T>& list, const T& value) {
     return size_t(std::find(list.begin(), list.end(), value) - list.begin());
 }
 
-// A scene as the tables print it: a scene file by its stem without ".scene"
-// ("/…/experiments/toplight-hg.scene.toml" is "toplight-hg"), a name as it is. The CSV and the
-// cells keep the sweep's own spelling.
+}  // namespace
+
 std::string scene_label(const std::string& scene) {
     if (!scene.ends_with(".toml")) {
         return scene;
@@ -63,6 +62,8 @@ std::string scene_label(const std::string& scene) {
     }
     return stem;
 }
+
+namespace {
 
 std::string csv_field(const Json& value) {
     if (value.is_null()) {

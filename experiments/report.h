@@ -28,6 +28,11 @@ std::vector<StoredRow> load_rows(const Experiment& experiment, const std::filesy
 std::string baseline_comparison(const Experiment& experiment, const std::filesystem::path& out,
                                 const std::filesystem::path& baseline);
 
+// A scene as the tables, the CSV's `scene` column, the plots and the progress lines name it: a
+// scene file by its stem without ".scene" ("/…/experiments/toplight-hg.scene.toml" is
+// "toplight-hg"), a name as it is. The cells keep the sweep's own spelling.
+std::string scene_label(const std::string& scene);
+
 // results.csv's text: the union of the rows' columns, fixed ones first.
 std::string results_csv(const std::vector<StoredRow>& rows);
 // frames.csv's text: every frame of every animation row (its per_frame series), long format.
