@@ -96,6 +96,28 @@ CellSetup set_up(const Experiment& x, const Cell& cell, Caches& caches) {
     return s;
 }
 
+// A fresh GL context and a renderer for `scene`, with the method prepared for it, timed.
+struct CellContext {
+    std::unique_ptr<gl::Platform> platform;
+    gl::ContextInfo info;
+    std::unique_ptr<gl::SceneRenderer> renderer;
+    double setup_ms = 0.0;
+    double prepare_ms = 0.0;
+};
+
+CellContext open_context(const CellSetup& s, const Scene& scene) {
+    CellContext c;
+    auto start = Clock::now();
+    c.platform = gl::create_headless_platform();
+    c.info = c.platform->info();
+    c.renderer = std::make_unique<gl::SceneRenderer>(scene, s.options);
+    c.setup_ms = ms_since(start);
+    start = Clock::now();
+    s.method->prepare(scene);
+    c.prepare_ms = ms_since(start);
+    return c;
+}
+
 // I_s (EXR) and the tone-mapped frame (PNG) of repetition 0; returns the row's image path.
 std::string write_images(const Experiment& x, const Cell& cell, int rep, const fs::path& out,
                          const gl::Frame& frame) {
@@ -223,14 +245,10 @@ Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs
                         Caches& caches) {
     CellSetup s = set_up(x, cell, caches);
     const Scene& scene = *s.scene;
-    auto start = Clock::now();
-    const auto platform = gl::create_headless_platform();
-    const gl::ContextInfo context = platform->info();
-    gl::SceneRenderer renderer(scene, s.options);
-    const double setup_ms = ms_since(start);
-    start = Clock::now();
-    s.method->prepare(scene);
-    const double prepare_ms = ms_since(start);
+    const CellContext c = open_context(s, scene);
+    gl::SceneRenderer& renderer = *c.renderer;
+    const gl::ContextInfo& context = c.info;
+    const double setup_ms = c.setup_ms, prepare_ms = c.prepare_ms;
 
     const FrameMeasurement m =
         measure_frames(renderer, *s.method, x.protocol.warmup, x.protocol.frames);
@@ -242,7 +260,7 @@ Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs
         error = compare_images(frame.in_scattering, renderer.render(*reference).in_scattering);
     }
 
-    start = Clock::now();
+    auto start = Clock::now();
     const RegionStatistics& regions = caches.region(cell, scene, false);
     const double regions_ms = ms_since(start);
     const std::string image = write_images(x, cell, rep, out, frame);
@@ -288,15 +306,11 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
     }
     const double reference_ms = ms_since(start);
 
-    start = Clock::now();
     Scene live = sequence.state(0);
-    const auto platform = gl::create_headless_platform();
-    const gl::ContextInfo context = platform->info();
-    gl::SceneRenderer renderer(live, s.options);
-    const double setup_ms = ms_since(start);
-    start = Clock::now();
-    s.method->prepare(live);
-    const double prepare_ms = ms_since(start);
+    const CellContext c = open_context(s, live);
+    gl::SceneRenderer& renderer = *c.renderer;
+    const gl::ContextInfo& context = c.info;
+    const double setup_ms = c.setup_ms, prepare_ms = c.prepare_ms;
     for (int i = 0; i < x.protocol.warmup; ++i) {
         renderer.draw(*s.method);  // shader compilation and first-use costs
     }
@@ -354,19 +368,11 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
     };
     const std::vector<double> frame_ms = series([](const auto& r) { return r.frame_ms; });
     const std::vector<double> critical = series([](const auto& r) { return r.critical_cpu_ms(); });
-    std::vector<double> passes[5], totals;
-    NamedSeries sections;
+    PassSeries passes;
     for (const gl::FrameRecord& r : records) {
-        passes[0].push_back(r.gpu.shadow_ms);
-        passes[1].push_back(r.gpu.surface_ms);
-        passes[2].push_back(r.gpu.volume_ms);
-        passes[3].push_back(r.gpu.composite_ms);
-        passes[4].push_back(r.gpu.subsurface_ms);
-        totals.push_back(r.gpu.total_ms());
-        collect(sections, r.gpu.volume_sections);
+        passes.add(r.gpu);
     }
-    const gl::PassTimings gpu{median(passes[0]), median(passes[1]), median(passes[2]),
-                              median(passes[3]), medians(sections), median(passes[4])};
+    const gl::PassTimings gpu = passes.medians();
     const gl::MethodStatistics method_statistics = medians(statistics);
 
     std::vector<double> rel_rmse, max_abs, psnr;
@@ -389,7 +395,7 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
         size_t(std::max_element(frame_ms.begin(), frame_ms.end()) - frame_ms.begin());
     row["frame_ms_worst"] = frame_ms[slowest];
     row["frame_worst"] = int(slowest);
-    add_gpu(row, gpu, median(totals));
+    add_gpu(row, gpu, passes.total_median());
     row["volume_cost_ms"] =
         gpu.volume_ms + statistic(method_statistics, "cpu_ms_frame") + median(critical);
     row["cpu_ms_update"] = median(series([](const auto& r) { return r.update_ms; }));

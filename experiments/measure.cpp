@@ -79,29 +79,45 @@ double percentile(std::vector<double> values, double p) {
     return values[below] + (position - double(below)) * (values[above] - values[below]);
 }
 
+void PassSeries::add(const gl::PassTimings& gpu) {
+    passes_[0].push_back(gpu.shadow_ms);
+    passes_[1].push_back(gpu.surface_ms);
+    passes_[2].push_back(gpu.volume_ms);
+    passes_[3].push_back(gpu.composite_ms);
+    passes_[4].push_back(gpu.subsurface_ms);
+    totals_.push_back(gpu.total_ms());
+    collect(sections_, gpu.volume_sections);
+}
+
+gl::PassTimings PassSeries::medians() const {
+    return {median(passes_[0]),
+            median(passes_[1]),
+            median(passes_[2]),
+            median(passes_[3]),
+            experiments::medians(sections_),
+            median(passes_[4])};
+}
+
+double PassSeries::total_median() const {
+    return median(totals_);
+}
+
 FrameMeasurement measure_frames(gl::SceneRenderer& renderer, gl::VolumeMethod& method, int warmup,
                                 int frames) {
     for (int i = 0; i < warmup; ++i) {
         renderer.draw(method);
     }
     FrameMeasurement m;
-    std::vector<double> passes[5], totals;
-    NamedSeries sections, statistics;
+    PassSeries passes;
+    NamedSeries statistics;
     for (int i = 0; i < frames; ++i) {
         const gl::FrameTimings timings = renderer.draw(method);
         m.frame_ms.push_back(timings.cpu_ms);
-        passes[0].push_back(timings.gpu.shadow_ms);
-        passes[1].push_back(timings.gpu.surface_ms);
-        passes[2].push_back(timings.gpu.volume_ms);
-        passes[3].push_back(timings.gpu.composite_ms);
-        passes[4].push_back(timings.gpu.subsurface_ms);
-        totals.push_back(timings.gpu.total_ms());
-        collect(sections, timings.gpu.volume_sections);
+        passes.add(timings.gpu);
         collect(statistics, method.statistics());
     }
-    m.gpu = {median(passes[0]), median(passes[1]), median(passes[2]),
-             median(passes[3]), medians(sections), median(passes[4])};
-    m.gpu_total_ms = median(totals);
+    m.gpu = passes.medians();
+    m.gpu_total_ms = passes.total_median();
     m.statistics = medians(statistics);
     return m;
 }

@@ -43,6 +43,19 @@ using NamedSeries = std::vector<std::pair<std::string, std::vector<double>>>;
 void collect(NamedSeries& series, const std::vector<std::pair<std::string, double>>& values);
 std::vector<std::pair<std::string, double>> medians(const NamedSeries& series);
 
+// The GPU time of each pass over frames: add() one frame's, medians() each pass's median (and
+// each volume section's), total_median() the median of the frames' sums.
+class PassSeries {
+public:
+    void add(const gl::PassTimings& gpu);
+    gl::PassTimings medians() const;
+    double total_median() const;
+
+private:
+    std::vector<double> passes_[5], totals_;
+    NamedSeries sections_;
+};
+
 struct FrameMeasurement {
     std::vector<double> frame_ms;     // wall time of each measured frame (CPU work + GPU wait)
     gl::PassTimings gpu;              // median GPU time of each pass and volume section
