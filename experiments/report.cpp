@@ -484,6 +484,24 @@ std::string baseline_comparison(const Experiment& x, const fs::path& out,
     // The baseline's rows by cell id; its experiment file may be an older version of this one.
     struct Cells {
         std::vector<double> fps, error;
+        std::vector<std::vector<double>> samples;  // frame ms per repetition
+        bool complete = true;                       // every row kept its frames
+        void add(const Json& row) {
+            fps.push_back(row.at("fps").get<double>());
+            if (row.contains("rel_rmse") && row["rel_rmse"].is_number()) {
+                error.push_back(row["rel_rmse"].get<double>());
+            }
+            samples.push_back(frame_samples(row, complete));
+        }
+        // FPS with the interval of the median frame time inverted, when the frames were kept.
+        std::string fps_text() const {
+            if (!complete) {
+                return fmt::format("{:.2f}", median(fps));
+            }
+            const Interval i = median_interval(samples);
+            return fmt::format("{:.2f} [{:.2f}–{:.2f}]", median(fps), 1000.0 / i.high,
+                               1000.0 / i.low);
+        }
     };
     std::map<std::string, Cells> theirs;
     if (fs::is_directory(baseline / "cells")) {
@@ -495,11 +513,7 @@ std::string baseline_comparison(const Experiment& x, const fs::path& out,
             std::ifstream file(entry.path());
             try {
                 const Json row = Json::parse(file).at("row");
-                Cells& c = theirs[row.at("cell").get<std::string>()];
-                c.fps.push_back(row.at("fps").get<double>());
-                if (row.contains("rel_rmse") && row["rel_rmse"].is_number()) {
-                    c.error.push_back(row["rel_rmse"].get<double>());
-                }
+                theirs[row.at("cell").get<std::string>()].add(row);
             } catch (const std::exception& e) {
                 fail("{}: not a result row: {}", entry.path().string(), e.what());
             }
@@ -515,11 +529,7 @@ std::string baseline_comparison(const Experiment& x, const fs::path& out,
         if (!ours.contains(id)) {
             order.push_back(id);
         }
-        Cells& c = ours[id];
-        c.fps.push_back(r.row.at("fps").get<double>());
-        if (r.row.contains("rel_rmse") && r.row["rel_rmse"].is_number()) {
-            c.error.push_back(r.row["rel_rmse"].get<double>());
-        }
+        ours[id].add(r.row);
     }
     auto machine = [](const fs::path& dir) {
         std::ifstream file(dir / "env.json");
@@ -541,10 +551,12 @@ std::string baseline_comparison(const Experiment& x, const fs::path& out,
     };
     std::string md = fmt::format(
         "# {}: this machine beside {}\n\nHere: {}.\nThere: {}.\n\nFPS is the median over "
-        "the cell's repetitions; the ratio is here / there (above 1: faster here). The error "
-        "is the mean rel_rmse of I_s; it should not depend on the machine beyond the GPU's "
-        "rounding.\n\n| cell | FPS here | FPS there | ratio | error here | error there |\n"
-        "|---|---:|---:|---:|---:|---:|\n",
+        "the cell's repetitions, with the 95% interval of the median frame time (inverted) "
+        "where the rows kept their frames; the ratio is here / there (above 1: faster here), "
+        "marked * where the two intervals do not overlap (a significant difference). The "
+        "error is the mean rel_rmse of I_s; it should not depend on the machine beyond the "
+        "GPU's rounding.\n\n| cell | FPS here | FPS there | ratio | error here | error there "
+        "|\n|---|---:|---:|---:|---:|---:|\n",
         x.name, baseline.string(), machine(out), machine(baseline));
     std::vector<double> ratios;
     for (const std::string& id : order) {
@@ -553,21 +565,24 @@ std::string baseline_comparison(const Experiment& x, const fs::path& out,
         const std::string error_here =
             here.error.empty() ? "" : fmt::format("{:.3g}%", 100 * mean(here.error));
         if (it == theirs.end()) {
-            md += fmt::format("| {} | {:.2f} | (none) | | {} | |\n", id, median(here.fps),
-                              error_here);
+            md += fmt::format("| {} | {} | (none) | | {} | |\n", id, here.fps_text(), error_here);
             continue;
         }
-        const double ratio = median(here.fps) / median(it->second.fps);
+        const Cells& there = it->second;
+        const double ratio = median(here.fps) / median(there.fps);
         ratios.push_back(ratio);
-        md += fmt::format("| {} | {:.2f} | {:.2f} | {:.2f}x | {} | {} |\n", id, median(here.fps),
-                          median(it->second.fps), ratio, error_here,
+        const bool significant =
+            here.complete && there.complete &&
+            !median_interval(here.samples).overlaps(median_interval(there.samples));
+        md += fmt::format("| {} | {} | {} | {:.2f}x{} | {} | {} |\n", id, here.fps_text(),
+                          there.fps_text(), ratio, significant ? " *" : "", error_here,
                           it->second.error.empty()
                               ? std::string()
                               : fmt::format("{:.3g}%", 100 * mean(it->second.error)));
     }
     for (const auto& [id, cells] : theirs) {
         if (!ours.contains(id)) {
-            md += fmt::format("| {} | (none) | {:.2f} | | | |\n", id, median(cells.fps));
+            md += fmt::format("| {} | (none) | {} | | | |\n", id, cells.fps_text());
         }
     }
     if (!ratios.empty()) {
