@@ -284,6 +284,78 @@ Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs
     return row;
 }
 
+// The scores of an animation cell's frames against the reference sequence, and the frame to show
+// (the worst-scored one).
+struct SequenceScores {
+    explicit SequenceScores(int frames) : errors(static_cast<size_t>(frames)) {}
+    std::vector<std::optional<ErrorMetrics>> errors;  // per frame, the scored ones set
+    TemporalMetrics temporal;
+    std::optional<gl::Frame> picture;
+    int picture_frame = -1;
+
+    void score(int k, gl::Frame frame, const Image& truth) {
+        errors[size_t(k)] = compare_images(frame.in_scattering, truth);
+        temporal.add(frame.in_scattering, truth);
+        if (!picture || errors[size_t(k)]->rel_rmse > errors[size_t(picture_frame)]->rel_rmse) {
+            picture = std::move(frame);
+            picture_frame = k;
+        }
+    }
+};
+
+// The error columns of an animation row: per frame the median and p95 relative RMSE and the
+// worst frame, max_abs the sequence's largest, psnr the median; the temporal metrics.
+void add_sequence_scores(Json& row, const Experiment& x, const SequenceScores& scores) {
+    std::vector<double> rel_rmse, max_abs, psnr;
+    for (const auto& e : scores.errors) {
+        if (e) {
+            rel_rmse.push_back(e->rel_rmse);
+            max_abs.push_back(e->max_abs);
+            if (std::isfinite(e->psnr)) {
+                psnr.push_back(e->psnr);
+            }
+        }
+    }
+    const bool scored = !rel_rmse.empty();
+    row["rel_rmse"] = metric_value(x, "rel_rmse", scored, median(rel_rmse));
+    row["max_abs"] = metric_value(x, "max_abs", scored,
+                                  scored ? *std::max_element(max_abs.begin(), max_abs.end()) : 0.0);
+    row["psnr"] = metric_value(x, "psnr", !psnr.empty(), median(psnr));
+    if (scored) {
+        row["rel_rmse_p95"] = percentile(rel_rmse, 95.0);
+        row["rel_rmse_worst"] = *std::max_element(rel_rmse.begin(), rel_rmse.end());
+        row["error_worst_frame"] = scores.picture_frame;
+        row["temporal_error"] = scores.temporal.temporal_error();
+        row["flicker"] = scores.temporal.flicker();
+        row["pops"] = count_pops(rel_rmse, x.scoring.pop_factor, x.scoring.pop_floor);
+        row["scored_frames"] = int(rel_rmse.size());
+    }
+}
+
+// Every frame's costs and error, as the row's `per_frame` series (frames.csv).
+Json per_frame_series(const std::vector<gl::FrameRecord>& records, const Sequence& sequence,
+                      const SequenceScores& scores) {
+    Json series = Json::object();
+    for (const char* name : {"frame", "time_s", "frame_ms", "update_ms", "apply_ms", "wait_ms",
+                             "draw_ms", "gpu_ms", "gpu_ms_volume", "rel_rmse"}) {
+        series[name] = Json::array();
+    }
+    for (const gl::FrameRecord& r : records) {
+        series["frame"].push_back(r.frame);
+        series["time_s"].push_back(sequence.time(r.frame));
+        series["frame_ms"].push_back(r.frame_ms);
+        series["update_ms"].push_back(r.update_ms);
+        series["apply_ms"].push_back(r.apply_ms);
+        series["wait_ms"].push_back(r.wait_ms);
+        series["draw_ms"].push_back(r.draw_ms);
+        series["gpu_ms"].push_back(r.gpu.total_ms());
+        series["gpu_ms_volume"].push_back(r.gpu.volume_ms);
+        const auto& e = scores.errors[size_t(r.frame)];
+        series["rel_rmse"].push_back(e ? Json(e->rel_rmse) : Json());
+    }
+    return series;
+}
+
 // Plays one animation cell and repetition (DESIGN.md §11) in a fresh GL context: every frame's
 // CPU update, apply, draw and GPU passes through gl::FrameLoop, and every stride-th frame scored
 // against the reference of that frame (computed first, multithreaded, cached on disk, so that
@@ -323,10 +395,7 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
     }
     std::vector<gl::FrameRecord> records;
     NamedSeries statistics;
-    std::vector<std::optional<ErrorMetrics>> errors(static_cast<size_t>(frames));
-    TemporalMetrics temporal;
-    std::optional<gl::Frame> worst;
-    int worst_frame = -1;
+    SequenceScores scores(frames);
     gl::FrameLoop loop(renderer, *s.method, live,
                        x.protocol.pipelined ? gl::FrameMode::pipelined : gl::FrameMode::serial);
     loop.play(
@@ -339,16 +408,10 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
                 gl::Frame frame = renderer.read_back();
                 reference->update(live, scene_change(reference_scene, live));
                 reference_scene = live;
-                const Image truth = renderer.render(*reference).in_scattering;
-                errors[size_t(k)] = compare_images(frame.in_scattering, truth);
-                temporal.add(frame.in_scattering, truth);
-                if (!worst || errors[size_t(k)]->rel_rmse > errors[size_t(worst_frame)]->rel_rmse) {
-                    worst = std::move(frame);
-                    worst_frame = k;
-                }
+                scores.score(k, std::move(frame), renderer.render(*reference).in_scattering);
             } else if (!reference && k + 1 == frames) {
-                worst = renderer.read_back();  // no scores: the last frame is the picture
-                worst_frame = k;
+                scores.picture = renderer.read_back();  // no scores: the last frame is shown
+                scores.picture_frame = k;
             }
             if (options && options->on_frame) {
                 options->on_frame(cell, rep, k);
@@ -375,20 +438,11 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
     const gl::PassTimings gpu = passes.medians();
     const gl::MethodStatistics method_statistics = medians(statistics);
 
-    std::vector<double> rel_rmse, max_abs, psnr;
-    for (const auto& e : errors) {
-        if (e) {
-            rel_rmse.push_back(e->rel_rmse);
-            max_abs.push_back(e->max_abs);
-            if (std::isfinite(e->psnr)) {
-                psnr.push_back(e->psnr);
-            }
-        }
-    }
     start = Clock::now();
     const RegionStatistics& regions = caches.region(cell, sequence.state(0), true);
     const double regions_ms = ms_since(start);
-    const std::string image = worst ? write_images(x, cell, rep, out, *worst) : std::string();
+    const std::string image =
+        scores.picture ? write_images(x, cell, rep, out, *scores.picture) : std::string();
 
     Json row = row_head(x, cell, rep, frames, frame_ms);
     const size_t slowest =
@@ -408,23 +462,7 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
     row["cpu_ms_gl_setup"] = setup_ms;
     row["cpu_ms_prepare"] = prepare_ms;
     row["cpu_ms_region_statistics"] = regions_ms;
-    const bool scored = !rel_rmse.empty();
-    // Per frame: the median and p95 relative RMSE, the worst frame; max_abs the sequence's
-    // largest, psnr the median.
-    row["rel_rmse"] = metric_value(x, "rel_rmse", scored, median(rel_rmse));
-    row["max_abs"] =
-        metric_value(x, "max_abs", scored,
-                     max_abs.empty() ? 0.0 : *std::max_element(max_abs.begin(), max_abs.end()));
-    row["psnr"] = metric_value(x, "psnr", !psnr.empty(), median(psnr));
-    if (scored) {
-        row["rel_rmse_p95"] = percentile(rel_rmse, 95.0);
-        row["rel_rmse_worst"] = *std::max_element(rel_rmse.begin(), rel_rmse.end());
-        row["error_worst_frame"] = worst_frame;
-        row["temporal_error"] = temporal.temporal_error();
-        row["flicker"] = temporal.flicker();
-        row["pops"] = count_pops(rel_rmse, x.scoring.pop_factor, x.scoring.pop_floor);
-        row["scored_frames"] = int(rel_rmse.size());
-    }
+    add_sequence_scores(row, x, scores);
     add_tail(row, x, *s.method, method_statistics, regions, renderer.shadow(), context, image);
     row["protocol"] = "animation";
     row["sequence"] = sequence.description();
@@ -433,25 +471,7 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
     row["stride"] = stride;
     row["reference_sequence_ms"] = reference_ms;
     row["frame_ms_samples"] = frame_ms;
-    Json per_frame = {{"frame", Json::array()},         {"time_s", Json::array()},
-                      {"frame_ms", Json::array()},      {"update_ms", Json::array()},
-                      {"apply_ms", Json::array()},      {"wait_ms", Json::array()},
-                      {"draw_ms", Json::array()},       {"gpu_ms", Json::array()},
-                      {"gpu_ms_volume", Json::array()}, {"rel_rmse", Json::array()}};
-    for (const gl::FrameRecord& r : records) {
-        per_frame["frame"].push_back(r.frame);
-        per_frame["time_s"].push_back(sequence.time(r.frame));
-        per_frame["frame_ms"].push_back(r.frame_ms);
-        per_frame["update_ms"].push_back(r.update_ms);
-        per_frame["apply_ms"].push_back(r.apply_ms);
-        per_frame["wait_ms"].push_back(r.wait_ms);
-        per_frame["draw_ms"].push_back(r.draw_ms);
-        per_frame["gpu_ms"].push_back(r.gpu.total_ms());
-        per_frame["gpu_ms_volume"].push_back(r.gpu.volume_ms);
-        const auto& e = errors[size_t(r.frame)];
-        per_frame["rel_rmse"].push_back(e ? Json(e->rel_rmse) : Json());
-    }
-    row["per_frame"] = std::move(per_frame);
+    row["per_frame"] = per_frame_series(records, sequence, scores);
     return row;
 }
 
