@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "experiments/sequence.h"
 #include "gl/volume_method.h"
 #include "methods/registry.h"
 #include "scenes/scene_file.h"
@@ -478,7 +479,10 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
                 scene = (folder / scene).lexically_normal().string();
             }
             try {
-                load_scene(scene, SceneSearchPaths::defaults());
+                const Scene loaded = load_scene(scene, SceneSearchPaths::defaults());
+                if (x.protocol.animated()) {
+                    Sequence{loaded, x.protocol};  // frames and step fit its animation
+                }
             } catch (const Error& e) {
                 r.error("scenes", e.what());
             }

@@ -218,7 +218,8 @@ TEST(Experiment, AnimationProtocolKeysAreCheckedAndOnlyForAnimations) {
              {"[protocol]\nstep = 0.1\n", "step"},
              {"[reference]\nstride = 2\n", "stride"},
              {"[protocol]\nkind = \"animation\"\nframe_mode = \"async\"\n", "frame_mode"},
-             {"[protocol]\nkind = \"animation\"\n[reference]\nstride = 0\n", "stride"}}) {
+             {"[protocol]\nkind = \"animation\"\n[reference]\nstride = 0\n", "stride"},
+             {"[protocol]\nkind = \"animation\"\nframes = 500\n", "frames = 500"}}) {
         try {
             parse_experiment("name = \"b\"\n" + text + sweep, "b.toml");
             ADD_FAILURE() << "accepted: " << text;
