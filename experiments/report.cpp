@@ -485,7 +485,7 @@ std::string baseline_comparison(const Experiment& x, const fs::path& out,
     struct Cells {
         std::vector<double> fps, error;
         std::vector<std::vector<double>> samples;  // frame ms per repetition
-        bool complete = true;                       // every row kept its frames
+        bool complete = true;                      // every row kept its frames
         void add(const Json& row) {
             fps.push_back(row.at("fps").get<double>());
             if (row.contains("rel_rmse") && row["rel_rmse"].is_number()) {

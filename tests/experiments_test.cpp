@@ -550,7 +550,7 @@ TEST(Bench, BaselineComparisonListsEveryCellWithItsRatio) {
     EXPECT_NE(md.find("| toplight.march.32x16.samples=16 | "), std::string::npos) << md;
     EXPECT_TRUE(md.find("x | ") != std::string::npos || md.find("x * | ") != std::string::npos)
         << "a ratio: " << md;
-    EXPECT_NE(md.find(" [") , std::string::npos) << "FPS with its interval: " << md;
+    EXPECT_NE(md.find(" ["), std::string::npos) << "FPS with its interval: " << md;
     EXPECT_NE(md.find("(none)"), std::string::npos) << "cells of one run only: " << md;
     EXPECT_NE(md.find("llvmpipe"), std::string::npos) << "the machines named: " << md;
     EXPECT_NE(run_shaftlab("bench " + smoke + " --preset tiny --out " + b + " --baseline " +
