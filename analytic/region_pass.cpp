@@ -67,6 +67,7 @@ void AnalyticRegionPass::upload_mesh(const std::vector<glm::vec3>& positions,
     mesh_ = gl::create_triangle_mesh(positions, triangles);
     positions_ = positions;
     triangles_ = triangles;
+    windings_eye_.reset();
     if (mesh_.index_count > 0) {
         mesh_.vertex_array.label("lit regions");
     }  // else no lit region (or only slivers): draw() adds nothing
@@ -127,8 +128,11 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
     GL.DrawElements(GL_TRIANGLES, mesh_.index_count, GL_UNSIGNED_INT, nullptr);
     // The eye inside the regions: every ray's missing front face at z = 0.
-    eye_windings_ = int(std::lround(
-        winding_number(positions_, triangles_, glm::dvec3(inputs.scene.camera.position))));
+    const glm::vec3 eye = inputs.scene.camera.position;
+    if (windings_eye_ != eye) {
+        eye_windings_ = int(std::lround(winding_number(positions_, triangles_, glm::dvec3(eye))));
+        windings_eye_ = eye;
+    }
     if (eye_windings_ != 0) {
         GL.UseProgram(eye_program_.id());
         GL.ProgramUniform1f(eye_program_.id(), 0, float(eye_windings_));

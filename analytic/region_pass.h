@@ -58,8 +58,6 @@ public:
     // region about it (the winding number, on the CPU) — the closed form's antiderivative is
     // not 0 at the eye.
     void draw(const VolumeInputs& inputs) const;
-    // The regions about the eye at the last draw (the winding number rounded).
-    int eye_windings() const { return eye_windings_; }
     size_t triangle_count() const { return size_t(mesh_.index_count) / 3; }
     // Its lookup tables, named "<owner>/...".
     TextureViews textures(const std::string& owner) const;
@@ -70,6 +68,9 @@ private:
     gl::TriangleMesh mesh_;
     std::vector<glm::vec3> positions_;  // the mesh, for the eye's winding number
     std::vector<glm::uvec3> triangles_;
+    // The regions about the eye (the winding number rounded), for the eye it was taken at: taken
+    // again only when the eye moves or the mesh is replaced.
+    mutable std::optional<glm::vec3> windings_eye_;
     mutable int eye_windings_ = 0;
     Program program_;
     Program eye_program_;  // the full-screen -G(0) of rays that start inside a region
