@@ -111,7 +111,13 @@ namespace sl::gl {
     X(PFNGLSTENCILFUNCPROC, StencilFunc)                                 \
     X(PFNGLSTENCILOPPROC, StencilOp)                                     \
     X(PFNGLSTENCILMASKPROC, StencilMask)                                 \
-    X(PFNGLCLEARNAMEDFRAMEBUFFERFIPROC, ClearNamedFramebufferfi)
+    X(PFNGLCLEARNAMEDFRAMEBUFFERFIPROC, ClearNamedFramebufferfi)         \
+    X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                         \
+    X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                       \
+    X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                             \
+    X(PFNGLPOLYGONMODEPROC, PolygonMode)                                 \
+    X(PFNGLPROGRAMUNIFORM3FPROC, ProgramUniform3f)                       \
+    X(PFNGLPROGRAMUNIFORM3IPROC, ProgramUniform3i)
 
 struct Api {
 #define SL_GL_DECLARE(type, name) type name = nullptr;

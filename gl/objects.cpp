@@ -26,6 +26,18 @@ Texture create_texture_2d(GLenum internal_format, int width, int height, GLenum 
     return Texture(id);
 }
 
+Texture create_texture_3d(GLenum internal_format, int width, int height, int depth, GLenum filter) {
+    GLuint id = 0;
+    GL.CreateTextures(GL_TEXTURE_3D, 1, &id);
+    GL.TextureStorage3D(id, 1, internal_format, width, height, depth);
+    GL.TextureParameteri(id, GL_TEXTURE_MIN_FILTER, GLint(filter));
+    GL.TextureParameteri(id, GL_TEXTURE_MAG_FILTER, GLint(filter));
+    for (const GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
+        GL.TextureParameteri(id, wrap, GL_CLAMP_TO_EDGE);
+    }
+    return Texture(id);
+}
+
 Framebuffer create_framebuffer() {
     GLuint id = 0;
     GL.CreateFramebuffers(1, &id);

@@ -95,6 +95,8 @@ Buffer create_buffer(const void* data, size_t bytes, GLbitfield flags = 0);
 Buffer create_mutable_buffer();
 // An immutable 2D texture of one level, clamped, filtered with `filter`.
 Texture create_texture_2d(GLenum internal_format, int width, int height, GLenum filter);
+// An immutable 3D texture of one level, clamped on every axis, filtered with `filter`.
+Texture create_texture_3d(GLenum internal_format, int width, int height, int depth, GLenum filter);
 Framebuffer create_framebuffer();
 VertexArray create_vertex_array();
 Query create_query(GLenum target);

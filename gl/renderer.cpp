@@ -234,6 +234,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
         const Query priming = create_query(GL_TIME_ELAPSED);
         GL.BeginQuery(GL_TIME_ELAPSED, priming.id());
         const float one = 1.0f;
+        GL.DepthMask(GL_TRUE);  // depth clears obey the mask
         GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_DEPTH, 0, &one);
         GL.EndQuery(GL_TIME_ELAPSED);
         GLuint64 ns = 0;
@@ -342,6 +343,7 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         GL.BindFramebuffer(GL_FRAMEBUFFER, shadow_framebuffer_.id());
         GL.Viewport(0, 0, size, size);
         const float one = 1.0f;
+        GL.DepthMask(GL_TRUE);  // depth clears obey the mask
         GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_DEPTH, 0, &one);
         const bool vsm = shadow_.filter == ShadowFilter::vsm;
         if (vsm) {
@@ -410,8 +412,18 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         GL.ClearNamedFramebufferfv(volume_framebuffer_.id(), GL_COLOR, 0, zero);
         GL.Disable(GL_DEPTH_TEST);
         GL.DepthMask(GL_FALSE);
-        method.render(VolumeInputs{scene_, uniforms_, surface_depth_.id(), shadow_map_.id(), w, h,
-                                   *timeline_});
+        try {
+            method.render(VolumeInputs{scene_, uniforms_, surface_depth_.id(), shadow_map_.id(), w,
+                                       h, *timeline_});
+        } catch (...) {
+            // A method that refuses its parameters mid-frame (a froxel grid too large for the
+            // image) leaves the context as a finished frame would: no query left running, depth
+            // writes on.
+            timeline_->end();
+            GL.PopDebugGroup();
+            GL.DepthMask(GL_TRUE);
+            throw;
+        }
         timeline_->end();
         GL.PopDebugGroup();
     }

@@ -92,6 +92,8 @@ void VolumeMethod::declare_shadow_parameters() {
 ShadowSettings VolumeMethod::shadow_settings(ShadowSettings frame) const {
     if (has_parameter("shadow")) {
         frame.filter = ShadowFilter(int(parameter("shadow")));
+    }
+    if (has_parameter("shadow_size")) {
         frame.map_size = int(parameter("shadow_size"));
     }
     return frame;

@@ -130,8 +130,8 @@ public:
     virtual MethodStatistics statistics() const { return {}; }
     // The method's own textures of the last frame (render targets, lookup tables).
     virtual TextureViews textures() const { return {}; }
-    // The shadow map the method asks for: `frame` with the filter and size replaced when the
-    // method declared the `shadow` parameters.
+    // The shadow map the method asks for: `frame` with the filter and the size replaced by the
+    // method's `shadow` and `shadow_size` parameters, each where it declared it.
     ShadowSettings shadow_settings(ShadowSettings frame) const;
     bool has_parameter(const std::string& name) const;
 

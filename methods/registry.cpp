@@ -8,6 +8,8 @@
 
 #include "analytic/beamtree_method.h"
 #include "core/error.h"
+#include "froxel/froxel.h"
+#include "lightvolume/light_volume.h"
 #include "reference/reference_method.h"
 #include "sampling/march.h"
 #include "sampling/planes.h"
@@ -29,6 +31,8 @@ const std::vector<std::pair<std::string, Factory>>& registry() {
         {"hybrid2", [] { return sampling::create_planes_method(PlanesVariant::hybrid2); }},
         {"march", [] { return sampling::create_march_method(MarchVariant::march); }},
         {"hybrid3", [] { return sampling::create_march_method(MarchVariant::hybrid3); }},
+        {"froxel", froxel::create_froxel_method},
+        {"lightvolume", lightvolume::create_light_volume_method},
         {"reference", reference::create_reference_method},
     };
     return methods;

@@ -1,7 +1,8 @@
 #pragma once
 // The registry of volumetric methods: every method is created by name from here, and the
 // renderer, the harness and the viewer know methods only through gl::VolumeMethod. A method
-// lives in its family's folder (analytic/, sampling/, reference/); this is the table.
+// lives in its family's folder (analytic/, sampling/, froxel/, lightvolume/,
+// reference/); this is the table.
 
 #include <memory>
 #include <string>

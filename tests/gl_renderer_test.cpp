@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/error.h"
 #include "core/image.h"
 #include "gl/renderer.h"
 #include "methods/registry.h"
@@ -33,6 +34,19 @@ TEST_F(Render, SameSceneRendersBitIdenticallyTwice) {
     const gl::Frame b = render(scene, options);
     EXPECT_EQ(a.radiance.rgb, b.radiance.rgb);
     EXPECT_EQ(a.display_srgb8, b.display_srgb8);
+}
+
+// A method that refuses its parameters in the middle of a frame (lightvolume with one vertex per
+// side) leaves the context as a finished frame would: the next renderer's frame is bit-identical
+// to one made before. (It once left depth writes off, so the next shadow map was never cleared and
+// its light volume collapsed to nothing.)
+TEST_F(Render, AFrameAbortedByItsMethodLeavesTheNextFrameIntact) {
+    const Scene scene = load_canonical("toplight");
+    const gl::Frame before = render_method(scene, "lightvolume", 96, 54);
+    EXPECT_THROW(render_method(scene, "lightvolume", 96, 54, {{"resolution", "1"}}), sl::Error);
+    const gl::Frame after = render_method(scene, "lightvolume", 96, 54);
+    EXPECT_EQ(before.in_scattering.rgb, after.in_scattering.rgb);
+    EXPECT_EQ(before.radiance.rgb, after.radiance.rgb);
 }
 
 // With the `none` method, I_s is zero and the composite is exactly the surface pass; the GPU tone

@@ -183,6 +183,24 @@ Scene boxes_scene(MediumModel model) {
     return scene;
 }
 
+std::vector<std::pair<std::string, Scene>> eye_and_light_views() {
+    struct View {
+        const char* name;
+        glm::vec3 position, target;
+    };
+    std::vector<std::pair<std::string, Scene>> scenes;
+    for (const View& view : {View{"inside, across", {0.3f, 2.8f, 0.2f}, {4.0f, 1.0f, -3.0f}},
+                             View{"inside, down", {0.3f, 2.8f, 0.2f}, {0.0f, 0.0f, 0.0f}},
+                             View{"light behind", {0.9f, 6.5f, -0.6f}, {-0.2f, 0.0f, 0.1f}}}) {
+        Scene scene = boxes_scene(MediumModel::physical);
+        scene.camera.position = view.position;
+        scene.camera.target = view.target;
+        scene.camera.near = 0.05f;
+        scenes.emplace_back(view.name, std::move(scene));
+    }
+    return scenes;
+}
+
 std::vector<float> render_test_pattern(const gl::shared::FrameUniforms& uniforms,
                                        const char* fragment_shader, int width, int height,
                                        const std::vector<std::string>& defines) {

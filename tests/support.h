@@ -115,6 +115,11 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& y)
 // Floor and rotated boxes under a spot light: every object is its own outer volume.
 Scene boxes_scene(MediumModel model);
 
+// The boxes scene (physical medium) seen from three places that test how a method starts its eye
+// rays: inside the light looking across the beam, inside looking down at the objects, and above
+// the light with the apex behind the camera. Named.
+std::vector<std::pair<std::string, Scene>> eye_and_light_views();
+
 // The canonical scenes from the source tree.
 Scene load_canonical(const std::string& name);
 

@@ -1,0 +1,346 @@
+#include "froxel/froxel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+
+#include "core/error.h"
+#include "gl/functions.h"
+#include "gl/shaders.h"
+
+namespace sl::froxel {
+
+namespace {
+
+using gl::GL;
+using gl::Parameter;
+
+// Uniform locations of shaders/grid.glsl and the passes.
+namespace grid_uniform {
+constexpr GLint size = 20, depth = 21;
+}
+namespace inject_uniform {
+constexpr GLint samples = 0, jitter = 1, frame_offset = 2;
+}
+namespace temporal_uniform {
+constexpr GLint history = 3, previous_view_projection = 4, previous_camera = 5,
+                previous_forward = 6, previous_depth = 7;
+}
+
+constexpr int kMaxSide = 2048;           // GL 4.5's least GL_MAX_3D_TEXTURE_SIZE
+constexpr double kMaxFroxels = 1 << 26;  // 1 GiB per RGBA32F volume
+constexpr int kJitterPeriod = 16;        // frames of the Halton sequence
+
+void set_grid_uniforms(GLuint program, const FroxelGrid& grid) {
+    GL.ProgramUniform3i(program, grid_uniform::size, grid.size.x, grid.size.y, grid.size.z);
+    GL.ProgramUniform2f(program, grid_uniform::depth, grid.depth_extent, grid.linear_depth);
+}
+
+GLuint groups(int n, int local) {
+    return GLuint((n + local - 1) / local);
+}
+
+// The radical inverse of i in base 2 (Halton's first dimension).
+float halton2(int i) {
+    float result = 0.0f, f = 0.5f;
+    for (; i > 0; i /= 2, f *= 0.5f) {
+        result += f * float(i % 2);
+    }
+    return result;
+}
+
+gl::Texture create_volume(const FroxelGrid& grid, const char* label) {
+    gl::Texture texture =
+        gl::create_texture_3d(GL_RGBA32F, grid.size.x, grid.size.y, grid.size.z, GL_LINEAR);
+    texture.label(label);
+    return texture;
+}
+
+}  // namespace
+
+double slice_depth(const FroxelGrid& grid, double s) {
+    const double E = grid.depth_extent, c = grid.linear_depth;
+    return c * std::exp(s / grid.size.z * std::log1p(E / c)) - c;
+}
+
+double influence_depth(const Scene& scene) {
+    const Camera& camera = scene.camera;
+    const glm::dvec3 eye(camera.position);
+    const glm::dvec3 forward = glm::normalize(glm::dvec3(camera.target) - eye);
+    const glm::dmat4 inverse =
+        glm::inverse(glm::dmat4(scene.light.projection() * scene.light.view()));
+    double farthest = -HUGE_VAL;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec4 p = inverse * glm::dvec4(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1,
+                                                  corner & 4 ? 1 : -1, 1.0);
+        farthest = std::max(farthest, glm::dot(glm::dvec3(p) / p.w - eye, forward));
+    }
+    return std::clamp(farthest, double(camera.near), double(camera.far));
+}
+
+FroxelGrid make_grid(const Scene& scene, int width, int height, double grid_scale, int slices,
+                     double depth_extent, double linear_depth) {
+    FroxelGrid grid;
+    const auto side = [&](double base, double image, double reference) {
+        return std::max(1, int(std::lround(base * grid_scale * image / reference)));
+    };
+    grid.size = {side(160.0, width, 1280.0), side(90.0, height, 720.0),
+                 std::max(1, int(std::lround(slices * grid_scale)))};
+    const double froxels = double(grid.size.x) * grid.size.y * grid.size.z;
+    if (std::max({grid.size.x, grid.size.y, grid.size.z}) > kMaxSide || froxels > kMaxFroxels) {
+        fail(
+            "froxel grid {} x {} x {} is too large (at most {} per side and 2^26 froxels): "
+            "lower grid_scale or slices",
+            grid.size.x, grid.size.y, grid.size.z, kMaxSide);
+    }
+    grid.depth_extent = float(depth_extent > 0.0 ? depth_extent : influence_depth(scene));
+    grid.linear_depth = float(linear_depth > 0.0 ? linear_depth : grid.depth_extent / 8.0);
+    return grid;
+}
+
+void FroxelIntegrator::integrate(const FroxelGrid& grid, GLuint densities,
+                                 GLuint integrated) const {
+    if (!program_) {
+        program_ = gl::create_program({{GL_COMPUTE_SHADER, "froxel/shaders/integrate.comp"}});
+    }
+    set_grid_uniforms(program_.id(), grid);
+    GL.UseProgram(program_.id());
+    GL.BindTextureUnit(0, densities);
+    GL.BindImageTexture(0, integrated, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    GL.DispatchCompute(groups(grid.size.x, 8), groups(grid.size.y, 8), 1);
+    GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+namespace {
+
+class FroxelMethod final : public gl::VolumeMethod {
+public:
+    FroxelMethod() {
+        declare({.name = "grid_scale",
+                 .default_value = 1.0,
+                 .min = 0.05,
+                 .max = 16.0,
+                 .description = "the grid relative to 160 x 90 columns at 1280 x 720 (scaled "
+                                "with the image) and `slices` slices, on every axis"});
+        declare({.name = "slices",
+                 .type = Parameter::Type::integer,
+                 .default_value = 64,
+                 .min = 1,
+                 .max = 2048,
+                 .description = "depth slices at grid_scale 1"});
+        declare({.name = "depth_extent",
+                 .default_value = 0.0,
+                 .min = 0.0,
+                 .max = 1e6,
+                 .description = "metres of view depth the grid covers (0: the farthest point of "
+                                "the light's influence volume, within the camera's far plane)"});
+        declare({.name = "linear_depth",
+                 .default_value = 0.0,
+                 .min = 0.0,
+                 .max = 1e6,
+                 .description = "metres: slices are linear in depth well within it and "
+                                "exponential beyond (0: an eighth of depth_extent)"});
+        declare({.name = "samples",
+                 .type = Parameter::Type::integer,
+                 .default_value = 1,
+                 .min = 1,
+                 .max = 64,
+                 .description = "points per froxel, stratified along its depth span"});
+        declare({.name = "jitter",
+                 .type = Parameter::Type::integer,
+                 .default_value = 0,
+                 .min = 0,
+                 .max = 1,
+                 .description = "1: the points move within their strata every frame (per-froxel "
+                                "noise plus a Halton step), for the temporal filter"});
+        declare({.name = "temporal",
+                 .type = Parameter::Type::integer,
+                 .default_value = 0,
+                 .min = 0,
+                 .max = 1,
+                 .description = "1: reprojection into the last frame's grid with an exponential "
+                                "history, clamped to the current neighbourhood"});
+        declare({.name = "history",
+                 .default_value = 0.9,
+                 .min = 0.0,
+                 .max = 0.99,
+                 .description = "the history's weight in each frame's blend (temporal = 1)"});
+        declare_shadow_parameters();
+    }
+    std::string name() const override { return "froxel"; }
+
+    void prepare(const Scene& scene) override {
+        if (!inject_program_) {
+            inject_program_ =
+                gl::create_program({{GL_COMPUTE_SHADER, "froxel/shaders/inject.comp"}});
+            temporal_program_ =
+                gl::create_program({{GL_COMPUTE_SHADER, "froxel/shaders/temporal.comp"}});
+            apply_program_ =
+                gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                    {GL_FRAGMENT_SHADER, "froxel/shaders/apply.frag"}});
+            atlas_program_ = gl::create_program({{GL_COMPUTE_SHADER, "froxel/shaders/atlas.comp"}});
+            empty_vertex_array_ = gl::create_vertex_array();
+        }
+        previous_.reset();
+        frame_index_ = 0;
+        update(scene, SceneChange::everything(scene));
+    }
+    std::unique_ptr<gl::FrameWork> cpu_update(const Scene&, const SceneChange&) const override {
+        return nullptr;  // the grid is made on the GPU every frame
+    }
+    void apply_update(const Scene&, const SceneChange&, std::unique_ptr<gl::FrameWork>) override {}
+
+    void render(const gl::VolumeInputs& inputs) override {
+        const FroxelGrid grid = make_grid(inputs.scene, inputs.width, inputs.height,
+                                          parameter("grid_scale"), int(parameter("slices")),
+                                          parameter("depth_extent"), parameter("linear_depth"));
+        allocate(grid);
+        const bool temporal = parameter("temporal") != 0;
+
+        inputs.timeline.section("inject");
+        GLuint program = inject_program_.id();
+        set_grid_uniforms(program, grid);
+        GL.ProgramUniform1i(program, inject_uniform::samples, int(parameter("samples")));
+        GL.ProgramUniform1i(program, inject_uniform::jitter, int(parameter("jitter")));
+        GL.ProgramUniform1f(program, inject_uniform::frame_offset,
+                            halton2(frame_index_ % kJitterPeriod + 1));
+        GL.UseProgram(program);
+        GL.BindImageTexture(0, injected_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        GL.DispatchCompute(groups(grid.size.x, 4), groups(grid.size.y, 4), groups(grid.size.z, 4));
+        GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+        GLuint densities = injected_.id();
+        if (temporal) {
+            inputs.timeline.section("temporal");
+            const int current = frame_index_ % 2;
+            const gl::Texture& result = history_[current];
+            program = temporal_program_.id();
+            set_grid_uniforms(program, grid);
+            // Without a previous frame of this grid, the history's weight is 0.
+            GL.ProgramUniform1f(program, temporal_uniform::history,
+                                previous_ ? float(parameter("history")) : 0.0f);
+            const Previous p = previous_.value_or(Previous{});
+            GL.ProgramUniformMatrix4fv(program, temporal_uniform::previous_view_projection, 1,
+                                       GL_FALSE, &p.view_projection[0][0]);
+            GL.ProgramUniform4fv(program, temporal_uniform::previous_camera, 1, &p.camera[0]);
+            GL.ProgramUniform4fv(program, temporal_uniform::previous_forward, 1, &p.forward[0]);
+            GL.ProgramUniform2f(program, temporal_uniform::previous_depth, p.depth.x, p.depth.y);
+            GL.UseProgram(program);
+            GL.BindTextureUnit(0, injected_.id());
+            GL.BindTextureUnit(1, history_[1 - current].id());
+            GL.BindImageTexture(0, result.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            GL.DispatchCompute(groups(grid.size.x, 4), groups(grid.size.y, 4),
+                               groups(grid.size.z, 4));
+            GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            densities = result.id();
+            previous_ = Previous{.view_projection = inputs.uniforms.view_projection,
+                                 .camera = inputs.uniforms.camera_position,
+                                 .forward = inputs.uniforms.camera_forward,
+                                 .depth = {grid.depth_extent, grid.linear_depth}};
+        }
+        densities_ = densities;
+
+        inputs.timeline.section("integrate");
+        integrator_.integrate(grid, densities, integrated_.id());
+
+        inputs.timeline.section("apply");
+        program = apply_program_.id();
+        set_grid_uniforms(program, grid);
+        GL.UseProgram(program);
+        GL.BindTextureUnit(0, inputs.surface_depth);
+        GL.BindTextureUnit(1, integrated_.id());
+        GL.BindVertexArray(empty_vertex_array_.id());
+        GL.Enable(GL_BLEND);
+        GL.BlendFunc(GL_ONE, GL_ONE);
+        GL.DrawArrays(GL_TRIANGLES, 0, 3);
+        GL.Disable(GL_BLEND);
+        ++frame_index_;
+        if (atlases_wanted_) {
+            draw_atlas(density_atlas_, densities_, "froxel densities by slice");
+            draw_atlas(integral_atlas_, integrated_.id(), "froxel integral by slice");
+        }
+    }
+
+    gl::MethodStatistics statistics() const override {
+        return {{"froxels", double(grid_.size.x) * grid_.size.y * grid_.size.z},
+                {"grid_x", double(grid_.size.x)},
+                {"grid_y", double(grid_.size.y)},
+                {"grid_slices", double(grid_.size.z)},
+                {"depth_extent", double(grid_.depth_extent)}};
+    }
+
+    // The slice atlases are made by the frame after the one that asked for them (the previewer
+    // asks every frame it shows them), so frames nobody looks at do not pay for them.
+    gl::TextureViews textures() const override {
+        atlases_wanted_ = true;
+        gl::TextureViews views;
+        if (density_atlas_) {
+            views.push_back(
+                {name() + "/densities S by slice (nearest bottom left)", density_atlas_.id()});
+            views.push_back({name() + "/integral I_s to each slice (nearest bottom left)",
+                             integral_atlas_.id()});
+        }
+        return views;
+    }
+
+private:
+    struct Previous {
+        glm::mat4 view_projection{1.0f};
+        glm::vec4 camera{0.0f}, forward{0.0f, 0.0f, -1.0f, 0.0f};
+        glm::vec2 depth{1.0f, 1.0f};
+    };
+
+    void allocate(const FroxelGrid& grid) {
+        if (grid.size == grid_.size && injected_) {
+            grid_ = grid;
+            return;
+        }
+        grid_ = grid;
+        injected_ = create_volume(grid, "froxel densities");
+        history_[0] = create_volume(grid, "froxel history 0");
+        history_[1] = create_volume(grid, "froxel history 1");
+        integrated_ = create_volume(grid, "froxel integral");
+        previous_.reset();
+        density_atlas_.reset();
+        integral_atlas_.reset();
+    }
+
+    void draw_atlas(gl::Texture& atlas, GLuint volume, const char* label) {
+        const int columns = int(std::ceil(std::sqrt(double(grid_.size.z))));
+        const int rows = (grid_.size.z + columns - 1) / columns;
+        const int w = columns * grid_.size.x, h = rows * grid_.size.y;
+        if (!atlas) {
+            atlas = gl::create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
+            atlas.label(label);
+        }
+        GL.UseProgram(atlas_program_.id());
+        GL.ProgramUniform1i(atlas_program_.id(), 0, columns);
+        GL.BindTextureUnit(0, volume);
+        GL.BindImageTexture(0, atlas.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        GL.DispatchCompute(groups(w, 8), groups(h, 8), 1);
+        GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+
+    gl::Program inject_program_, temporal_program_, apply_program_, atlas_program_;
+    FroxelIntegrator integrator_;
+    gl::VertexArray empty_vertex_array_;
+    gl::Texture injected_, history_[2], integrated_;
+    gl::Texture density_atlas_, integral_atlas_;
+    GLuint densities_ = 0;  // what the last frame integrated: injected_ or a history
+    FroxelGrid grid_;
+    std::optional<Previous> previous_;
+    int frame_index_ = 0;
+    mutable bool atlases_wanted_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<gl::VolumeMethod> create_froxel_method() {
+    return std::make_unique<FroxelMethod>();
+}
+
+}  // namespace sl::froxel

@@ -1,0 +1,296 @@
+#include "lightvolume/light_volume.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+
+#include "analytic/gpu_tables.h"
+#include "analytic/region_pass.h"
+#include "core/error.h"
+#include "gl/functions.h"
+#include "gl/objects.h"
+#include "gl/shaders.h"
+
+namespace sl::lightvolume {
+
+namespace {
+
+using gl::GL;
+using gl::Parameter;
+
+// Uniform locations of shaders/grid.glsl.
+namespace grid_uniform {
+constexpr GLint resolution = 10, clip_to_world = 11;
+}
+constexpr GLuint kLightDepthUnit = 1;
+
+// The k-th border vertex of the grid (grid.glsl's border_vertex), as (i, j).
+glm::ivec2 border_vertex(int k, int resolution) {
+    const int n = resolution - 1;
+    if (k < n)
+        return {k, 0};
+    if (k < 2 * n)
+        return {n, k - n};
+    if (k < 3 * n)
+        return {n - (k - 2 * n), n};
+    return {0, n - (k - 3 * n)};
+}
+
+}  // namespace
+
+int light_volume_vertex_count(int resolution) {
+    return resolution * resolution + 4 * (resolution - 1) + 1;
+}
+
+std::vector<glm::uvec3> light_volume_triangles(int resolution) {
+    if (resolution < 2) {
+        fail("a light volume needs at least 2 grid vertices per side, not {}", resolution);
+    }
+    const int n = resolution;
+    const auto grid = [n](int i, int j) { return uint32_t(i + n * j); };
+    const int border = 4 * (n - 1);
+    const auto near_border = [n](int k) { return uint32_t(n * n + k); };
+    const uint32_t centre = uint32_t(n * n + border);
+    std::vector<glm::uvec3> triangles;
+    triangles.reserve(size_t(2 * (n - 1) * (n - 1) + 3 * border));
+    // The map's projection reverses orientation (its depth grows away from the light), so the
+    // faces are wound clockwise in the map to face outwards in the world.
+    for (int j = 0; j + 1 < n; ++j) {
+        for (int i = 0; i + 1 < n; ++i) {
+            triangles.push_back({grid(i, j), grid(i + 1, j + 1), grid(i + 1, j)});
+            triangles.push_back({grid(i, j), grid(i, j + 1), grid(i + 1, j + 1)});
+        }
+    }
+    for (int k = 0; k < border; ++k) {
+        const int next = (k + 1) % border;
+        const glm::ivec2 a = border_vertex(k, n), b = border_vertex(next, n);
+        triangles.push_back({grid(a.x, a.y), grid(b.x, b.y), near_border(next)});
+        triangles.push_back({grid(a.x, a.y), near_border(next), near_border(k)});
+        triangles.push_back({centre, near_border(k), near_border(next)});
+    }
+    return triangles;
+}
+
+std::vector<glm::dvec3> light_volume_positions(const std::vector<float>& depths, int size,
+                                               const glm::mat4& light_clip_to_world,
+                                               int resolution) {
+    if (size < 1 || depths.size() != size_t(size) * size_t(size)) {
+        fail("the light volume needs the shadow map's {} x {} depths, not {}", size, size,
+             depths.size());
+    }
+    const glm::dmat4 inverse(light_clip_to_world);
+    const double last = double(resolution - 1);
+    const auto unproject = [&](glm::dvec2 uv, double depth) {
+        const glm::dvec4 p = inverse * glm::dvec4(2.0 * uv - 1.0, 2.0 * depth - 1.0, 1.0);
+        return glm::dvec3(p) / p.w;
+    };
+    const auto point = [&](glm::ivec2 ij, bool near_plane) {
+        double depth = 0.0;
+        if (!near_plane) {
+            const auto texel = [&](int index) {
+                return int(std::round(double(index) * double(size - 1) / last));
+            };
+            depth = depths[size_t(texel(ij.y)) * size_t(size) + size_t(texel(ij.x))];
+        }
+        return unproject(glm::dvec2(ij) / last, depth);
+    };
+    std::vector<glm::dvec3> positions;
+    positions.reserve(size_t(light_volume_vertex_count(resolution)));
+    for (int j = 0; j < resolution; ++j) {
+        for (int i = 0; i < resolution; ++i) {
+            positions.push_back(point({i, j}, false));
+        }
+    }
+    for (int k = 0; k < 4 * (resolution - 1); ++k) {
+        positions.push_back(point(border_vertex(k, resolution), true));
+    }
+    positions.push_back(unproject({0.5, 0.5}, 0.0));
+    return positions;
+}
+
+glm::mat4 light_clip_to_world(const SpotLight& light) {
+    return glm::mat4(glm::inverse(glm::dmat4(light.projection() * light.view())));
+}
+
+namespace {
+
+class LightVolumeMethod final : public gl::VolumeMethod {
+public:
+    LightVolumeMethod() {
+        declare({.name = "resolution",
+                 .type = Parameter::Type::integer,
+                 .default_value = 256,
+                 .min = 0,
+                 .max = 4096,
+                 .description = "grid vertices per side over the shadow map, at least 2 (0: one "
+                                "per texel, the map's size)"});
+        declare({.name = "shadow_size",
+                 .type = Parameter::Type::integer,
+                 .default_value = 1024,
+                 .min = 16,
+                 .max = 16384,
+                 .description = "shadow map resolution (texels per side): the lit volume's"});
+    }
+    std::string name() const override { return "lightvolume"; }
+    std::string accepts() const override { return analytic::AnalyticRegionPass::accepts(); }
+
+    void prepare(const Scene& scene) override {
+        analytic::AnalyticRegionPass::require_closed_form(scene, name());
+        if (!empty_vertex_array_) {
+            empty_vertex_array_ = gl::create_vertex_array();
+            plain_sampler_ = gl::create_plain_sampler(GL_NEAREST);
+            fragments_ = gl::create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
+        }
+        update(scene, SceneChange::everything(scene));
+    }
+    std::unique_ptr<gl::FrameWork> cpu_update(const Scene& scene,
+                                              const SceneChange&) const override {
+        analytic::AnalyticRegionPass::require_closed_form(scene, name());
+        return nullptr;  // the volume is made on the GPU from the frame's shadow map
+    }
+    void apply_update(const Scene& scene, const SceneChange&,
+                      std::unique_ptr<gl::FrameWork>) override {
+        const bool smooth_edge = scene.light.falloff_degrees > 0.0f;
+        if (!program_ || smooth_edge != smooth_edge_) {
+            const std::vector<std::string> defines = analytic::edge_defines(scene.light);
+            program_ =
+                gl::create_program({{GL_VERTEX_SHADER, "lightvolume/shaders/light_volume.vert"},
+                                    {GL_FRAGMENT_SHADER, "analytic/shaders/regions.frag"}},
+                                   defines);
+            eye_program_ =
+                gl::create_program({{GL_VERTEX_SHADER, "lightvolume/shaders/light_volume_eye.vert"},
+                                    {GL_FRAGMENT_SHADER, "analytic/shaders/regions_eye.frag"}},
+                                   defines);
+            wireframe_program_ =
+                gl::create_program({{GL_VERTEX_SHADER, "lightvolume/shaders/light_volume.vert"},
+                                    {GL_FRAGMENT_SHADER, "lightvolume/shaders/wireframe.frag"}});
+            // One region about the eye when the triangle is not collapsed (regions_eye.frag).
+            GL.ProgramUniform1f(eye_program_.id(), 0, 1.0f);
+            smooth_edge_ = smooth_edge;
+        }
+        if (!medium_ || !(*medium_ == scene.medium)) {
+            medium_table_ = analytic::create_medium_table(scene.medium);
+            medium_ = scene.medium;
+        }
+        clip_to_world_ = light_clip_to_world(scene.light);
+    }
+
+    void render(const gl::VolumeInputs& inputs) override {
+        int map_size = 0;
+        GL.GetTextureLevelParameteriv(inputs.shadow_map, 0, GL_TEXTURE_WIDTH, &map_size);
+        const int wanted = int(parameter("resolution"));
+        if (wanted == 1) {
+            fail(
+                "lightvolume: resolution 1 makes no grid: give at least 2 vertices per side, or 0 "
+                "for one per shadow-map texel");
+        }
+        const int resolution = std::max(2, wanted == 0 ? map_size : wanted);
+        if (resolution != resolution_) {
+            const std::vector<glm::uvec3> triangles = light_volume_triangles(resolution);
+            indices_ = gl::create_buffer(triangles.data(), triangles.size() * sizeof(glm::uvec3));
+            indices_.label("light volume grid");
+            index_count_ = GLsizei(triangles.size() * 3);
+            GL.VertexArrayElementBuffer(empty_vertex_array_.id(), indices_.id());
+            resolution_ = resolution;
+        }
+        inputs.timeline.section("light volume");
+        for (const gl::Program* program : {&program_, &eye_program_, &wireframe_program_}) {
+            GL.ProgramUniform1i(program->id(), grid_uniform::resolution, resolution_);
+            GL.ProgramUniformMatrix4fv(program->id(), grid_uniform::clip_to_world, 1, GL_FALSE,
+                                       &clip_to_world_[0][0]);
+        }
+        GL.BindTextureUnit(0, inputs.surface_depth);
+        GL.BindTextureUnit(kLightDepthUnit, inputs.shadow_map);
+        GL.BindSampler(kLightDepthUnit, plain_sampler_.id());  // depths, not comparisons
+        GL.BindTextureUnit(analytic::kMediumTableUnit, medium_table_.id());
+        GL.BindVertexArray(empty_vertex_array_.id());
+        GL.Enable(GL_BLEND);
+        GL.BlendFunc(GL_ONE, GL_ONE);  // signed sums in the float target
+        GL.Enable(GL_DEPTH_CLAMP);     // faces in front of the near plane still count
+        GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
+        GL.UseProgram(program_.id());
+        GL.DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+        GL.UseProgram(eye_program_.id());  // collapses to nothing unless the eye is inside
+        GL.DrawArrays(GL_TRIANGLES, 0, 3);
+        GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
+        GL.Disable(GL_DEPTH_CLAMP);
+        GL.Disable(GL_BLEND);
+        if (wireframe_wanted_) {
+            draw_wireframe(inputs);
+        }
+        GL.BindSampler(kLightDepthUnit, 0);
+    }
+
+    gl::MethodStatistics statistics() const override {
+        GLuint64 fragments = 0;
+        GL.GetQueryObjectui64v(fragments_.id(), GL_QUERY_RESULT, &fragments);
+        return {{"grid_resolution", double(resolution_)},
+                {"region_faces", double(index_count_ / 3)},
+                {"fragments_analytic", double(fragments)}};
+    }
+
+    // The wireframe is drawn by the frame after the one that asked for it (the previewer asks
+    // every frame it shows it), so frames nobody looks at do not pay for it.
+    gl::TextureViews textures() const override {
+        wireframe_wanted_ = true;
+        gl::TextureViews views;
+        if (wireframe_) {
+            views.push_back(
+                {name() + "/wireframe (front faces green, back orange)", wireframe_.id()});
+        }
+        if (medium_table_) {
+            views.push_back({name() + "/G(z) table of the medium", medium_table_.id()});
+        }
+        return views;
+    }
+
+private:
+    void draw_wireframe(const gl::VolumeInputs& inputs) {
+        GLint target = 0;
+        GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+        if (wireframe_width_ != inputs.width || wireframe_height_ != inputs.height) {
+            wireframe_ = gl::create_texture_2d(GL_RGBA8, inputs.width, inputs.height, GL_LINEAR);
+            wireframe_.label("light volume wireframe");
+            wireframe_framebuffer_ = gl::create_framebuffer();
+            GL.NamedFramebufferTexture(wireframe_framebuffer_.id(), GL_COLOR_ATTACHMENT0,
+                                       wireframe_.id(), 0);
+            wireframe_width_ = inputs.width;
+            wireframe_height_ = inputs.height;
+        }
+        const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+        GL.ClearNamedFramebufferfv(wireframe_framebuffer_.id(), GL_COLOR, 0, clear);
+        GL.BindFramebuffer(GL_FRAMEBUFFER, wireframe_framebuffer_.id());
+        GL.UseProgram(wireframe_program_.id());
+        GL.PolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+        GL.DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+        GL.PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+    }
+
+    gl::Program program_, eye_program_, wireframe_program_;
+    gl::VertexArray empty_vertex_array_;  // no attributes: the grid's indices alone
+    gl::Buffer indices_;
+    gl::Sampler plain_sampler_;
+    gl::Texture medium_table_;
+    gl::Query fragments_;
+    gl::Texture wireframe_;
+    gl::Framebuffer wireframe_framebuffer_;
+    int wireframe_width_ = 0, wireframe_height_ = 0;
+    mutable bool wireframe_wanted_ = false;
+    glm::mat4 clip_to_world_{1.0f};
+    GLsizei index_count_ = 0;
+    int resolution_ = 0;
+    bool smooth_edge_ = false;
+    std::optional<Medium> medium_;
+};
+
+}  // namespace
+
+std::unique_ptr<gl::VolumeMethod> create_light_volume_method() {
+    return std::make_unique<LightVolumeMethod>();
+}
+
+}  // namespace sl::lightvolume
