@@ -243,7 +243,7 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
          "[environment] shading: unknown IBL shading 'phong'"},
         {"--scene toplight --method magic",
          "unknown method 'magic' (known: none, beamtree, planes, hybrid1, hybrid2, march, hybrid3, "
-         "reference)"},
+         "froxel, lightvolume, reference)"},
         {"--scene toplight --method march --set resolution_scale=0.3",
          "parameter 'resolution_scale': '0.3' is not one of 1, 0.5, 0.25"},
         {"--scene toplight --method march --set samples=0",
