@@ -129,10 +129,11 @@ public:
                                 "per texel, the map's size)"});
         declare({.name = "shadow_size",
                  .type = Parameter::Type::integer,
-                 .default_value = 1024,
+                 .default_value = 2048,
                  .min = 16,
                  .max = 16384,
-                 .description = "shadow map resolution (texels per side): the lit volume's"});
+                 .description = "shadow map resolution (texels per side): the lit volume's "
+                                "(the frame's default, so that frame times compare)"});
     }
     std::string name() const override { return "lightvolume"; }
     std::string accepts() const override { return analytic::AnalyticRegionPass::accepts(); }

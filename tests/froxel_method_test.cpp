@@ -146,5 +146,32 @@ TEST_F(Froxel, BadParametersAreRefusedByName) {
     expect_error("slices", "0", "slices");
 }
 
+// The previewer's slices: made by the frame after the one whose textures() asked for them, each
+// volume's slices side by side, the integral growing from slice to slice along a lit column.
+TEST_F(Froxel, ShowsItsSlicesToThePreviewerOnceAsked) {
+    const Scene scene = boxes_scene(MediumModel::physical);
+    gl::SceneRenderer renderer(scene, {.width = 96, .height = 54});
+    const auto method = methods::create_volume_method("froxel");
+    method->prepare(scene);
+    renderer.draw(*method);
+    EXPECT_TRUE(method->textures().empty());
+    renderer.draw(*method);
+    const gl::TextureViews views = method->textures();
+    ASSERT_EQ(views.size(), 2u);
+    // 12 x 7 columns, 64 slices: 8 x 8 tiles of 12 x 7.
+    std::vector<float> rgba(size_t(96) * 56 * 4);
+    gl::GL.GetTextureImage(views[1].texture, 0, GL_RGBA, GL_FLOAT,
+                           GLsizei(rgba.size() * sizeof(float)), rgba.data());
+    double first = 0.0, last = 0.0;
+    for (int y = 0; y < 7; ++y) {
+        for (int x = 0; x < 12; ++x) {
+            first += rgba[(size_t(y) * 96 + x) * 4];
+            last += rgba[(size_t(7 * 7 + y) * 96 + 7 * 12 + x) * 4];
+        }
+    }
+    EXPECT_GT(last, first);
+    EXPECT_GT(last, 0.0);
+}
+
 }  // namespace
 }  // namespace sl::test

@@ -168,5 +168,34 @@ TEST_F(LightVolume, BadParametersAreRefusedByName) {
     expect_error("resolution", "-4", "resolution");
 }
 
+// The previewer's wireframe: made by the frame after the one whose textures() asked for it, with
+// the grid's edges drawn (front faces green, back orange) over black.
+TEST_F(LightVolume, DrawsItsWireframeForThePreviewerOnceAsked) {
+    const Scene scene = boxes_scene(MediumModel::physical);
+    gl::SceneRenderer renderer(scene, {.width = 96, .height = 54});
+    const auto method = methods::create_volume_method("lightvolume");
+    method->set("resolution", "16");
+    method->prepare(scene);
+    renderer.draw(*method);
+    for (const gl::TextureView& view : method->textures())
+        EXPECT_EQ(view.name.find("wireframe"), std::string::npos) << "made before it was asked";
+    renderer.draw(*method);
+    GLuint wireframe = 0;
+    for (const gl::TextureView& view : method->textures())
+        if (view.name.find("wireframe") != std::string::npos)
+            wireframe = view.texture;
+    ASSERT_NE(wireframe, 0u);
+    std::vector<uint8_t> rgba(size_t(96) * 54 * 4);
+    gl::GL.GetTextureImage(wireframe, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()),
+                           rgba.data());
+    int green = 0, orange = 0;
+    for (size_t i = 0; i < rgba.size(); i += 4) {
+        green += rgba[i + 1] > 200 && rgba[i] < 100;
+        orange += rgba[i] > 200 && rgba[i + 1] < 200;
+    }
+    EXPECT_GT(green, 20);
+    EXPECT_GT(orange, 20);
+}
+
 }  // namespace
 }  // namespace sl::test
