@@ -200,6 +200,9 @@ public:
                                           parameter("depth_extent"), parameter("linear_depth"));
         allocate(grid);
         const bool temporal = parameter("temporal") != 0;
+        if (!temporal) {
+            previous_.reset();  // a history resumes from scratch, not from a stale frame
+        }
 
         inputs.timeline.section("inject");
         GLuint program = inject_program_.id();
