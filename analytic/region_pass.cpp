@@ -73,9 +73,39 @@ void AnalyticRegionPass::upload_mesh(const std::vector<glm::vec3>& positions,
     }  // else no lit region (or only slivers): draw() adds nothing
 }
 
-void AnalyticRegionPass::set_scene(const Scene& scene) {
+bool ClosedFormScene::set_scene(const Scene& scene) {
+    if (!medium_ || !(*medium_ == scene.medium)) {
+        medium_table_ = create_medium_table(scene.medium);
+        medium_ = scene.medium;
+    }
     const bool smooth_edge = scene.light.falloff_degrees > 0.0f;
-    if (!program_ || smooth_edge != smooth_edge_) {
+    const bool remake = smooth_edge_ != smooth_edge;
+    smooth_edge_ = smooth_edge;
+    return remake;
+}
+
+TextureViews ClosedFormScene::textures(const std::string& owner) const {
+    if (!medium_table_) {
+        return {};
+    }
+    return {{owner + "/G(z) table of the medium", medium_table_.id()}};
+}
+
+SignedDrawScope::SignedDrawScope(const VolumeInputs& inputs, const ClosedFormScene& closed_form) {
+    GL.BindTextureUnit(0, inputs.surface_depth);
+    GL.BindTextureUnit(kMediumTableUnit, closed_form.medium_table());
+    GL.Enable(GL_BLEND);
+    GL.BlendFunc(GL_ONE, GL_ONE);
+    GL.Enable(GL_DEPTH_CLAMP);
+}
+
+SignedDrawScope::~SignedDrawScope() {
+    GL.Disable(GL_DEPTH_CLAMP);
+    GL.Disable(GL_BLEND);
+}
+
+void AnalyticRegionPass::set_scene(const Scene& scene) {
+    if (closed_form_.set_scene(scene)) {
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
                                        {GL_FRAGMENT_SHADER, "analytic/shaders/regions.frag"}},
                                       edge_defines(scene.light));
@@ -83,17 +113,12 @@ void AnalyticRegionPass::set_scene(const Scene& scene) {
             gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                 {GL_FRAGMENT_SHADER, "analytic/shaders/regions_eye.frag"}},
                                edge_defines(scene.light));
-        smooth_edge_ = smooth_edge;
     }
     if (!eye_vertex_array_) {
         eye_vertex_array_ = gl::create_vertex_array();
     }
     if (!fragments_) {
         fragments_ = gl::create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
-    }
-    if (!medium_ || !(*medium_ == scene.medium)) {
-        medium_table_ = create_medium_table(scene.medium);
-        medium_ = scene.medium;
     }
 }
 
@@ -118,12 +143,8 @@ std::unique_ptr<gl::FrameWork> region_frame_work(const Scene& scene, const Scene
 void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     if (mesh_.index_count == 0)
         return;
+    const SignedDrawScope scope(inputs, closed_form_);
     GL.UseProgram(program_.id());
-    GL.BindTextureUnit(0, inputs.surface_depth);
-    GL.BindTextureUnit(kMediumTableUnit, medium_table_.id());
-    GL.Enable(GL_BLEND);
-    GL.BlendFunc(GL_ONE, GL_ONE);  // signed sums in the float target
-    GL.Enable(GL_DEPTH_CLAMP);     // faces in front of the near plane still count
     GL.BindVertexArray(mesh_.vertex_array.id());
     GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
     GL.DrawElements(GL_TRIANGLES, mesh_.index_count, GL_UNSIGNED_INT, nullptr);
@@ -140,8 +161,6 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
         GL.DrawArrays(GL_TRIANGLES, 0, 3);
     }
     GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
-    GL.Disable(GL_DEPTH_CLAMP);
-    GL.Disable(GL_BLEND);
 }
 
 double AnalyticRegionPass::fragments() const {
@@ -153,10 +172,7 @@ double AnalyticRegionPass::fragments() const {
 }
 
 TextureViews AnalyticRegionPass::textures(const std::string& owner) const {
-    if (!medium_table_) {
-        return {};
-    }
-    return {{owner + "/G(z) table of the medium", medium_table_.id()}};
+    return closed_form_.textures(owner);
 }
 
 }  // namespace sl::analytic

@@ -34,6 +34,35 @@ std::vector<std::string> edge_defines(const SpotLight& light);
 double winding_number(const std::vector<glm::vec3>& positions,
                       const std::vector<glm::uvec3>& triangles, const glm::dvec3& point);
 
+// What a pass that draws faces with analytic/shaders/regions.frag keeps of the scene: the
+// medium's table, made again only when the medium changes, and the kind of cone edge its
+// programs were made for (edge_defines).
+class ClosedFormScene {
+public:
+    // Updates the table; true when the programs must be made (again): on the first call, and
+    // when the light's edge changes between hard and smooth.
+    bool set_scene(const Scene& scene);
+    GLuint medium_table() const { return medium_table_.id(); }
+    // The table, named "<owner>/..." (none before the first set_scene).
+    TextureViews textures(const std::string& owner) const;
+
+private:
+    Texture medium_table_;
+    std::optional<Medium> medium_;     // what medium_table_ was made for
+    std::optional<bool> smooth_edge_;  // what the programs were made for
+};
+
+// The GL state of a signed draw of region faces, for its scope: the surface depth at unit 0 and
+// the medium table at kMediumTableUnit bound, additive blending (signed sums in the float
+// target), depth clamp (faces in front of the near plane still count).
+class SignedDrawScope {
+public:
+    SignedDrawScope(const VolumeInputs& inputs, const ClosedFormScene& closed_form);
+    ~SignedDrawScope();
+    SignedDrawScope(const SignedDrawScope&) = delete;
+    SignedDrawScope& operator=(const SignedDrawScope&) = delete;
+};
+
 class AnalyticRegionPass {
 public:
     // Throws sl::Error when the closed forms do not cover the scene's light model: only the
@@ -75,10 +104,8 @@ private:
     Program program_;
     Program eye_program_;  // the full-screen -G(0) of rays that start inside a region
     gl::VertexArray eye_vertex_array_;
-    Texture medium_table_;
+    ClosedFormScene closed_form_;
     Query fragments_;
-    bool smooth_edge_ = false;      // what program_ was made for
-    std::optional<Medium> medium_;  // what medium_table_ was made for
 };
 
 // The CPU half of a region method's per-frame update (VolumeMethod::cpu_update): the frame's

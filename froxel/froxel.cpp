@@ -40,8 +40,12 @@ void set_grid_uniforms(GLuint program, const FroxelGrid& grid) {
     GL.ProgramUniform2f(program, grid_uniform::depth, grid.depth_extent, grid.linear_depth);
 }
 
-GLuint groups(int n, int local) {
-    return GLuint((n + local - 1) / local);
+// Runs the bound compute program over `threads` in work groups of `local` (the shader's
+// local_size), then makes its image writes visible to the passes after it.
+void dispatch(glm::ivec3 threads, glm::ivec3 local) {
+    const glm::ivec3 groups = (threads + local - 1) / local;
+    GL.DispatchCompute(GLuint(groups.x), GLuint(groups.y), GLuint(groups.z));
+    GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 // The radical inverse of i in base 2 (Halton's first dimension).
@@ -111,8 +115,7 @@ void FroxelIntegrator::integrate(const FroxelGrid& grid, GLuint densities,
     GL.UseProgram(program_.id());
     GL.BindTextureUnit(0, densities);
     GL.BindImageTexture(0, integrated, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    GL.DispatchCompute(groups(grid.size.x, 8), groups(grid.size.y, 8), 1);
-    GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    dispatch({grid.size.x, grid.size.y, 1}, {8, 8, 1});
 }
 
 namespace {
@@ -213,8 +216,7 @@ public:
                             halton2(frame_index_ % kJitterPeriod + 1));
         GL.UseProgram(program);
         GL.BindImageTexture(0, injected_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        GL.DispatchCompute(groups(grid.size.x, 4), groups(grid.size.y, 4), groups(grid.size.z, 4));
-        GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        dispatch(grid.size, {4, 4, 4});
 
         GLuint densities = injected_.id();
         if (temporal) {
@@ -236,17 +238,13 @@ public:
             GL.BindTextureUnit(0, injected_.id());
             GL.BindTextureUnit(1, history_[1 - current].id());
             GL.BindImageTexture(0, result.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-            GL.DispatchCompute(groups(grid.size.x, 4), groups(grid.size.y, 4),
-                               groups(grid.size.z, 4));
-            GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            dispatch(grid.size, {4, 4, 4});
             densities = result.id();
             previous_ = Previous{.view_projection = inputs.uniforms.view_projection,
                                  .camera = inputs.uniforms.camera_position,
                                  .forward = inputs.uniforms.camera_forward,
                                  .depth = {grid.depth_extent, grid.linear_depth}};
         }
-        densities_ = densities;
-
         inputs.timeline.section("integrate");
         integrator_.integrate(grid, densities, integrated_.id());
 
@@ -263,7 +261,7 @@ public:
         GL.Disable(GL_BLEND);
         ++frame_index_;
         if (atlases_wanted_) {
-            draw_atlas(density_atlas_, densities_, "froxel densities by slice");
+            draw_atlas(density_atlas_, densities, "froxel densities by slice");
             draw_atlas(integral_atlas_, integrated_.id(), "froxel integral by slice");
         }
     }
@@ -324,8 +322,7 @@ private:
         GL.ProgramUniform1i(atlas_program_.id(), 0, columns);
         GL.BindTextureUnit(0, volume);
         GL.BindImageTexture(0, atlas.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        GL.DispatchCompute(groups(w, 8), groups(h, 8), 1);
-        GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        dispatch({w, h, 1}, {8, 8, 1});
     }
 
     gl::Program inject_program_, temporal_program_, apply_program_, atlas_program_;
@@ -333,7 +330,6 @@ private:
     gl::VertexArray empty_vertex_array_;
     gl::Texture injected_, history_[2], integrated_;
     gl::Texture density_atlas_, integral_atlas_;
-    GLuint densities_ = 0;  // what the last frame integrated: injected_ or a history
     FroxelGrid grid_;
     std::optional<Previous> previous_;
     int frame_index_ = 0;

@@ -1,5 +1,7 @@
 #include "gl/objects.h"
 
+#include <initializer_list>
+
 namespace sl::gl {
 
 Buffer create_buffer(const void* data, size_t bytes, GLbitfield flags) {
@@ -15,14 +17,24 @@ Buffer create_mutable_buffer() {
     return Buffer(id);
 }
 
+namespace {
+
+// Filtered with `filter`, clamped on each of `wraps`.
+void set_sampling(GLuint texture, GLenum filter, std::initializer_list<GLenum> wraps) {
+    GL.TextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GLint(filter));
+    GL.TextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GLint(filter));
+    for (const GLenum wrap : wraps) {
+        GL.TextureParameteri(texture, wrap, GL_CLAMP_TO_EDGE);
+    }
+}
+
+}  // namespace
+
 Texture create_texture_2d(GLenum internal_format, int width, int height, GLenum filter) {
     GLuint id = 0;
     GL.CreateTextures(GL_TEXTURE_2D, 1, &id);
     GL.TextureStorage2D(id, 1, internal_format, width, height);
-    GL.TextureParameteri(id, GL_TEXTURE_MIN_FILTER, GLint(filter));
-    GL.TextureParameteri(id, GL_TEXTURE_MAG_FILTER, GLint(filter));
-    GL.TextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    GL.TextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    set_sampling(id, filter, {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T});
     return Texture(id);
 }
 
@@ -30,11 +42,7 @@ Texture create_texture_3d(GLenum internal_format, int width, int height, int dep
     GLuint id = 0;
     GL.CreateTextures(GL_TEXTURE_3D, 1, &id);
     GL.TextureStorage3D(id, 1, internal_format, width, height, depth);
-    GL.TextureParameteri(id, GL_TEXTURE_MIN_FILTER, GLint(filter));
-    GL.TextureParameteri(id, GL_TEXTURE_MAG_FILTER, GLint(filter));
-    for (const GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
-        GL.TextureParameteri(id, wrap, GL_CLAMP_TO_EDGE);
-    }
+    set_sampling(id, filter, {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R});
     return Texture(id);
 }
 

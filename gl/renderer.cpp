@@ -404,28 +404,25 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         GL.BindTextureUnit(SL_SHADOW_MOMENTS_UNIT, shadow_moments_.id());
     }
     {
-        // Timed by the method's timeline sections (queries of one target cannot nest).
+        // Timed by the method's timeline sections (queries of one target cannot nest). The
+        // section's query and the debug group end with the scope, also when the method refuses
+        // its parameters mid-frame (a froxel grid too large for the image).
         GL.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "volume");
         timeline_->begin(method.name());
+        struct VolumePassEnd {
+            Timeline& timeline;
+            ~VolumePassEnd() {
+                timeline.end();
+                GL.PopDebugGroup();
+            }
+        } pass_end{*timeline_};
         GL.BindFramebuffer(GL_FRAMEBUFFER, volume_framebuffer_.id());
         const float zero[4] = {0, 0, 0, 0};
         GL.ClearNamedFramebufferfv(volume_framebuffer_.id(), GL_COLOR, 0, zero);
         GL.Disable(GL_DEPTH_TEST);
         GL.DepthMask(GL_FALSE);
-        try {
-            method.render(VolumeInputs{scene_, uniforms_, surface_depth_.id(), shadow_map_.id(), w,
-                                       h, *timeline_});
-        } catch (...) {
-            // A method that refuses its parameters mid-frame (a froxel grid too large for the
-            // image) leaves the context as a finished frame would: no query left running, depth
-            // writes on.
-            timeline_->end();
-            GL.PopDebugGroup();
-            GL.DepthMask(GL_TRUE);
-            throw;
-        }
-        timeline_->end();
-        GL.PopDebugGroup();
+        method.render(VolumeInputs{scene_, uniforms_, surface_depth_.id(), shadow_map_.id(), w, h,
+                                   *timeline_});
     }
     {
         PassTimer timer(timers_[3], "composite");

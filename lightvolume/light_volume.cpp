@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
-#include "analytic/gpu_tables.h"
 #include "analytic/region_pass.h"
 #include "core/error.h"
 #include "gl/functions.h"
@@ -39,11 +37,12 @@ glm::ivec2 border_vertex(int k, int resolution) {
     return {0, n - (k - 3 * n)};
 }
 
-}  // namespace
-
+// Vertices of the closed grid: N² displaced, 4(N - 1) on the near plane's border, its centre.
 int light_volume_vertex_count(int resolution) {
     return resolution * resolution + 4 * (resolution - 1) + 1;
 }
+
+}  // namespace
 
 std::vector<glm::uvec3> light_volume_triangles(int resolution) {
     if (resolution < 2) {
@@ -144,6 +143,9 @@ public:
             empty_vertex_array_ = gl::create_vertex_array();
             plain_sampler_ = gl::create_plain_sampler(GL_NEAREST);
             fragments_ = gl::create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
+            wireframe_program_ =
+                gl::create_program({{GL_VERTEX_SHADER, "lightvolume/shaders/light_volume.vert"},
+                                    {GL_FRAGMENT_SHADER, "lightvolume/shaders/wireframe.frag"}});
         }
         update(scene, SceneChange::everything(scene));
     }
@@ -154,8 +156,7 @@ public:
     }
     void apply_update(const Scene& scene, const SceneChange&,
                       std::unique_ptr<gl::FrameWork>) override {
-        const bool smooth_edge = scene.light.falloff_degrees > 0.0f;
-        if (!program_ || smooth_edge != smooth_edge_) {
+        if (closed_form_.set_scene(scene)) {
             const std::vector<std::string> defines = analytic::edge_defines(scene.light);
             program_ =
                 gl::create_program({{GL_VERTEX_SHADER, "lightvolume/shaders/light_volume.vert"},
@@ -165,16 +166,8 @@ public:
                 gl::create_program({{GL_VERTEX_SHADER, "lightvolume/shaders/light_volume_eye.vert"},
                                     {GL_FRAGMENT_SHADER, "analytic/shaders/regions_eye.frag"}},
                                    defines);
-            wireframe_program_ =
-                gl::create_program({{GL_VERTEX_SHADER, "lightvolume/shaders/light_volume.vert"},
-                                    {GL_FRAGMENT_SHADER, "lightvolume/shaders/wireframe.frag"}});
             // One region about the eye when the triangle is not collapsed (regions_eye.frag).
             GL.ProgramUniform1f(eye_program_.id(), 0, 1.0f);
-            smooth_edge_ = smooth_edge;
-        }
-        if (!medium_ || !(*medium_ == scene.medium)) {
-            medium_table_ = analytic::create_medium_table(scene.medium);
-            medium_ = scene.medium;
         }
         clip_to_world_ = light_clip_to_world(scene.light);
     }
@@ -203,22 +196,18 @@ public:
             GL.ProgramUniformMatrix4fv(program->id(), grid_uniform::clip_to_world, 1, GL_FALSE,
                                        &clip_to_world_[0][0]);
         }
-        GL.BindTextureUnit(0, inputs.surface_depth);
         GL.BindTextureUnit(kLightDepthUnit, inputs.shadow_map);
         GL.BindSampler(kLightDepthUnit, plain_sampler_.id());  // depths, not comparisons
-        GL.BindTextureUnit(analytic::kMediumTableUnit, medium_table_.id());
         GL.BindVertexArray(empty_vertex_array_.id());
-        GL.Enable(GL_BLEND);
-        GL.BlendFunc(GL_ONE, GL_ONE);  // signed sums in the float target
-        GL.Enable(GL_DEPTH_CLAMP);     // faces in front of the near plane still count
-        GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
-        GL.UseProgram(program_.id());
-        GL.DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-        GL.UseProgram(eye_program_.id());  // collapses to nothing unless the eye is inside
-        GL.DrawArrays(GL_TRIANGLES, 0, 3);
-        GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
-        GL.Disable(GL_DEPTH_CLAMP);
-        GL.Disable(GL_BLEND);
+        {
+            const analytic::SignedDrawScope scope(inputs, closed_form_);
+            GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
+            GL.UseProgram(program_.id());
+            GL.DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+            GL.UseProgram(eye_program_.id());  // collapses to nothing unless the eye is inside
+            GL.DrawArrays(GL_TRIANGLES, 0, 3);
+            GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
+        }
         if (wireframe_wanted_) {
             draw_wireframe(inputs);
         }
@@ -242,8 +231,8 @@ public:
             views.push_back(
                 {name() + "/wireframe (front faces green, back orange)", wireframe_.id()});
         }
-        if (medium_table_) {
-            views.push_back({name() + "/G(z) table of the medium", medium_table_.id()});
+        for (gl::TextureView& view : closed_form_.textures(name())) {
+            views.push_back(std::move(view));
         }
         return views;
     }
@@ -275,7 +264,7 @@ private:
     gl::VertexArray empty_vertex_array_;  // no attributes: the grid's indices alone
     gl::Buffer indices_;
     gl::Sampler plain_sampler_;
-    gl::Texture medium_table_;
+    analytic::ClosedFormScene closed_form_;
     gl::Query fragments_;
     gl::Texture wireframe_;
     gl::Framebuffer wireframe_framebuffer_;
@@ -284,8 +273,6 @@ private:
     glm::mat4 clip_to_world_{1.0f};
     GLsizei index_count_ = 0;
     int resolution_ = 0;
-    bool smooth_edge_ = false;
-    std::optional<Medium> medium_;
 };
 
 }  // namespace

@@ -27,7 +27,6 @@ namespace sl::lightvolume {
 // shaders/grid.glsl: the N² displaced vertices row by row (index i + N j), the 4(N - 1) border
 // vertices on the near plane counter-clockwise from (0, 0), the near plane's centre last.
 std::vector<glm::uvec3> light_volume_triangles(int resolution);
-int light_volume_vertex_count(int resolution);
 
 // The CPU twin of shaders/grid.glsl's light_volume_vertex (in double precision from the same
 // float matrix): every vertex's world position, from the shadow map's depths (size x size, the

@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "analytic/in_scattering.h"
+#include "core/error.h"
 #include "gl/debug.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
@@ -249,6 +250,16 @@ gl::Frame render_method(const Scene& scene, const std::string& method, int width
         volume_method->set(name, value);
     volume_method->prepare(scene);
     return renderer.render(*volume_method);
+}
+
+void expect_refused(const std::string& method, const std::string& name, const std::string& value,
+                    const std::string& words) {
+    try {
+        render_method(boxes_scene(MediumModel::physical), method, 1280, 720, {{name, value}});
+        ADD_FAILURE() << method << " accepted " << name << " = " << value;
+    } catch (const sl::Error& error) {
+        EXPECT_NE(std::string(error.what()).find(words), std::string::npos) << error.what();
+    }
 }
 
 double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {

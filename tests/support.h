@@ -109,6 +109,11 @@ gl::Frame render_method(const Scene& scene, const std::string& method, int width
 // of the convergence tests.
 Image unoccluded_in_scattering(const Scene& scene, int width, int height);
 
+// Setting `name` to `value` on `method` and rendering a frame of the boxes scene at 1280x720
+// throws sl::Error with `words` in its message (a failure of the calling test otherwise).
+void expect_refused(const std::string& method, const std::string& name, const std::string& value,
+                    const std::string& words);
+
 // Least-squares slope of log(y) over log(x): the order of convergence of an error.
 double log_log_slope(const std::vector<double>& x, const std::vector<double>& y);
 
