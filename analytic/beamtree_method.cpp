@@ -15,9 +15,11 @@ public:
         declare({.name = "surfaces",
                  .type = gl::Parameter::Type::choice,
                  .default_value = 0,
-                 .description = "boundary: the lit union's boundary (DESIGN.md §9); cells: every "
-                                "lit cell's faces (the first round's mesh, same integral)",
-                 .choices = {"boundary", "cells"}});
+                 .description = "boundary: the lit union's boundary, each plane's faces merged "
+                                "into maximal polygons (DESIGN.md §9); cells: every lit cell's "
+                                "faces (the first round's mesh); fragments: the boundary's faces "
+                                "fanned one by one (same integral in all three)",
+                 .choices = {"boundary", "cells", "fragments"}});
     }
     std::string name() const override { return "beamtree"; }
     std::string accepts() const override { return AnalyticRegionPass::accepts(); }
@@ -28,8 +30,13 @@ public:
     std::unique_ptr<gl::FrameWork> cpu_update(const Scene& scene,
                                               const SceneChange& change) const override {
         AnalyticRegionPass::require_closed_form(scene, name());
-        return region_frame_work(scene, change, {.lit = true, .cells = parameter("surfaces") == 1},
-                                 built_);
+        const auto surfaces = int(parameter("surfaces"));
+        return region_frame_work(
+            scene, change,
+            {.lit = true,
+             .cells = surfaces == 1,
+             .shape = surfaces == 2 ? bt::BoundaryShape::fragments : bt::BoundaryShape::maximal},
+            built_);
     }
     void apply_update(const Scene& scene, const SceneChange&,
                       std::unique_ptr<gl::FrameWork> work) override {
@@ -47,6 +54,7 @@ public:
         gl::MethodStatistics stats = region_statistics(stages_);
         stats.push_back({"region_faces", double(pass_.triangle_count())});
         stats.push_back({"fragments_analytic", pass_.fragments()});
+        stats.push_back({"fragments_rasterized", pass_.rasterized()});
         return stats;
     }
 

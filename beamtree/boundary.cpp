@@ -8,10 +8,12 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
 #include "beamtree/conforming.h"
+#include "beamtree/maximal_polygons.h"
 
 namespace sl::bt {
 
@@ -363,8 +365,9 @@ std::vector<BoundaryFace> boundary_faces(const BeamTree& tree, const Regions& re
             }
         }
         for (std::vector<Fragment>* side : {&front, &back}) {
+            const auto plane = int32_t(2 * g + (side == &front ? 1 : 0));
             for (Fragment& f : *side) {
-                result.faces.push_back({f.beam, std::move(f.polygon)});
+                result.faces.push_back({f.beam, std::move(f.polygon), plane});
             }
         }
     });
@@ -404,17 +407,75 @@ std::vector<BoundaryFace> closed_boundary(const BeamTree& tree, const Regions& r
 }
 
 RegionMesh boundary_mesh(const BeamTree& tree, const Regions& regions, Region region,
-                         BoundaryStats* stats) {
+                         BoundaryStats* stats, BoundaryShape shape) {
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<BoundaryFace> faces = closed_boundary(tree, regions, region, stats);
+    BoundaryStats s;
+    const std::vector<BoundaryFace> faces = closed_boundary(tree, regions, region, &s);
     RegionMesh mesh;
-    for (const BoundaryFace& face : faces) {
-        mesh.add_fanned(face.polygon, face.beam);
+    if (shape == BoundaryShape::fragments) {
+        for (const BoundaryFace& face : faces) {
+            mesh.add_fanned(face.polygon, face.beam);
+        }
+    } else {
+        // The faces by plane and side, in the order they come; a face on no shared plane alone.
+        std::vector<std::vector<const BoundaryFace*>> sets;
+        std::vector<int32_t> set_of_plane;
+        for (const BoundaryFace& face : faces) {
+            if (face.plane < 0) {
+                sets.push_back({&face});
+                continue;
+            }
+            if (size_t(face.plane) >= set_of_plane.size()) {
+                set_of_plane.resize(size_t(face.plane) + 1, -1);
+            }
+            int32_t& set = set_of_plane[size_t(face.plane)];
+            if (set < 0) {
+                set = int32_t(sets.size());
+                sets.emplace_back();
+            }
+            sets[size_t(set)].push_back(&face);
+        }
+        // Each set with more than one face merged on its own (in parallel), then appended in
+        // order, so the mesh does not depend on the schedule.
+        std::vector<std::optional<MaximalTriangulation>> merged(sets.size());
+        tbb::parallel_for(size_t(0), sets.size(), [&](size_t i) {
+            if (sets[i].size() < 2) {
+                return;
+            }
+            std::vector<const Polygon*> polygons;
+            dvec3 normal(0.0);
+            for (const BoundaryFace* face : sets[i]) {
+                polygons.push_back(&face->polygon);
+                normal += area_vector(face->polygon);
+            }
+            if (glm::length(normal) > 0.0) {
+                merged[i] = triangulate_union(polygons, normal);
+            }
+        });
+        for (size_t i = 0; i < sets.size(); ++i) {
+            if (!merged[i]) {
+                s.unmerged_planes += sets[i].size() > 1 ? 1 : 0;
+                for (const BoundaryFace* face : sets[i]) {
+                    mesh.add_fanned(face->polygon, face->beam);
+                }
+                continue;
+            }
+            ++s.merged_planes;
+            const auto base = uint32_t(mesh.positions.size());
+            for (const dvec3& p : merged[i]->vertices) {
+                mesh.positions.emplace_back(p);
+            }
+            for (const glm::uvec3& t : merged[i]->triangles) {
+                mesh.triangles.push_back(t + base);
+                mesh.beams.push_back(sets[i].front()->beam);
+            }
+        }
     }
+    s.triangles = mesh.triangles.size();
+    s.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (stats) {
-        stats->ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
+        *stats = s;
     }
     return mesh;
 }

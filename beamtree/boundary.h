@@ -21,6 +21,9 @@ namespace sl::bt {
 struct BoundaryFace {
     uint32_t beam = 0;  // the beam of the piece it bounds
     Polygon polygon;    // outward from the region
+    // The plane it lies on and its side: 2 g + 1 on the front of plane group g, 2 g behind it;
+    // -1 on none shared with another face (a sliver kept whole, a crack's fill).
+    int32_t plane = -1;
 };
 
 struct BoundaryStats {
@@ -30,8 +33,18 @@ struct BoundaryStats {
     size_t dropped = 0;      // the region on both sides everywhere
     size_t faces = 0;        // boundary polygons
     size_t cracks = 0;       // ε-wide cracks the mesh closed (boundary_mesh)
-    double ms = 0.0;         // building them
+    // boundary_mesh with maximal polygons: the planes (and sides) whose faces were merged, those
+    // whose merge was refused and left fanned (beamtree/maximal_polygons.h says when), and the
+    // triangles drawn.
+    size_t merged_planes = 0;
+    size_t unmerged_planes = 0;
+    size_t triangles = 0;
+    double ms = 0.0;  // building them
 };
+
+// How boundary_mesh triangulates: each face fanned on its own, or the faces on one plane and
+// side merged into the maximal polygons of their union first (beamtree/maximal_polygons.h).
+enum class BoundaryShape { fragments, maximal };
 
 // The boundary polygons of one region type (lit or uncertain: the unlit rest is every point
 // outside both), outward, before they are made conforming.
@@ -45,9 +58,11 @@ std::vector<BoundaryFace> boundary_faces(const BeamTree& tree, const Regions& re
 std::vector<BoundaryFace> closed_boundary(const BeamTree& tree, const Regions& regions,
                                           Region region, BoundaryStats* stats = nullptr);
 
-// The closed boundary as a fanned triangle mesh for the GPU (RegionMesh: float positions,
-// outward triangles and the beam of each).
+// The closed boundary as a triangle mesh for the GPU (RegionMesh: float positions, outward
+// triangles and the beam of each; a merged polygon's triangles carry the beam of one of its
+// faces). Watertight in either shape: a plane whose merge is refused keeps its faces fanned.
 RegionMesh boundary_mesh(const BeamTree& tree, const Regions& regions, Region region,
-                         BoundaryStats* stats = nullptr);
+                         BoundaryStats* stats = nullptr,
+                         BoundaryShape shape = BoundaryShape::maximal);
 
 }  // namespace sl::bt

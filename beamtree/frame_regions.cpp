@@ -45,12 +45,14 @@ FrameRegions build_frame_regions(const Scene& scene, const RegionRequest& reques
             out.regions = pieces;
         }
         if (request.lit) {
-            out.lit = request.cells ? regions.mesh(Region::lit)
-                                    : boundary_mesh(*tree, regions, Region::lit);
+            out.lit = request.cells
+                          ? regions.mesh(Region::lit)
+                          : boundary_mesh(*tree, regions, Region::lit, nullptr, request.shape);
             lap(out.ms.lit);
         }
         if (request.uncertain) {
-            out.uncertain = boundary_mesh(*tree, regions, Region::uncertain);
+            out.uncertain =
+                boundary_mesh(*tree, regions, Region::uncertain, nullptr, request.shape);
             lap(out.ms.uncertain);
         }
     }

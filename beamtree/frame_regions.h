@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "beamtree/beam_tree.h"
+#include "beamtree/boundary.h"
 #include "beamtree/regions.h"
 
 namespace sl::bt {
@@ -23,6 +24,8 @@ struct RegionRequest {
     bool cells = false;  // lit: every lit cell's faces (the first round's mesh), not the boundary
     bool gpu_tree = false;  // the tree as the GPU's classify reads it
     bool pieces = false;    // keep the region pieces (FrameRegions::regions: PLY, statistics)
+    // The boundary meshes' triangles: maximal polygons, or each face fanned (for comparison).
+    BoundaryShape shape = BoundaryShape::maximal;
 };
 
 // CPU milliseconds of each stage (one thread, wall clock).

@@ -86,8 +86,10 @@ def main(source, target, regions=None):
             out.append(f"| conforming lit + uncertain meshes, {name.split('/')[1]} objects | "
                        f"{b['real_time']:.2f} | {b['triangles']:.0f} triangles |")
         if name.startswith("boundary_meshes_bench/"):
-            out.append(f"| boundary lit + uncertain meshes (regions as surfaces), "
-                       f"{name.split('/')[1]} objects | {b['real_time']:.2f} | "
+            parts = name.split("/")
+            shape = "faces fanned" if len(parts) > 2 and parts[2] == "1" else "maximal polygons"
+            out.append(f"| boundary lit + uncertain meshes (regions as surfaces), {shape}, "
+                       f"{parts[1]} objects | {b['real_time']:.2f} | "
                        f"{b['triangles']:.0f} triangles |")
         if name.startswith("partition_view_planes/"):
             out.append(f"| partition 100 view-aligned planes, {b['polygons']:.0f} outer polygons | "

@@ -72,21 +72,30 @@ void region_meshes_bench(benchmark::State& state) {
 BENCHMARK(region_meshes_bench)->Arg(16)->Arg(165)->Unit(benchmark::kMillisecond);
 
 // The regions as surfaces: the closed boundary meshes of the lit and uncertain unions
-// (beamtree/boundary.h: grouping by plane, cancellation, conforming, crack closing, fans), what
-// `beamtree` and the hybrids draw by default instead of the meshes above.
+// (beamtree/boundary.h: grouping by plane, cancellation, conforming, crack closing), what
+// `beamtree` and the hybrids draw by default instead of the meshes above; second argument 0: the
+// faces on each plane merged into maximal polygons (the default), 1: each face fanned.
 void boundary_meshes_bench(benchmark::State& state) {
     const Prepared p = prepare(int(state.range(0)));
     const BeamTree tree(p.scene.light, p.volumes);
     const Regions regions = extract_regions(tree);
+    const BoundaryShape shape =
+        state.range(1) == 0 ? BoundaryShape::maximal : BoundaryShape::fragments;
     size_t triangles = 0;
     for (auto _ : state) {
-        triangles = boundary_mesh(tree, regions, Region::lit).triangles.size() +
-                    boundary_mesh(tree, regions, Region::uncertain).triangles.size();
+        triangles =
+            boundary_mesh(tree, regions, Region::lit, nullptr, shape).triangles.size() +
+            boundary_mesh(tree, regions, Region::uncertain, nullptr, shape).triangles.size();
         benchmark::DoNotOptimize(triangles);
     }
     state.counters["triangles"] = double(triangles);
 }
-BENCHMARK(boundary_meshes_bench)->Arg(16)->Arg(165)->Unit(benchmark::kMillisecond);
+BENCHMARK(boundary_meshes_bench)
+    ->Args({16, 0})
+    ->Args({16, 1})
+    ->Args({165, 0})
+    ->Args({165, 1})
+    ->Unit(benchmark::kMillisecond);
 
 // 100 planes facing the camera, spaced evenly through the influence volume's depth range as
 // the sampling-plane methods will place them, partitioned into lit / uncertain / unlit.

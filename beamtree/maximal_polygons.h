@@ -1,0 +1,48 @@
+#pragma once
+// Maximal polygons (DESIGN.md §9): the pieces of a region's boundary that lie on one plane, on one
+// side of it, merged into the maximal polygons of their union and triangulated anew, so that the
+// GPU draws a few large triangles where it drew a fan per cell face. A rasterizer pays per
+// triangle and per block of pixels a triangle touches (llvmpipe shades 4×4 blocks), so a
+// fragmented boundary costs far more than the pixels it covers.
+//
+// The input is conforming (beamtree/conforming.h: welded, T-vertices inserted): two pieces that
+// share an edge share its vertices exactly, so the union's interior edges are the ones met once
+// each way, and they cancel exactly, with no tolerance. The edges left bound the union (outer
+// loops, holes, loops that touch at a corner) and keep every vertex on them, the T-vertices the
+// faces on other planes meet there included, so the result meets its neighbours edge for edge
+// as the pieces did. Those edges are the constraints of a 2D constrained Delaunay triangulation
+// (CGAL, exact predicates) in the plane; a triangle is inside where it lies to the left of the
+// constraints that bound its component.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "beamtree/geometry.h"
+
+namespace sl::bt {
+
+struct MaximalTriangulation {
+    std::vector<dvec3> vertices;        // the input positions on the union's boundary
+    std::vector<glm::uvec3> triangles;  // counter-clockwise around the normal, as the input
+    size_t boundary_edges = 0;          // edges left after the interior ones cancelled
+};
+
+// Triangulates the union of `polygons`: coplanar (within the tolerance their plane was grouped
+// with), each wound counter-clockwise around `normal`, overlapping nowhere, conforming. Returns
+// nothing where the input is not such a set as far as exact 2D predicates on its projection can
+// tell, and then the caller keeps the polygons as they are:
+//   - an edge met twice the same way (an overlap);
+//   - two positions that project to one point, or boundary edges that cross or run through a
+//     vertex in the projection (the triangulation would have to add a vertex the neighbours
+//     lack);
+//   - a triangle that would lie inside by one boundary edge and outside by another;
+//   - a summed area that differs from the polygons' by more than 1e-9 of it.
+// So a result is always a watertight replacement: its directed edges are the boundary edges plus
+// interior edges met once each way.
+std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Polygon*>& polygons,
+                                                      const dvec3& normal);
+
+}  // namespace sl::bt
