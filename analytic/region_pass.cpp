@@ -119,6 +119,7 @@ void AnalyticRegionPass::set_scene(const Scene& scene) {
     }
     if (!fragments_) {
         fragments_ = gl::create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
+        rasterized_ = gl::create_query(GL_SAMPLES_PASSED);
     }
 }
 
@@ -147,6 +148,7 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     GL.UseProgram(program_.id());
     GL.BindVertexArray(mesh_.vertex_array.id());
     GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
+    GL.BeginQuery(GL_SAMPLES_PASSED, rasterized_.id());
     GL.DrawElements(GL_TRIANGLES, mesh_.index_count, GL_UNSIGNED_INT, nullptr);
     // The eye inside the regions: every ray's missing front face at z = 0.
     const glm::vec3 eye = inputs.scene.camera.position;
@@ -160,6 +162,7 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
         GL.BindVertexArray(eye_vertex_array_.id());
         GL.DrawArrays(GL_TRIANGLES, 0, 3);
     }
+    GL.EndQuery(GL_SAMPLES_PASSED);
     GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
 }
 
@@ -168,6 +171,14 @@ double AnalyticRegionPass::fragments() const {
         return 0.0;
     GLuint64 count = 0;
     GL.GetQueryObjectui64v(fragments_.id(), GL_QUERY_RESULT, &count);
+    return double(count);
+}
+
+double AnalyticRegionPass::rasterized() const {
+    if (mesh_.index_count == 0)
+        return 0.0;
+    GLuint64 count = 0;
+    GL.GetQueryObjectui64v(rasterized_.id(), GL_QUERY_RESULT, &count);
     return double(count);
 }
 

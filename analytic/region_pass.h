@@ -90,8 +90,12 @@ public:
     size_t triangle_count() const { return size_t(mesh_.index_count) / 3; }
     // Its lookup tables, named "<owner>/...".
     TextureViews textures(const std::string& owner) const;
-    // Fragment-shader invocations of the last draw (waits for it).
+    // Fragment-shader invocations of the last draw (waits for it): what the rasterizer shaded,
+    // helper and block granularity included (llvmpipe counts whole 4×4 blocks).
     double fragments() const;
+    // The fragments the last draw rasterized (GL_SAMPLES_PASSED, one sample per pixel, no depth
+    // test): (pixel, triangle) pairs, which an eye ray's crossings of the regions bound from below.
+    double rasterized() const;
 
 private:
     gl::TriangleMesh mesh_;
@@ -106,6 +110,7 @@ private:
     gl::VertexArray eye_vertex_array_;
     ClosedFormScene closed_form_;
     Query fragments_;
+    Query rasterized_;
 };
 
 // The CPU half of a region method's per-frame update (VolumeMethod::cpu_update): the frame's

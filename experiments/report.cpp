@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
@@ -448,11 +449,17 @@ std::string regions_table(const std::vector<StoredRow>& rows) {
     return md;
 }
 
-// Per method, scene and size with an analytic pass: its fragments per pixel against the fewest
-// it could draw (the lit crossings of the regions table).
+// Per method, scene and size with an analytic pass: the fragments it draws per pixel against the
+// fewest it could (the lit crossings of the regions table). Two counts: what the rasterizer
+// shaded (`stat_fragments_analytic`, fragment-shader invocations: llvmpipe counts every 4×4
+// block a triangle touches in full, so small triangles cost more than they cover) and what it
+// rasterized (`stat_fragments_rasterized`, samples passed: the (pixel, face) pairs themselves).
 std::string fragments_table(const std::vector<StoredRow>& rows) {
     std::string md;
     std::set<std::tuple<std::string, std::string, std::string>> done;
+    auto ratio = [](double value, double minimum) {
+        return minimum > 0.0 ? fmt::format("{:.2f}x", value / minimum) : std::string();
+    };
     for (const StoredRow& r : rows) {
         const Json& v = r.row;
         if (!v.contains("stat_fragments_analytic") || !v["stat_fragments_analytic"].is_number() ||
@@ -460,20 +467,28 @@ std::string fragments_table(const std::vector<StoredRow>& rows) {
             continue;
         }
         const double pixels = v.value("width", 1.0) * v.value("height", 1.0);
-        const double per_pixel = v["stat_fragments_analytic"].get<double>() / pixels;
+        const double shaded = v["stat_fragments_analytic"].get<double>() / pixels;
+        const bool counted =
+            v.contains("stat_fragments_rasterized") && v["stat_fragments_rasterized"].is_number();
+        const double rasterized =
+            counted ? v["stat_fragments_rasterized"].get<double>() / pixels : std::nan("");
         const double minimum = v.value("lit_crossings", 0.0);
-        md += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {} |\n", r.cell.method,
-                          scene_label(r.cell.scene), r.cell.size(), per_pixel, minimum,
-                          minimum > 0.0 ? fmt::format("{:.2f}x", per_pixel / minimum) : "");
+        md += fmt::format("| {} | {} | {} | {:.2f} | {} | {:.2f} | {} | {} |\n", r.cell.method,
+                          scene_label(r.cell.scene), r.cell.size(), shaded,
+                          counted ? fmt::format("{:.2f}", rasterized) : "", minimum,
+                          ratio(shaded, minimum), counted ? ratio(rasterized, minimum) : "");
     }
     if (md.empty()) {
         return md;
     }
-    return "\n## Analytic-pass fragments\n\nFragments the analytic pass shades per pixel "
-           "(`stat_fragments_analytic` over the image), the fewest it could (lit crossings per "
-           "pixel along the whole eye ray, regions table), and their ratio.\n\n"
-           "| method | scene | size | fragments / px | minimum / px | ratio |\n"
-           "|---|---|---|---:|---:|---:|\n" +
+    return "\n## Analytic-pass fragments\n\nPer pixel of the image: the fragments the analytic "
+           "pass shades (`stat_fragments_analytic`, fragment-shader invocations; llvmpipe counts "
+           "each 4×4 block a triangle touches in full), the fragments it rasterizes "
+           "(`stat_fragments_rasterized`, samples passed), the fewest it could (lit crossings per "
+           "pixel along the whole eye ray, regions table), and each count over that minimum.\n\n"
+           "| method | scene | size | shaded / px | rasterized / px | minimum / px | shaded ratio "
+           "| rasterized ratio |\n"
+           "|---|---|---|---:|---:|---:|---:|---:|\n" +
            md;
 }
 

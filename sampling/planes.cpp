@@ -298,6 +298,7 @@ public:
         if (variant_ == PlanesVariant::hybrid2) {
             stats.emplace_back("region_faces", double(analytic_.triangle_count()));
             stats.emplace_back("fragments_analytic", analytic_.fragments());
+            stats.emplace_back("fragments_rasterized", analytic_.rasterized());
         }
         return stats;
     }
