@@ -160,9 +160,19 @@ public:
         const double scale = kScales[int(parameter("resolution_scale"))];
         allocate(inputs.width, inputs.height, scale);
         const bool hybrid = variant_ == MarchVariant::hybrid3;
+        // hybrid3 with a marching buffer of the frame's size: the region lists mark the pixels
+        // whose rays cross the uncertain surface in the buffer's stencil, and the march shades
+        // only those (a ray that crosses none has no uncertain interval: it adds nothing). The
+        // rest of the buffer keeps its clear, so the image is the same.
+        const bool skip_certain = hybrid && march_stencil_;
         if (hybrid) {
             inputs.timeline.section("region lists");
-            lists_.build(inputs);
+            if (skip_certain) {
+                GL.BindFramebuffer(GL_FRAMEBUFFER, march_framebuffer_.id());
+                GL.ClearNamedFramebufferfi(march_framebuffer_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
+            }
+            lists_.build(inputs, skip_certain);
+            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
             inputs.timeline.section("analytic");
             analytic_.draw(inputs);
             tree_.bind();
@@ -174,6 +184,11 @@ public:
         const float zero[4] = {0, 0, 0, 0};
         GL.ClearNamedFramebufferfv(march_framebuffer_.id(), GL_COLOR, 0, zero);
         GL.Disable(GL_BLEND);
+        if (skip_certain) {
+            GL.Enable(GL_STENCIL_TEST);
+            GL.StencilMask(0);
+            GL.StencilFunc(GL_NOTEQUAL, 0, RegionLists::kUncertainStencilBit);
+        }
         const GLuint program = march_program_.id();
         GL.UseProgram(program);
         GL.ProgramUniform1i(program, march_uniform::samples, int(parameter("samples")));
@@ -196,6 +211,10 @@ public:
         GL.BindTextureUnit(0, inputs.surface_depth);
         GL.BindVertexArray(empty_vertex_array_.id());
         GL.DrawArrays(GL_TRIANGLES, 0, 3);
+        if (skip_certain) {
+            GL.StencilMask(0xff);
+            GL.Disable(GL_STENCIL_TEST);
+        }
 
         inputs.timeline.section("resolve");
         GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
@@ -228,6 +247,7 @@ public:
             stats.insert(stats.end(), {{"region_faces", double(analytic_.triangle_count())},
                                        {"uncertain_faces", double(lists_.triangle_count(1))},
                                        {"fragments_analytic", analytic_.fragments()},
+                                       {"fragments_rasterized", analytic_.rasterized()},
                                        {"list_overflows", double(lists_.overflows())}});
         }
         return stats;
@@ -263,6 +283,12 @@ private:
         march_framebuffer_ = gl::create_framebuffer();
         GL.NamedFramebufferTexture(march_framebuffer_.id(), GL_COLOR_ATTACHMENT0,
                                    march_target_.id(), 0);
+        march_stencil_ = {};
+        if (variant_ == MarchVariant::hybrid3 && w == width && h == height) {
+            march_stencil_ = gl::create_texture_2d(GL_DEPTH24_STENCIL8, w, h, GL_NEAREST);
+            GL.NamedFramebufferTexture(march_framebuffer_.id(), GL_DEPTH_STENCIL_ATTACHMENT,
+                                       march_stencil_.id(), 0);
+        }
     }
 
     MarchVariant variant_;
@@ -270,6 +296,7 @@ private:
     gl::Program march_program_, resolve_program_;
     gl::VertexArray empty_vertex_array_;
     gl::Texture march_target_;
+    gl::Texture march_stencil_;  // hybrid3 at the frame's size: the pixels it marches
     gl::Framebuffer march_framebuffer_;
     RegionLists lists_;    // hybrid3: where each ray is uncertain
     GpuTreeBuffers tree_;  // and the tree, where a list overflows
