@@ -462,8 +462,13 @@ std::string fragments_table(const std::vector<StoredRow>& rows) {
     };
     for (const StoredRow& r : rows) {
         const Json& v = r.row;
+        // One row per variant: a method's parameters can change what it draws (beamtree's
+        // surfaces).
+        const std::string settings = r.cell.settings_text();
+        const std::string method =
+            settings.empty() ? r.cell.method : r.cell.method + " " + settings;
         if (!v.contains("stat_fragments_analytic") || !v["stat_fragments_analytic"].is_number() ||
-            !done.insert({r.cell.method, r.cell.scene, r.cell.size()}).second) {
+            !done.insert({method, r.cell.scene, r.cell.size()}).second) {
             continue;
         }
         const double pixels = v.value("width", 1.0) * v.value("height", 1.0);
@@ -473,7 +478,7 @@ std::string fragments_table(const std::vector<StoredRow>& rows) {
         const double rasterized =
             counted ? v["stat_fragments_rasterized"].get<double>() / pixels : std::nan("");
         const double minimum = v.value("lit_crossings", 0.0);
-        md += fmt::format("| {} | {} | {} | {:.2f} | {} | {:.2f} | {} | {} |\n", r.cell.method,
+        md += fmt::format("| {} | {} | {} | {:.2f} | {} | {:.2f} | {} | {} |\n", method,
                           scene_label(r.cell.scene), r.cell.size(), shaded,
                           counted ? fmt::format("{:.2f}", rasterized) : "", minimum,
                           ratio(shaded, minimum), counted ? ratio(rasterized, minimum) : "");
