@@ -38,6 +38,9 @@ struct BoundaryStats {
     // triangles drawn.
     size_t merged_planes = 0;
     size_t unmerged_planes = 0;
+    size_t flat_planes = 0;       // faces of zero area on a plane (welded flat), left as they are
+    size_t dropped_vertices = 0;  // outline vertices two merged planes shared and did not need
+    int merge_rounds = 0;         // triangulations until none was refused
     size_t triangles = 0;
     double ms = 0.0;  // building them
 };

@@ -43,11 +43,13 @@ uint64_t edge_key(uint32_t a, uint32_t b) {
 
 }  // namespace
 
-std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Polygon*>& polygons,
-                                                      const dvec3& normal) {
+std::optional<std::vector<std::pair<uint32_t, uint32_t>>> outline_edges(
+    const std::vector<const Polygon*>& polygons, std::vector<dvec3>& positions) {
     // Distinct positions, compared exactly (the conforming step welded the shared ones).
     std::unordered_map<dvec3, uint32_t, PositionHash> ids;
-    std::vector<dvec3> positions;
+    for (uint32_t i = 0; i < positions.size(); ++i) {
+        ids.emplace(positions[i], i);
+    }
     auto id_of = [&](const dvec3& p) {
         const auto [at, added] = ids.try_emplace(p, uint32_t(positions.size()));
         if (added) {
@@ -57,10 +59,7 @@ std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Po
     };
     // +1 per a -> b with a < b, -1 per b -> a: the interior edges come to 0.
     std::unordered_map<uint64_t, int> balance;
-    const dvec3 n = glm::normalize(normal);
-    double input_area = 0.0;
     for (const Polygon* polygon : polygons) {
-        input_area += glm::dot(area_vector(*polygon), n);
         const size_t count = polygon->size();
         for (size_t k = 0; k < count; ++k) {
             const uint32_t a = id_of(polygon->vertices[k]);
@@ -85,10 +84,26 @@ std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Po
     // Deterministic regardless of the hash map's order (the triangulation depends on the order
     // constraints go in only through which of equal-circumcircle diagonals it picks).
     std::sort(edges.begin(), edges.end());
+    return edges;
+}
+
+std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Polygon*>& polygons,
+                                                      const dvec3& normal) {
+    std::vector<dvec3> positions;
+    const auto edges = outline_edges(polygons, positions);
+    if (!edges) {
+        return std::nullopt;
+    }
+    return triangulate_outline(positions, *edges, normal);
+}
+
+std::optional<MaximalTriangulation> triangulate_outline(
+    const std::vector<dvec3>& positions, const std::vector<std::pair<uint32_t, uint32_t>>& edges,
+    const dvec3& normal) {
     if (edges.size() < 3) {
         return std::nullopt;
     }
-
+    const dvec3 n = glm::normalize(normal);
     // The plane's 2D frame (u, v, normal), right-handed: counter-clockwise around the normal is
     // counter-clockwise in (u, v).
     const dvec3 helper = std::abs(n.x) < 0.6 ? dvec3(1, 0, 0) : dvec3(0, 1, 0);
@@ -97,16 +112,18 @@ std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Po
     const dvec3 origin = positions[edges.front().first];
 
     // Only the vertices on the boundary edges: the interior ones go with the interior edges.
-    std::vector<uint32_t> compact(positions.size(), UINT32_MAX);
+    std::unordered_map<uint32_t, uint32_t> compact;
     std::vector<std::pair<Kernel::Point_2, uint32_t>> points;
     MaximalTriangulation result;
+    double outline_area = 0.0;  // the loops' own (shoelace), seen along n
     for (const auto& [a, b] : edges) {
+        outline_area += 0.5 * glm::dot(glm::cross(positions[a] - origin, positions[b] - origin), n);
         for (const uint32_t id : {a, b}) {
-            if (compact[id] == UINT32_MAX) {
-                compact[id] = uint32_t(result.vertices.size());
+            const auto [at, added] = compact.try_emplace(id, uint32_t(result.vertices.size()));
+            if (added) {
                 result.vertices.push_back(positions[id]);
                 const dvec3 d = positions[id] - origin;
-                points.emplace_back(Kernel::Point_2(glm::dot(d, u), glm::dot(d, v)), compact[id]);
+                points.emplace_back(Kernel::Point_2(glm::dot(d, u), glm::dot(d, v)), at->second);
             }
         }
     }
@@ -121,7 +138,7 @@ std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Po
     }
     try {
         for (const auto& [a, b] : edges) {
-            cdt.insert_constraint(handle[compact[a]], handle[compact[b]]);
+            cdt.insert_constraint(handle[compact.at(a)], handle[compact.at(b)]);
         }
     } catch (const std::exception&) {
         return std::nullopt;  // boundary edges that cross in the projection
@@ -146,7 +163,7 @@ std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Po
     for (const auto& [a, b] : edges) {
         Cdt::Face_handle face;
         int i = 0;
-        const Cdt::Vertex_handle va = handle[compact[a]], vb = handle[compact[b]];
+        const Cdt::Vertex_handle va = handle[compact.at(a)], vb = handle[compact.at(b)];
         if (!cdt.is_edge(va, vb, face, i)) {
             return std::nullopt;  // a vertex lies on the edge in the projection: it was split
         }
@@ -176,7 +193,7 @@ std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Po
         const dvec3 &p = result.vertices[t.x], &q = result.vertices[t.y], &r = result.vertices[t.z];
         output_area += 0.5 * glm::dot(glm::cross(q - p, r - p), n);
     }
-    if (!(std::abs(output_area - input_area) <= 1e-9 * std::abs(input_area))) {
+    if (!(std::abs(output_area - outline_area) <= 1e-9 * std::abs(outline_area))) {
         return std::nullopt;
     }
     result.boundary_edges = edges.size();

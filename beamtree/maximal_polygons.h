@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -44,5 +45,18 @@ struct MaximalTriangulation {
 // interior edges met once each way.
 std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Polygon*>& polygons,
                                                       const dvec3& normal);
+
+// The directed edges met once only (the union's outline, interior on their left) of conforming
+// polygons, as index pairs into `positions` (every distinct vertex, appended in order of first
+// use), sorted; nothing when an edge is met twice the same way (an overlap).
+std::optional<std::vector<std::pair<uint32_t, uint32_t>>> outline_edges(
+    const std::vector<const Polygon*>& polygons, std::vector<dvec3>& positions);
+
+// The triangulation of closed loops of directed edges (indices into `positions`, interior on the
+// left seen along `normal`): the part of triangulate_union after the cancellation, with the same
+// refusals; its area is checked against the loops' own (shoelace over the edges).
+std::optional<MaximalTriangulation> triangulate_outline(
+    const std::vector<dvec3>& positions, const std::vector<std::pair<uint32_t, uint32_t>>& edges,
+    const dvec3& normal);
 
 }  // namespace sl::bt
