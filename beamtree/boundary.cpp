@@ -168,9 +168,9 @@ size_t close_cracks(std::vector<BoundaryFace>& faces) {
             if (k == 0) {
                 first = id;
             } else if (previous != id) {
-                keyed.emplace_back(previous < id ? uint64_t(previous) << 32 | id
-                                                 : uint64_t(id) << 32 | previous,
-                                   previous < id ? 1 : -1);
+                keyed.emplace_back(
+                    previous < id ? uint64_t(previous) << 32 | id : uint64_t(id) << 32 | previous,
+                    previous < id ? 1 : -1);
             }
             previous = id;
         }
