@@ -166,20 +166,12 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
 }
 
-double AnalyticRegionPass::fragments() const {
+double AnalyticRegionPass::count(const Query& query) const {
     if (mesh_.index_count == 0)
         return 0.0;
-    GLuint64 count = 0;
-    GL.GetQueryObjectui64v(fragments_.id(), GL_QUERY_RESULT, &count);
-    return double(count);
-}
-
-double AnalyticRegionPass::rasterized() const {
-    if (mesh_.index_count == 0)
-        return 0.0;
-    GLuint64 count = 0;
-    GL.GetQueryObjectui64v(rasterized_.id(), GL_QUERY_RESULT, &count);
-    return double(count);
+    GLuint64 value = 0;
+    GL.GetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &value);
+    return double(value);
 }
 
 TextureViews AnalyticRegionPass::textures(const std::string& owner) const {

@@ -92,12 +92,14 @@ public:
     TextureViews textures(const std::string& owner) const;
     // Fragment-shader invocations of the last draw (waits for it): what the rasterizer shaded,
     // helper and block granularity included (llvmpipe counts whole 4×4 blocks).
-    double fragments() const;
+    double fragments() const { return count(fragments_); }
     // The fragments the last draw rasterized (GL_SAMPLES_PASSED, one sample per pixel, no depth
     // test): (pixel, triangle) pairs, which an eye ray's crossings of the regions bound from below.
-    double rasterized() const;
+    double rasterized() const { return count(rasterized_); }
 
 private:
+    double count(const Query& query) const;  // the last draw's result (0 without a mesh)
+
     gl::TriangleMesh mesh_;
     std::vector<glm::vec3> positions_;  // the mesh, for the eye's winding number
     std::vector<glm::uvec3> triangles_;

@@ -2,6 +2,8 @@
 // The beam tree's geometry kernel, in double precision: oriented planes, convex polygons split by
 // planes with a thickness ε (Nilsson §4.3), and convex polyhedra clipped by planes.
 
+#include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -30,6 +32,17 @@ struct Plane {
 inline bool lexicographic_less(const dvec3& a, const dvec3& b) {
     return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
 }
+
+// A hash of a position's exact bits, for maps keyed by welded positions (equal only when equal
+// to the last bit).
+struct PositionHash {
+    size_t operator()(const dvec3& p) const {
+        size_t h = std::bit_cast<uint64_t>(p.x);
+        h = h * 0x9E3779B97F4A7C15ull ^ std::bit_cast<uint64_t>(p.y);
+        h = h * 0x9E3779B97F4A7C15ull ^ std::bit_cast<uint64_t>(p.z);
+        return h;
+    }
+};
 
 // A convex planar polygon. Bit i of `on_split_plane` marks the edge from vertex i to i + 1 as
 // lying on a plane through the light (created by splitting with a beam plane): attaching the

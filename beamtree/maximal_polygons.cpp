@@ -5,12 +5,14 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
-#include <bit>
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 #include <utility>
 
 #include <glm/geometric.hpp>
+
+#include <tbb/parallel_for.h>
 
 namespace sl::bt {
 
@@ -28,78 +30,74 @@ using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Cdt =
     CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::No_constraint_intersection_tag>;
 
-struct PositionHash {
-    size_t operator()(const dvec3& p) const {
-        size_t h = std::bit_cast<uint64_t>(p.x);
-        h = h * 0x9E3779B97F4A7C15ull ^ std::bit_cast<uint64_t>(p.y);
-        h = h * 0x9E3779B97F4A7C15ull ^ std::bit_cast<uint64_t>(p.z);
-        return h;
-    }
-};
-
-uint64_t edge_key(uint32_t a, uint32_t b) {
-    return uint64_t(a) << 32 | b;
-}
-
 }  // namespace
 
-std::optional<std::vector<std::pair<uint32_t, uint32_t>>> outline_edges(
-    const std::vector<const Polygon*>& polygons, std::vector<dvec3>& positions) {
-    // Distinct positions, compared exactly (the conforming step welded the shared ones).
-    std::unordered_map<dvec3, uint32_t, PositionHash> ids;
-    for (uint32_t i = 0; i < positions.size(); ++i) {
-        ids.emplace(positions[i], i);
-    }
-    auto id_of = [&](const dvec3& p) {
-        const auto [at, added] = ids.try_emplace(p, uint32_t(positions.size()));
-        if (added) {
-            positions.push_back(p);
-        }
-        return at->second;
-    };
-    // +1 per a -> b with a < b, -1 per b -> a: the interior edges come to 0.
-    std::unordered_map<uint64_t, int> balance;
-    for (const Polygon* polygon : polygons) {
-        const size_t count = polygon->size();
-        for (size_t k = 0; k < count; ++k) {
-            const uint32_t a = id_of(polygon->vertices[k]);
-            const uint32_t b = id_of(polygon->vertices[(k + 1) % count]);
-            if (a != b) {
-                balance[a < b ? edge_key(a, b) : edge_key(b, a)] += a < b ? 1 : -1;
-            }
+std::vector<Edge> unmatched_edges(const std::vector<Edge>& edges, int* most) {
+    // (lo << 32 | hi, +1 for lo -> hi, -1 for hi -> lo), summed per key.
+    std::vector<std::pair<uint64_t, int>> keyed;
+    keyed.reserve(edges.size());
+    for (const auto& [a, b] : edges) {
+        if (a != b) {
+            keyed.emplace_back(a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a,
+                               a < b ? 1 : -1);
         }
     }
-    std::vector<std::pair<uint32_t, uint32_t>> edges;  // directed, inside on the left
-    for (const auto& [key, count] : balance) {
-        if (std::abs(count) > 1) {
-            return std::nullopt;  // met twice the same way: the polygons overlap
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<Edge> unmatched;
+    int largest = 0;
+    for (size_t i = 0; i < keyed.size();) {
+        int count = 0;
+        size_t j = i;
+        for (; j < keyed.size() && keyed[j].first == keyed[i].first; ++j) {
+            count += keyed[j].second;
         }
-        const auto lo = uint32_t(key >> 32), hi = uint32_t(key & 0xffffffffu);
-        if (count == 1) {
-            edges.emplace_back(lo, hi);
-        } else if (count == -1) {
-            edges.emplace_back(hi, lo);
+        const auto lo = uint32_t(keyed[i].first >> 32), hi = uint32_t(keyed[i].first);
+        for (int c = 0; c < std::abs(count); ++c) {
+            unmatched.push_back(count > 0 ? Edge{lo, hi} : Edge{hi, lo});
         }
+        largest = std::max(largest, std::abs(count));
+        i = j;
     }
-    // Deterministic regardless of the hash map's order (the triangulation depends on the order
-    // constraints go in only through which of equal-circumcircle diagonals it picks).
-    std::sort(edges.begin(), edges.end());
-    return edges;
+    std::sort(unmatched.begin(), unmatched.end());
+    if (most) {
+        *most = largest;
+    }
+    return unmatched;
 }
 
 std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Polygon*>& polygons,
                                                       const dvec3& normal) {
+    // Vertex ids by exact position (the conforming step welded the shared ones).
+    std::unordered_map<dvec3, uint32_t, PositionHash> ids;
     std::vector<dvec3> positions;
-    const auto edges = outline_edges(polygons, positions);
-    if (!edges) {
-        return std::nullopt;
+    std::vector<Edge> edges;
+    for (const Polygon* polygon : polygons) {
+        const size_t first = edges.size();
+        for (const dvec3& p : polygon->vertices) {
+            const auto [at, added] = ids.try_emplace(p, uint32_t(positions.size()));
+            if (added) {
+                positions.push_back(p);
+            }
+            if (edges.size() > first) {
+                edges.back().second = at->second;
+            }
+            edges.emplace_back(at->second, 0);
+        }
+        if (edges.size() > first) {
+            edges.back().second = edges[first].first;
+        }
     }
-    return triangulate_outline(positions, *edges, normal);
+    int most = 0;
+    const std::vector<Edge> outline = unmatched_edges(edges, &most);
+    if (most > 1) {
+        return std::nullopt;  // met twice the same way: the polygons overlap
+    }
+    return triangulate_outline(positions, outline, normal);
 }
 
-std::optional<MaximalTriangulation> triangulate_outline(
-    const std::vector<dvec3>& positions, const std::vector<std::pair<uint32_t, uint32_t>>& edges,
-    const dvec3& normal) {
+std::optional<MaximalTriangulation> triangulate_outline(const std::vector<dvec3>& positions,
+                                                        const std::vector<Edge>& edges,
+                                                        const dvec3& normal) {
     if (edges.size() < 3) {
         return std::nullopt;
     }
@@ -198,6 +196,264 @@ std::optional<MaximalTriangulation> triangulate_outline(
     }
     result.boundary_edges = edges.size();
     return result;
+}
+
+namespace {
+
+// The faces on one plane and side, and what becomes of them.
+struct FaceSet {
+    std::vector<uint32_t> faces;  // indices into the boundary's faces
+    dvec3 normal{0.0};            // their summed area vector
+    bool fanned = false;          // kept as they are: no shared plane, an overlap, or refused
+    bool flat = false;            // of zero area (welded into a line): kept for their edges
+    std::vector<Edge> outline;    // the union's outline, before any vertex is dropped
+};
+
+// The outline of a set: its faces' directed edges (global vertex ids) that are not met the other
+// way, sorted; false where an edge is met twice the same way.
+bool outline_of(const std::vector<std::vector<uint32_t>>& face_ids, FaceSet& set) {
+    std::vector<Edge> edges;
+    for (const uint32_t f : set.faces) {
+        const std::vector<uint32_t>& ids = face_ids[f];
+        for (size_t k = 0; k < ids.size(); ++k) {
+            edges.emplace_back(ids[k], ids[(k + 1) % ids.size()]);
+        }
+    }
+    int most = 0;
+    set.outline = unmatched_edges(edges, &most);
+    return most <= 1;
+}
+
+// Drops the vertices two merged outlines share and need not keep: a vertex used by exactly two
+// sets, each passing through it once (in from a, out to b in one; in from b, out to a in the
+// other), within `tolerance` of the segment ab, and not pinned (a vertex of a fanned set, which
+// keeps its faces as they are). Both outlines then run a -> b and b -> a directly, so they still
+// meet edge for edge: watertight, and the triangulation needs no triangle to that vertex. What
+// it moves is at most the tolerance (the welding tolerance). Vertices in id order, so the result
+// does not depend on the schedule. Returns each set's outline and the vertices dropped.
+size_t simplify_outlines(const std::vector<dvec3>& positions, const std::vector<FaceSet>& sets,
+                         const std::vector<bool>& pinned, double tolerance,
+                         std::vector<std::vector<Edge>>& outlines) {
+    std::vector<uint32_t> from, to, owner;
+    for (uint32_t s = 0; s < sets.size(); ++s) {
+        if (sets[s].fanned) {
+            continue;
+        }
+        for (const auto& [a, b] : sets[s].outline) {
+            from.push_back(a);
+            to.push_back(b);
+            owner.push_back(s);
+        }
+    }
+    const size_t edge_count = from.size(), vertex_count = positions.size();
+    // Per vertex, its outgoing and incoming edges (compressed rows).
+    std::vector<uint32_t> out_begin(vertex_count + 1, 0), in_begin(vertex_count + 1, 0);
+    for (size_t e = 0; e < edge_count; ++e) {
+        ++out_begin[from[e] + 1];
+        ++in_begin[to[e] + 1];
+    }
+    for (size_t v = 0; v < vertex_count; ++v) {
+        out_begin[v + 1] += out_begin[v];
+        in_begin[v + 1] += in_begin[v];
+    }
+    std::vector<uint32_t> out_edges(edge_count), in_edges(edge_count);
+    {
+        std::vector<uint32_t> out_at(out_begin.begin(), out_begin.end() - 1),
+            in_at(in_begin.begin(), in_begin.end() - 1);
+        for (uint32_t e = 0; e < edge_count; ++e) {
+            out_edges[out_at[from[e]]++] = e;
+            in_edges[in_at[to[e]]++] = e;
+        }
+    }
+    std::vector<bool> alive(edge_count, true);
+    auto has_edge = [&](uint32_t set, uint32_t a, uint32_t b) {
+        for (uint32_t k = out_begin[a]; k < out_begin[a + 1]; ++k) {
+            const uint32_t e = out_edges[k];
+            if (alive[e] && owner[e] == set && to[e] == b) {
+                return true;
+            }
+        }
+        return false;
+    };
+    auto replace_in = [&](uint32_t vertex, uint32_t old_edge, uint32_t new_edge) {
+        for (uint32_t k = in_begin[vertex]; k < in_begin[vertex + 1]; ++k) {
+            if (in_edges[k] == old_edge) {
+                in_edges[k] = new_edge;
+            }
+        }
+    };
+    size_t dropped = 0;
+    const double tolerance2 = tolerance * tolerance;
+    for (uint32_t v = 0; v < vertex_count; ++v) {
+        if (pinned[v] || out_begin[v + 1] - out_begin[v] != 2 ||
+            in_begin[v + 1] - in_begin[v] != 2) {
+            continue;
+        }
+        const uint32_t o1 = out_edges[out_begin[v]], o2 = out_edges[out_begin[v] + 1];
+        uint32_t i1 = in_edges[in_begin[v]], i2 = in_edges[in_begin[v] + 1];
+        if (owner[o1] == owner[o2] || !alive[o1] || !alive[o2] || !alive[i1] || !alive[i2]) {
+            continue;
+        }
+        if (owner[i1] != owner[o1]) {
+            std::swap(i1, i2);
+        }
+        if (owner[i1] != owner[o1] || owner[i2] != owner[o2]) {
+            continue;
+        }
+        // One set runs a -> v -> b, the other b -> v -> a.
+        const uint32_t a = from[i1], b = to[o1];
+        if (a == b || from[i2] != b || to[o2] != a || has_edge(owner[o1], a, b) ||
+            has_edge(owner[o1], b, a) || has_edge(owner[o2], a, b) || has_edge(owner[o2], b, a)) {
+            continue;
+        }
+        const dvec3 ab = positions[b] - positions[a], av = positions[v] - positions[a];
+        const double length2 = glm::dot(ab, ab);
+        const double t = glm::dot(av, ab);
+        const dvec3 off = glm::cross(ab, av);
+        if (!(t > 0.0 && t < length2 && glm::dot(off, off) <= tolerance2 * length2)) {
+            continue;
+        }
+        to[i1] = b;
+        alive[o1] = false;
+        replace_in(b, o1, i1);
+        to[i2] = a;
+        alive[o2] = false;
+        replace_in(a, o2, i2);
+        ++dropped;
+    }
+    outlines.assign(sets.size(), {});
+    for (size_t e = 0; e < edge_count; ++e) {
+        if (alive[e]) {
+            outlines[owner[e]].emplace_back(from[e], to[e]);
+        }
+    }
+    for (std::vector<Edge>& outline : outlines) {
+        std::sort(outline.begin(), outline.end());
+    }
+    return dropped;
+}
+
+}  // namespace
+
+RegionMesh maximal_polygon_mesh(const std::vector<BoundaryFace>& faces, double tolerance,
+                                BoundaryStats& s) {
+    RegionMesh mesh;
+    // Global vertex ids, in order of first use.
+    std::vector<dvec3> positions;
+    std::vector<std::vector<uint32_t>> face_ids(faces.size());
+    {
+        std::unordered_map<dvec3, uint32_t, PositionHash> ids;
+        for (size_t f = 0; f < faces.size(); ++f) {
+            for (const dvec3& p : faces[f].polygon.vertices) {
+                const auto [at, added] = ids.try_emplace(p, uint32_t(positions.size()));
+                if (added) {
+                    positions.push_back(p);
+                }
+                face_ids[f].push_back(at->second);
+            }
+        }
+    }
+    // The faces by plane and side, in the order they come; a face on no shared plane alone.
+    std::vector<FaceSet> sets;
+    std::vector<int32_t> set_of_plane;
+    for (uint32_t f = 0; f < faces.size(); ++f) {
+        if (faces[f].plane < 0) {
+            FaceSet& alone = sets.emplace_back();
+            alone.faces = {f};
+            alone.fanned = true;
+            continue;
+        }
+        if (size_t(faces[f].plane) >= set_of_plane.size()) {
+            set_of_plane.resize(size_t(faces[f].plane) + 1, -1);
+        }
+        int32_t& set = set_of_plane[size_t(faces[f].plane)];
+        if (set < 0) {
+            set = int32_t(sets.size());
+            sets.emplace_back();
+        }
+        sets[size_t(set)].faces.push_back(f);
+    }
+    tbb::parallel_for(size_t(0), sets.size(), [&](size_t i) {
+        FaceSet& set = sets[i];
+        if (set.fanned) {
+            return;
+        }
+        for (const uint32_t f : set.faces) {
+            set.normal += area_vector(faces[f].polygon);
+        }
+        set.flat = !(glm::length(set.normal) > 0.0);
+        set.fanned = set.flat || !outline_of(face_ids, set);
+    });
+    std::vector<bool> pinned(positions.size(), false);
+    auto pin = [&](const FaceSet& set) {
+        for (const uint32_t f : set.faces) {
+            for (const uint32_t id : face_ids[f]) {
+                pinned[id] = true;
+            }
+        }
+    };
+    for (const FaceSet& set : sets) {
+        if (set.fanned) {
+            pin(set);
+        }
+    }
+    std::vector<std::optional<MaximalTriangulation>> merged(sets.size());
+    std::vector<std::vector<Edge>> outlines, triangulated(sets.size());
+    constexpr int kDroppingRounds = 4;
+    for (int round = 0;; ++round) {
+        const bool drop = round < kDroppingRounds;
+        if (drop) {
+            s.dropped_vertices = simplify_outlines(positions, sets, pinned, tolerance, outlines);
+        } else {
+            s.dropped_vertices = 0;
+            outlines.assign(sets.size(), {});
+            for (size_t i = 0; i < sets.size(); ++i) {
+                outlines[i] = sets[i].outline;
+            }
+        }
+        std::vector<bool> refused(sets.size(), false);
+        tbb::parallel_for(size_t(0), sets.size(), [&](size_t i) {
+            if (sets[i].fanned || (merged[i] && triangulated[i] == outlines[i])) {
+                return;  // kept as they are, or the same outline as the last round
+            }
+            merged[i] = triangulate_outline(positions, outlines[i], sets[i].normal);
+            triangulated[i] = outlines[i];
+            refused[i] = !merged[i];
+        });
+        bool any = false;
+        for (size_t i = 0; i < sets.size(); ++i) {
+            if (refused[i]) {
+                sets[i].fanned = true;
+                pin(sets[i]);
+                any = true;
+            }
+        }
+        s.merge_rounds = round + 1;
+        if (!any) {
+            break;
+        }
+    }
+    for (size_t i = 0; i < sets.size(); ++i) {
+        const FaceSet& set = sets[i];
+        if (set.fanned) {
+            s.unmerged_planes += faces[set.faces.front()].plane >= 0 && !set.flat ? 1 : 0;
+            s.flat_planes += set.flat ? 1 : 0;
+            for (const uint32_t f : set.faces) {
+                mesh.add_fanned(faces[f].polygon, faces[f].beam);
+            }
+            continue;
+        }
+        ++s.merged_planes;
+        const auto base = uint32_t(mesh.positions.size());
+        for (const dvec3& p : merged[i]->vertices) {
+            mesh.positions.emplace_back(p);
+        }
+        for (const glm::uvec3& t : merged[i]->triangles) {
+            mesh.triangles.push_back(t + base);
+            mesh.beams.push_back(faces[set.faces.front()].beam);
+        }
+    }
+    return mesh;
 }
 
 }  // namespace sl::bt

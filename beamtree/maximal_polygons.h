@@ -21,7 +21,9 @@
 
 #include <glm/vec3.hpp>
 
+#include "beamtree/boundary.h"
 #include "beamtree/geometry.h"
+#include "beamtree/regions.h"
 
 namespace sl::bt {
 
@@ -46,17 +48,29 @@ struct MaximalTriangulation {
 std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Polygon*>& polygons,
                                                       const dvec3& normal);
 
-// The directed edges met once only (the union's outline, interior on their left) of conforming
-// polygons, as index pairs into `positions` (every distinct vertex, appended in order of first
-// use), sorted; nothing when an edge is met twice the same way (an overlap).
-std::optional<std::vector<std::pair<uint32_t, uint32_t>>> outline_edges(
-    const std::vector<const Polygon*>& polygons, std::vector<dvec3>& positions);
+// Of directed edges between vertex ids (the edges of closed loops), those that no edge the other
+// way meets, each as often as it is unmet, sorted; `most` gets the largest such count (more than
+// one: loops that overlap). The interior edges of a union cancel this way; what is left is its
+// outline, or, on a closed surface, its cracks.
+using Edge = std::pair<uint32_t, uint32_t>;
+std::vector<Edge> unmatched_edges(const std::vector<Edge>& edges, int* most = nullptr);
 
 // The triangulation of closed loops of directed edges (indices into `positions`, interior on the
 // left seen along `normal`): the part of triangulate_union after the cancellation, with the same
 // refusals; its area is checked against the loops' own (shoelace over the edges).
-std::optional<MaximalTriangulation> triangulate_outline(
-    const std::vector<dvec3>& positions, const std::vector<std::pair<uint32_t, uint32_t>>& edges,
-    const dvec3& normal);
+std::optional<MaximalTriangulation> triangulate_outline(const std::vector<dvec3>& positions,
+                                                        const std::vector<Edge>& edges,
+                                                        const dvec3& normal);
+
+// BoundaryShape::maximal: the mesh of a closed boundary (closed_boundary) with the faces on each
+// plane and side merged into the maximal polygons of their union and the outline vertices only
+// two merged planes share dropped (collinear within `tolerance`, the welding tolerance: each
+// outline then runs a -> b where it ran a -> v -> b, and its neighbour b -> a, so they still meet
+// edge for edge), each outline triangulated. Faces on no shared plane, faces of zero area and a
+// set whose triangulation is refused stay fanned as they are, their vertices pinned; a refusal
+// makes the outlines again without dropping its vertices, until none is refused (after
+// kDroppingRounds, nothing is dropped). Adds its counts to `stats`.
+RegionMesh maximal_polygon_mesh(const std::vector<BoundaryFace>& faces, double tolerance,
+                                BoundaryStats& stats);
 
 }  // namespace sl::bt

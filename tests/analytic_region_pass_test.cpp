@@ -222,22 +222,6 @@ TEST_F(GpuMethod, AnalyticMethodsRefuseOnlyTheSimplifiedModelWithoutInverseSquar
     EXPECT_NO_THROW(methods::create_volume_method("beamtree")->prepare(scene));
 }
 
-// Regions as surfaces: drawing the boundary of the lit union (surfaces=boundary, the default)
-// gives, pixel by pixel, the signed integral of every lit cell's faces (surfaces=cells), to the
-// float round-off of G(z) at the faces: 1e-4 of the image (measured 6.5e-6, 1.9e-4 and 1.9e-5 on
-// toplight, parallel, multiple at 640×360; parallel's largest differences are next to the light,
-// where G is steepest and the cell mesh leaves out lit slivers), with fewer fragments.
-TEST_F(GpuMethod, BoundaryIntegratesLikeTheCellsPixelByPixel) {
-    for (const char* name : {"toplight", "multiple"}) {
-        const Scene scene = load_canonical(name);
-        const gl::Frame cells = render_method(scene, "beamtree", 160, 90, {{"surfaces", "cells"}});
-        const gl::Frame boundary =
-            render_method(scene, "beamtree", 160, 90, {{"surfaces", "boundary"}});
-        const ErrorMetrics error = compare_images(boundary.in_scattering, cells.in_scattering);
-        EXPECT_LT(error.rel_rmse, 1e-4) << name << ": max_abs " << error.max_abs;
-    }
-}
-
 // The lit regions are surely lit (Nilsson §3.2.1), so on the canonical scenes the beamtree
 // method's I_s lies between 0 and the exact reference's: what falls outside, summed over the
 // pixels, stays below 1e-5 of the image's total. (A face dropped from a pair where it lies on a
