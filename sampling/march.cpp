@@ -178,12 +178,24 @@ public:
             tree_.bind();
         }
 
+        // A marching buffer of the frame's size without blur needs no resolve (it would copy):
+        // the march adds its I_s straight into the frame's target, attached beside the buffer.
+        const GLuint direct_target =
+            scale == 1.0 && int(parameter("blur")) == 0 ? frame_texture(GLuint(target)) : 0;
+        if (direct_target) {
+            attach_frame_target(direct_target);
+        }
+
         inputs.timeline.section("march");
         GL.BindFramebuffer(GL_FRAMEBUFFER, march_framebuffer_.id());
         GL.Viewport(0, 0, buffer_width_, buffer_height_);
         const float zero[4] = {0, 0, 0, 0};
         GL.ClearNamedFramebufferfv(march_framebuffer_.id(), GL_COLOR, 0, zero);
         GL.Disable(GL_BLEND);
+        if (direct_target) {
+            GL.Enablei(GL_BLEND, 1);  // added into the frame's I_s
+            GL.BlendFunci(1, GL_ONE, GL_ONE);
+        }
         if (skip_certain) {
             GL.Enable(GL_STENCIL_TEST);
             GL.StencilMask(0);
@@ -214,6 +226,13 @@ public:
         if (skip_certain) {
             GL.StencilMask(0xff);
             GL.Disable(GL_STENCIL_TEST);
+        }
+        if (direct_target) {
+            GL.Disablei(GL_BLEND, 1);
+            attach_frame_target(0);
+            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+            GL.Viewport(0, 0, inputs.width, inputs.height);
+            return;
         }
 
         inputs.timeline.section("resolve");
@@ -268,6 +287,33 @@ public:
     }
 
 private:
+    // The texture behind the frame target's first colour attachment, or 0 (the default
+    // framebuffer, a renderbuffer): the march then resolves into the target instead.
+    static GLuint frame_texture(GLuint framebuffer) {
+        if (framebuffer == 0) {
+            return 0;
+        }
+        GLint type = GL_NONE, name = 0;
+        GL.GetNamedFramebufferAttachmentParameteriv(framebuffer, GL_COLOR_ATTACHMENT0,
+                                                    GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+        if (type != GL_TEXTURE) {
+            return 0;
+        }
+        GL.GetNamedFramebufferAttachmentParameteriv(framebuffer, GL_COLOR_ATTACHMENT0,
+                                                    GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+        return GLuint(name);
+    }
+
+    // The marching buffer draws to attachment 0 and, with a frame texture, to it at attachment 1
+    // (march.frag's `added`); with 0, to attachment 0 alone. The frame's texture is attached for
+    // the march pass only, so the buffer never holds one the renderer has since replaced.
+    void attach_frame_target(GLuint texture) {
+        GL.NamedFramebufferTexture(march_framebuffer_.id(), GL_COLOR_ATTACHMENT1, texture, 0);
+        const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0,
+                                   texture ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE)};
+        GL.NamedFramebufferDrawBuffers(march_framebuffer_.id(), 2, buffers);
+    }
+
     void allocate(int width, int height, double scale) {
         const int w = std::max(1, int(std::ceil(width * scale)));
         const int h = std::max(1, int(std::ceil(height * scale)));

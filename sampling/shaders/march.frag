@@ -35,7 +35,15 @@ layout(location = 8) uniform int interval_mode;
 layout(location = 9) uniform vec2 adaptive;  // hybrid3: x = density (samples per metre), y = min
 layout(location = 10) uniform vec4 clip_planes[6];
 
-layout(location = 0) out vec4 result;
+layout(location = 0) out vec4 result;  // rgb I_s, a the samples taken
+// I_s again, for the frame's own target where the method adds it in this pass (a marching
+// buffer of the frame's size, no blur): the resolve pass is skipped. Discarded otherwise.
+layout(location = 1) out vec4 added;
+
+void write_result(vec4 value) {
+    result = value;
+    added = vec4(value.rgb, 0.0);
+}
 
 float interleaved_gradient_noise(vec2 pixel) {
     return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
@@ -113,7 +121,7 @@ void main() {
         end = clipped.y;
     }
     if (!(end > start)) {
-        result = vec4(0.0);
+        write_result(vec4(0.0));
         return;
     }
     float offset = jitter != 0 ? interleaved_gradient_noise(floor(gl_FragCoord.xy)) : 0.5;
@@ -137,13 +145,13 @@ void main() {
                 ++taken;
                 sum += sample_density(origin, direction, t, g) * visibility * step_length;
             }
-            result = vec4(sum, float(taken));
+            write_result(vec4(sum, float(taken)));
             return;
         }
         float length_sum = 0.0;
         for (int k = 0; k < n; ++k) length_sum += intervals[k].y - intervals[k].x;
         if (!(length_sum > 0.0)) {
-            result = vec4(0.0);
+            write_result(vec4(0.0));
             return;
         }
         int count = int(clamp(ceil(adaptive.x * length_sum), adaptive.y, float(samples)));
@@ -164,7 +172,7 @@ void main() {
             ++taken;
             sum += sample_density(origin, direction, t, g) * visibility;
         }
-        result = vec4(sum * step_length, float(taken));
+        write_result(vec4(sum * step_length, float(taken)));
         return;
     }
     float step_length = (end - start) / float(samples);
@@ -181,5 +189,5 @@ void main() {
         }
         sum += sample_density(origin, direction, t, gi) * visibility;
     }
-    result = vec4(sum * step_length, float(taken));
+    write_result(vec4(sum * step_length, float(taken)));
 }
