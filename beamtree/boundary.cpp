@@ -13,7 +13,6 @@
 #include <glm/geometric.hpp>
 
 #include "beamtree/conforming.h"
-#include "beamtree/maximal_polygons.h"
 
 namespace sl::bt {
 
@@ -429,8 +428,13 @@ RegionMesh boundary_mesh(const BeamTree& tree, const Regions& regions, Region re
             mesh.add_fanned(face.polygon, face.beam);
         }
     } else {
+        std::vector<PlanarFace> planar;
+        planar.reserve(faces.size());
+        for (const BoundaryFace& face : faces) {
+            planar.push_back({&face.polygon, face.beam, face.plane});
+        }
         mesh = maximal_polygon_mesh(
-            faces, Regions::kConformingTolerance * std::cbrt(regions.influence_volume), s);
+            planar, Regions::kConformingTolerance * std::cbrt(regions.influence_volume), s.merge);
     }
     s.triangles = mesh.triangles.size();
     s.ms =

@@ -14,6 +14,7 @@
 
 #include <vector>
 
+#include "beamtree/maximal_polygons.h"
 #include "beamtree/regions.h"
 
 namespace sl::bt {
@@ -33,14 +34,7 @@ struct BoundaryStats {
     size_t dropped = 0;      // the region on both sides everywhere
     size_t faces = 0;        // boundary polygons
     size_t cracks = 0;       // ε-wide cracks the mesh closed (boundary_mesh)
-    // boundary_mesh with maximal polygons: the planes (and sides) whose faces were merged, those
-    // whose merge was refused and left fanned (beamtree/maximal_polygons.h says when), and the
-    // triangles drawn.
-    size_t merged_planes = 0;
-    size_t unmerged_planes = 0;
-    size_t flat_planes = 0;       // faces of zero area on a plane (welded flat), left as they are
-    size_t dropped_vertices = 0;  // outline vertices two merged planes shared and did not need
-    int merge_rounds = 0;         // triangulations until none was refused
+    MergeStats merge;        // boundary_mesh with maximal polygons (beamtree/maximal_polygons.h)
     size_t triangles = 0;
     double ms = 0.0;  // building them
 };

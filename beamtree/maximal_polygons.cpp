@@ -335,8 +335,8 @@ size_t simplify_outlines(const std::vector<dvec3>& positions, const std::vector<
 
 }  // namespace
 
-RegionMesh maximal_polygon_mesh(const std::vector<BoundaryFace>& faces, double tolerance,
-                                BoundaryStats& s) {
+RegionMesh maximal_polygon_mesh(const std::vector<PlanarFace>& faces, double tolerance,
+                                MergeStats& s) {
     RegionMesh mesh;
     // Global vertex ids, in order of first use.
     std::vector<dvec3> positions;
@@ -344,7 +344,7 @@ RegionMesh maximal_polygon_mesh(const std::vector<BoundaryFace>& faces, double t
     {
         std::unordered_map<dvec3, uint32_t, PositionHash> ids;
         for (size_t f = 0; f < faces.size(); ++f) {
-            for (const dvec3& p : faces[f].polygon.vertices) {
+            for (const dvec3& p : faces[f].polygon->vertices) {
                 const auto [at, added] = ids.try_emplace(p, uint32_t(positions.size()));
                 if (added) {
                     positions.push_back(p);
@@ -379,7 +379,7 @@ RegionMesh maximal_polygon_mesh(const std::vector<BoundaryFace>& faces, double t
             return;
         }
         for (const uint32_t f : set.faces) {
-            set.normal += area_vector(faces[f].polygon);
+            set.normal += area_vector(*faces[f].polygon);
         }
         set.flat = !(glm::length(set.normal) > 0.0);
         set.fanned = set.flat || !outline_of(face_ids, set);
@@ -428,7 +428,7 @@ RegionMesh maximal_polygon_mesh(const std::vector<BoundaryFace>& faces, double t
                 any = true;
             }
         }
-        s.merge_rounds = round + 1;
+        s.rounds = round + 1;
         if (!any) {
             break;
         }
@@ -439,7 +439,7 @@ RegionMesh maximal_polygon_mesh(const std::vector<BoundaryFace>& faces, double t
             s.unmerged_planes += faces[set.faces.front()].plane >= 0 && !set.flat ? 1 : 0;
             s.flat_planes += set.flat ? 1 : 0;
             for (const uint32_t f : set.faces) {
-                mesh.add_fanned(faces[f].polygon, faces[f].beam);
+                mesh.add_fanned(*faces[f].polygon, faces[f].beam);
             }
             continue;
         }

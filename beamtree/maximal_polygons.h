@@ -21,7 +21,6 @@
 
 #include <glm/vec3.hpp>
 
-#include "beamtree/boundary.h"
 #include "beamtree/geometry.h"
 #include "beamtree/regions.h"
 
@@ -62,15 +61,32 @@ std::optional<MaximalTriangulation> triangulate_outline(const std::vector<dvec3>
                                                         const std::vector<Edge>& edges,
                                                         const dvec3& normal);
 
-// BoundaryShape::maximal: the mesh of a closed boundary (closed_boundary) with the faces on each
-// plane and side merged into the maximal polygons of their union and the outline vertices only
-// two merged planes share dropped (collinear within `tolerance`, the welding tolerance: each
-// outline then runs a -> b where it ran a -> v -> b, and its neighbour b -> a, so they still meet
-// edge for edge), each outline triangulated. Faces on no shared plane, faces of zero area and a
-// set whose triangulation is refused stay fanned as they are, their vertices pinned; a refusal
-// makes the outlines again without dropping its vertices, until none is refused (after
-// kDroppingRounds, nothing is dropped). Adds its counts to `stats`.
-RegionMesh maximal_polygon_mesh(const std::vector<BoundaryFace>& faces, double tolerance,
-                                BoundaryStats& stats);
+// A face of a closed surface to triangulate: its polygon (conforming with the rest), the beam it
+// bounds, and the plane and side it lies on (faces with the same `plane` are merged; -1: on no
+// plane shared with another face).
+struct PlanarFace {
+    const Polygon* polygon = nullptr;
+    uint32_t beam = 0;
+    int32_t plane = -1;
+};
+
+struct MergeStats {
+    size_t merged_planes = 0;     // planes (and sides) triangulated as maximal polygons
+    size_t unmerged_planes = 0;   // refused (an overlap, or the triangulation), left fanned
+    size_t flat_planes = 0;       // of zero area (welded flat), left as they are
+    size_t dropped_vertices = 0;  // outline vertices two merged planes shared and did not need
+    int rounds = 0;               // triangulations until none was refused
+};
+
+// The mesh of a closed, conforming surface (boundary.h's closed_boundary, BoundaryShape::maximal)
+// with the faces on each plane and side merged into the maximal polygons of their union and the
+// outline vertices only two merged planes share dropped (collinear within `tolerance`, the
+// welding tolerance: each outline then runs a -> b where it ran a -> v -> b, and its neighbour
+// b -> a, so they still meet edge for edge), each outline triangulated. Faces on no shared plane,
+// faces of zero area and a set whose triangulation is refused stay fanned as they are, their
+// vertices pinned; a refusal makes the outlines again without dropping its vertices, until none
+// is refused (after kDroppingRounds, nothing is dropped).
+RegionMesh maximal_polygon_mesh(const std::vector<PlanarFace>& faces, double tolerance,
+                                MergeStats& stats);
 
 }  // namespace sl::bt

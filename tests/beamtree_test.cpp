@@ -971,10 +971,10 @@ TEST(Boundary, IsClosedOutwardAndIntegratesLikeTheCells) {
             EXPECT_LE(merged.triangles.size(), fanned.triangles.size()) << what;
             merged_triangles += merged.triangles.size();
             fanned_triangles += fanned.triangles.size();
-            merged_planes += merge_stats.merged_planes;
-            unmerged_planes += merge_stats.unmerged_planes;
-            dropped += merge_stats.dropped_vertices;
-            worst_rounds = std::max(worst_rounds, merge_stats.merge_rounds);
+            merged_planes += merge_stats.merge.merged_planes;
+            unmerged_planes += merge_stats.merge.unmerged_planes;
+            dropped += merge_stats.merge.dropped_vertices;
+            worst_rounds = std::max(worst_rounds, merge_stats.merge.rounds);
             std::vector<bt::Polygon> merged_faces;
             for (const glm::uvec3& t : merged.triangles) {
                 merged_faces.push_back(
