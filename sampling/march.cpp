@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "analytic/region_pass.h"
 #include "beamtree/beam_tree.h"
@@ -169,7 +170,6 @@ public:
             inputs.timeline.section("region lists");
             if (skip_certain) {
                 GL.BindFramebuffer(GL_FRAMEBUFFER, march_framebuffer_.id());
-                GL.ClearNamedFramebufferfi(march_framebuffer_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
             }
             lists_.build(inputs, skip_certain);
             GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
@@ -196,10 +196,9 @@ public:
             GL.Enablei(GL_BLEND, 1);  // added into the frame's I_s
             GL.BlendFunci(1, GL_ONE, GL_ONE);
         }
+        std::optional<RegionLists::MarkedPixelsOnly> marked;
         if (skip_certain) {
-            GL.Enable(GL_STENCIL_TEST);
-            GL.StencilMask(0);
-            GL.StencilFunc(GL_NOTEQUAL, 0, RegionLists::kUncertainStencilBit);
+            marked.emplace(RegionLists::kUncertainStencilBit);
         }
         const GLuint program = march_program_.id();
         GL.UseProgram(program);
@@ -223,10 +222,7 @@ public:
         GL.BindTextureUnit(0, inputs.surface_depth);
         GL.BindVertexArray(empty_vertex_array_.id());
         GL.DrawArrays(GL_TRIANGLES, 0, 3);
-        if (skip_certain) {
-            GL.StencilMask(0xff);
-            GL.Disable(GL_STENCIL_TEST);
-        }
+        marked.reset();
         if (direct_target) {
             GL.Disablei(GL_BLEND, 1);
             attach_frame_target(0);
@@ -331,9 +327,7 @@ private:
                                    march_target_.id(), 0);
         march_stencil_ = {};
         if (variant_ == MarchVariant::hybrid3 && w == width && h == height) {
-            march_stencil_ = gl::create_texture_2d(GL_DEPTH24_STENCIL8, w, h, GL_NEAREST);
-            GL.NamedFramebufferTexture(march_framebuffer_.id(), GL_DEPTH_STENCIL_ATTACHMENT,
-                                       march_stencil_.id(), 0);
+            march_stencil_ = RegionLists::attach_marks(march_framebuffer_.id(), w, h);
         }
     }
 

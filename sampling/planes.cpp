@@ -3,6 +3,7 @@
 #include <array>
 #include <chrono>
 #include <cstddef>
+#include <optional>
 
 #include <glm/vec3.hpp>
 
@@ -198,7 +199,6 @@ public:
             GL.BindFramebuffer(GL_FRAMEBUFFER, own_framebuffer_.id());
             const float zero[4] = {0, 0, 0, 0};
             GL.ClearNamedFramebufferfv(own_framebuffer_.id(), GL_COLOR, 0, zero);
-            GL.ClearNamedFramebufferfi(own_framebuffer_.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
             inputs.timeline.section("region lists");
             lists_.build(inputs, true);
         }
@@ -211,14 +211,11 @@ public:
             }
         }
         inputs.timeline.section("planes");
+        std::optional<RegionLists::MarkedPixelsOnly> marked;
         if (classify_on_gpu) {
-            GL.Enable(GL_STENCIL_TEST);
-            GL.StencilMask(0);
-            const GLuint bits =
-                variant_ == PlanesVariant::hybrid1
-                    ? RegionLists::kLitStencilBit | RegionLists::kUncertainStencilBit
-                    : RegionLists::kUncertainStencilBit;
-            GL.StencilFunc(GL_NOTEQUAL, 0, bits);
+            marked.emplace(variant_ == PlanesVariant::hybrid1
+                               ? RegionLists::kLitStencilBit | RegionLists::kUncertainStencilBit
+                               : RegionLists::kUncertainStencilBit);
         }
         GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
         GL.UseProgram(program_.id());
@@ -244,9 +241,8 @@ public:
         }
         GL.Disable(GL_DEPTH_CLAMP);
         GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
+        marked.reset();
         if (classify_on_gpu) {
-            GL.StencilMask(0xff);
-            GL.Disable(GL_STENCIL_TEST);
             GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
             GL.UseProgram(copy_program_.id());
             GL.BindTextureUnit(0, own_target_.id());
@@ -263,12 +259,10 @@ public:
         own_width_ = width;
         own_height_ = height;
         own_target_ = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
-        own_stencil_ = gl::create_texture_2d(GL_DEPTH24_STENCIL8, width, height, GL_NEAREST);
         own_framebuffer_ = gl::create_framebuffer();
         GL.NamedFramebufferTexture(own_framebuffer_.id(), GL_COLOR_ATTACHMENT0, own_target_.id(),
                                    0);
-        GL.NamedFramebufferTexture(own_framebuffer_.id(), GL_DEPTH_STENCIL_ATTACHMENT,
-                                   own_stencil_.id(), 0);
+        own_stencil_ = RegionLists::attach_marks(own_framebuffer_.id(), width, height);
         if (!copy_program_) {
             copy_program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                                 {GL_FRAGMENT_SHADER, "gl/shaders/copy.frag"}});

@@ -57,6 +57,9 @@ void RegionLists::build(const gl::VolumeInputs& inputs, bool mark_stencil) {
     GL.Enable(GL_DEPTH_CLAMP);  // faces in front of the near plane still cross the ray
     GL.UseProgram(program_.id());
     if (mark_stencil) {
+        GLint framebuffer = 0;
+        GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+        GL.ClearNamedFramebufferfi(GLuint(framebuffer), GL_DEPTH_STENCIL, 0, 1.0f, 0);
         GL.Enable(GL_STENCIL_TEST);
         GL.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     }
@@ -80,6 +83,23 @@ void RegionLists::build(const gl::VolumeInputs& inputs, bool mark_stencil) {
         GL.Disable(GL_STENCIL_TEST);
     }
     GL.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+gl::Texture RegionLists::attach_marks(GLuint framebuffer, int width, int height) {
+    gl::Texture marks = gl::create_texture_2d(GL_DEPTH24_STENCIL8, width, height, GL_NEAREST);
+    GL.NamedFramebufferTexture(framebuffer, GL_DEPTH_STENCIL_ATTACHMENT, marks.id(), 0);
+    return marks;
+}
+
+RegionLists::MarkedPixelsOnly::MarkedPixelsOnly(GLuint bits) {
+    GL.Enable(GL_STENCIL_TEST);
+    GL.StencilMask(0);
+    GL.StencilFunc(GL_NOTEQUAL, 0, bits);
+}
+
+RegionLists::MarkedPixelsOnly::~MarkedPixelsOnly() {
+    GL.StencilMask(0xff);
+    GL.Disable(GL_STENCIL_TEST);
 }
 
 size_t RegionLists::overflows() const {

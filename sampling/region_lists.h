@@ -33,11 +33,25 @@ public:
     void upload(const bt::RegionMesh& lit, const bt::RegionMesh& uncertain);
     // Clears and fills the lists for the frame's view into buffers of its size, then binds them
     // at the readers' bindings (region_lists.glsl). The current framebuffer's colour writes are
-    // off while it draws; with `mark_stencil`, its stencil gets bit kLitStencilBit where a ray
-    // crosses the lit surface and kUncertainStencilBit where it crosses the uncertain one, so
-    // that a later pass can skip the pixels that have neither before shading them.
+    // off while it draws; with `mark_stencil`, its stencil (a marks texture, below) is cleared
+    // and gets bit kLitStencilBit where a ray crosses the lit surface and kUncertainStencilBit
+    // where it crosses the uncertain one, so that a later pass can skip the pixels that have
+    // neither before shading them (MarkedPixelsOnly).
     static constexpr GLuint kLitStencilBit = 1, kUncertainStencilBit = 2;
     void build(const gl::VolumeInputs& inputs, bool mark_stencil = false);
+
+    // A stencil for the marks, `width` × `height`, attached to `framebuffer`.
+    static gl::Texture attach_marks(GLuint framebuffer, int width, int height);
+
+    // While alive, fragments drawn to the current framebuffer pass only where its marks hold one
+    // of `bits`; the marks are read, not written.
+    class MarkedPixelsOnly {
+    public:
+        explicit MarkedPixelsOnly(GLuint bits);
+        ~MarkedPixelsOnly();
+        MarkedPixelsOnly(const MarkedPixelsOnly&) = delete;
+        MarkedPixelsOnly& operator=(const MarkedPixelsOnly&) = delete;
+    };
     // Pixels whose list of a surface overflowed in the last build (reads the counts back).
     size_t overflows() const;
     size_t triangle_count(int surface) const { return size_t(meshes_[surface].index_count) / 3; }
