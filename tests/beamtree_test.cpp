@@ -1104,17 +1104,11 @@ TEST(Boundary, IsClosedOutwardAndIntegratesLikeTheCells) {
 Image lit_integral(const Scene& scene, const gl::Frame& frame, int width, int height) {
     const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
     const PixelUnprojector unproject(scene.camera, width, height);
-    const dvec3 eye(scene.camera.position);
     Image image(width, height);
     std::vector<bt::RegionInterval> along;
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
-            const dvec3 far = unproject.point(x, y, 1.0);
-            const analytic::EyeRay ray{eye, glm::normalize(far - eye)};
-            const double depth = frame.depth[size_t(y) * width + x];
-            const double surface =
-                depth >= 1.0 ? glm::length(far - eye)
-                             : glm::length(unproject.point(x, y, 2.0 * depth - 1.0) - eye);
+            const auto [ray, surface, hit] = pixel_ray(scene, unproject, frame, x, y);
             tree.trace(ray.origin, ray.direction, 0.0, surface, along);
             dvec3 sum(0.0);
             for (const bt::RegionInterval& interval : along) {

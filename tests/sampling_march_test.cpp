@@ -256,17 +256,11 @@ Image hybrid3_marched_oracle(const Scene& scene, const gl::Frame& frame, int siz
     const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
     const CpuRayCaster caster(scene);
     const PixelUnprojector unproject(scene.camera, size, size);
-    const glm::dvec3 eye(scene.camera.position);
     Image oracle(size, size);
     std::vector<bt::RegionInterval> along;
     for (int y = 0; y < size; ++y) {
         for (int x = 0; x < size; ++x) {
-            const glm::dvec3 far = unproject.point(x, y, 1.0);
-            const analytic::EyeRay ray{eye, glm::normalize(far - eye)};
-            const double depth = frame.depth[size_t(y) * size + x];
-            const double surface =
-                depth >= 1.0 ? glm::length(far - eye)
-                             : glm::length(unproject.point(x, y, 2.0 * depth - 1.0) - eye);
+            const auto [ray, surface, hit] = pixel_ray(scene, unproject, frame, x, y);
             const analytic::Interval cone = analytic::light_interval(ray, scene.light, surface);
             if (cone.empty()) {
                 continue;

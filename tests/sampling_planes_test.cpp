@@ -29,11 +29,6 @@ gl::Frame render(const Scene& scene, const std::string& method, int size,
 }
 
 // The eye ray through pixel (x, y) (row 0 at the top), as the GPU makes it.
-analytic::EyeRay eye_ray(const Scene& scene, const PixelUnprojector& unproject, int x, int y) {
-    const glm::dvec3 origin(scene.camera.position);
-    return {origin, glm::normalize(unproject.point(x, y, 1.0) - origin)};
-}
-
 // scattering.glsl's e(t) equals analytic::scattering_density for every phase function and both
 // models, to 1e-4 of the larger of the value and the image's peak (3e-3 with a smooth edge).
 TEST_F(Sampling, GlslIntegrandMatchesCppForEveryPhaseFunction) {
@@ -169,10 +164,8 @@ TEST_F(Sampling, Hybrid1RemovesOnlyShadowMapError) {
     Image oracle(size, size);
     for (int y = 0; y < size; ++y) {
         for (int x = 0; x < size; ++x) {
-            const analytic::EyeRay ray = eye_ray(scene, unproject, x, y);
-            const double depth = planes.depth[size_t(y) * size + x];
-            const double surface =
-                depth >= 1.0 ? 1e30 : glm::length(unproject.point(x, y, 2.0 * depth - 1.0) - eye);
+            const auto [ray, distance, hit] = pixel_ray(scene, unproject, planes, x, y);
+            const double surface = hit ? distance : 1e30;
             const double cos_forward = glm::dot(ray.direction, forward);
             glm::dvec3 sum(0.0);
             for (double k = std::max(0.0, std::floor(near_depth / dz)); (k + 0.5) * dz <= far_depth;

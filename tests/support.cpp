@@ -242,6 +242,17 @@ double red_peak(const std::vector<float>& rgba) {
     return peak;
 }
 
+PixelRay pixel_ray(const Scene& scene, const PixelUnprojector& unproject, const gl::Frame& frame,
+                   int x, int y) {
+    const glm::dvec3 eye(scene.camera.position);
+    const glm::dvec3 far = unproject.point(x, y, 1.0);
+    const double depth = frame.depth[size_t(y) * size_t(frame.in_scattering.width) + size_t(x)];
+    const bool surface = depth < 1.0;
+    return {{eye, glm::normalize(far - eye)},
+            glm::length((surface ? unproject.point(x, y, 2.0 * depth - 1.0) : far) - eye),
+            surface};
+}
+
 gl::Frame render_method(const Scene& scene, const std::string& method, int width, int height,
                         const std::vector<std::pair<std::string, std::string>>& settings) {
     gl::SceneRenderer renderer(scene, {.width = width, .height = height});

@@ -101,6 +101,17 @@ void for_each_pattern_pixel(const gl::shared::FrameUniforms& uniforms, int width
 // The largest red value of an RGBA image.
 double red_peak(const std::vector<float>& rgba);
 
+// The eye ray through pixel (x, y) of a frame of `scene` (PixelUnprojector's pixels) and the
+// distance along it to the frame's surface, from its depth buffer; `surface` is false where the
+// pixel sees none (distance: to the far plane).
+struct PixelRay {
+    analytic::EyeRay ray;
+    double distance;
+    bool surface;
+};
+PixelRay pixel_ray(const Scene& scene, const PixelUnprojector& unproject, const gl::Frame& frame,
+                   int x, int y);
+
 // One frame of `scene` with the named method and its parameter settings (NAME, VALUE).
 gl::Frame render_method(const Scene& scene, const std::string& method, int width, int height,
                         const std::vector<std::pair<std::string, std::string>>& settings = {});
