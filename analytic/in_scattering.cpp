@@ -207,7 +207,9 @@ dvec3 hard_edge_integral(const EyeRay& ray, double z0, double z1, const SpotLigh
             // A0 F(A1, ξ). The exponent is kept whole here: z + r >= 0 on the ray, so nothing
             // overflows however dense the medium.
             const double sigma_t = medium.sigma_t()[c];
-            auto xi = [&](double x) { return 0.25 * kPi + 0.5 * std::atan((x - z_s) / h); };
+            // ξ = π/4 + atan((z - z_s) / h) / 2, as atan2: it keeps its digits where it nears
+            // 0 (toward the light) or π/2 (away from it).
+            auto xi = [&](double z) { return 0.5 * std::atan2(h, z_s - z); };
             const double f = integrate(
                 [&](double zeta) {
                     return std::exp(-sigma_t * (z_s + h * std::tan(zeta))) *

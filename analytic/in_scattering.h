@@ -13,6 +13,25 @@
 // cone factor, which depends on the angle to the axis, not on the angle variable: in_scattering
 // integrates it by quadrature, and in_scattering_pieces gives the GPU's approximation of it.
 // Visibility is the caller's: the interval given is taken as unshadowed.
+//
+// Conditioning (issue 33). The GPU evaluates an antiderivative G(z) per fragment and sums
+// ±G(z) in float32, so G must stay of the size of what it integrates. Anchored behind the eye,
+// G loses every digit where the light is behind the eye and the ray points away from it (γ -> π):
+// the ray then spans a sliver of the angle variable next to its end (ζ -> π/2 in Sun's form,
+// β -> π/2 in R), 1/h times smaller than what G holds, and a table in that angle cannot resolve
+// it either (rings and a blob of up to 4x the image's peak). With x = z - z_s and
+// r² = x² + h², q = x + r = h tan ζ (q = h² / (r - x) for x < 0, without cancellation):
+//   ∫_z^∞ e dz = 2 σs I σt e^(-σt z_s) K(σt h, σt q),
+//   K(u, s) = ∫_s^∞ e^(-s') p(c) / (u² + s'²) ds', c = cos α = (u² - s'²) / (u² + s'²),
+// whose tail is well conditioned in a = u / s = h / q and s: it is tabulated as
+// T(a, b) = s (1 + s) e^s K(a s, s) on (sqrt(a), b = sqrt(s / (1 + s))), bounded at both ends,
+// and the tail is 2 σs I e^(-σt (z + r)) T / (q (1 + σt q)): no 1/h, no e^(-σt z_s) alone. A ray
+// whose lit span lies past its closest approach (z_s <= span start) anchors G at z = +∞ with that
+// tail; the others anchor it at z = -∞ (for those the closest approach lies in the span, where
+// h >= near, or beyond it, toward the light, where the front table's first cells are exact).
+// The simplified model's R gets its complement from β = π/2 likewise, and the angles are taken
+// as atan2(h, ±x). The GLSL twin adds the part of a table cell below the point by Gauss
+// quadrature of the integrand instead of interpolating it (in_scattering.glsl).
 
 #include <glm/vec3.hpp>
 

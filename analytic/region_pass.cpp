@@ -32,11 +32,17 @@ std::string AnalyticRegionPass::accepts() {
            "not the simplified model with a1 = 0 and an anisotropic phase function";
 }
 
-std::vector<std::string> edge_defines(const SpotLight& light) {
-    if (light.falloff_degrees > 0.0f) {
-        return {"SL_SMOOTH_CONE_EDGE 1", fmt::format("FALLOFF_PIECES {}", kFalloffPieces)};
+std::vector<std::string> closed_form_defines(const Scene& scene) {
+    const Medium& medium = scene.medium;
+    const int form = medium.model == MediumModel::physical      ? 2
+                     : medium.phase != PhaseFunction::isotropic ? 1
+                                                                : 0;
+    std::vector<std::string> defines = {fmt::format("SL_MEDIUM_FORM {}", form)};
+    if (scene.light.falloff_degrees > 0.0f) {
+        defines.push_back("SL_SMOOTH_CONE_EDGE 1");
+        defines.push_back(fmt::format("FALLOFF_PIECES {}", kFalloffPieces));
     }
-    return {};
+    return defines;
 }
 
 void AnalyticRegionPass::upload(const Scene& scene, const std::vector<glm::vec3>& positions,
@@ -78,9 +84,9 @@ bool ClosedFormScene::set_scene(const Scene& scene) {
         medium_table_ = create_medium_table(scene.medium);
         medium_ = scene.medium;
     }
-    const bool smooth_edge = scene.light.falloff_degrees > 0.0f;
-    const bool remake = smooth_edge_ != smooth_edge;
-    smooth_edge_ = smooth_edge;
+    std::vector<std::string> defines = closed_form_defines(scene);
+    const bool remake = defines_ != defines;
+    defines_ = std::move(defines);
     return remake;
 }
 
@@ -108,11 +114,11 @@ void AnalyticRegionPass::set_scene(const Scene& scene) {
     if (closed_form_.set_scene(scene)) {
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
                                        {GL_FRAGMENT_SHADER, "analytic/shaders/regions.frag"}},
-                                      edge_defines(scene.light));
+                                      closed_form_defines(scene));
         eye_program_ =
             gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                 {GL_FRAGMENT_SHADER, "analytic/shaders/regions_eye.frag"}},
-                               edge_defines(scene.light));
+                               closed_form_defines(scene));
     }
     if (!eye_vertex_array_) {
         eye_vertex_array_ = gl::create_vertex_array();

@@ -24,9 +24,11 @@ using gl::Texture;
 using gl::TextureViews;
 using gl::VolumeInputs;
 
-// The defines of a program that includes analytic/shaders/in_scattering.glsl for this light:
-// SL_SMOOTH_CONE_EDGE and FALLOFF_PIECES (= kFalloffPieces) where it has a smooth edge.
-std::vector<std::string> edge_defines(const SpotLight& light);
+// The defines of a program that includes analytic/shaders/in_scattering.glsl for this scene:
+// SL_MEDIUM_FORM, the one closed form its medium needs (0 Nilsson eq. 2.17, 1 the simplified
+// model's table, 2 the physical model), and SL_SMOOTH_CONE_EDGE and FALLOFF_PIECES
+// (= kFalloffPieces) where the light has a smooth edge.
+std::vector<std::string> closed_form_defines(const Scene& scene);
 
 // The generalized winding number of a closed, outward-wound triangle mesh about `point`: the sum
 // of the triangles' signed solid angles over 4π (van Oosterom & Strackee 1983), 1 inside a closed
@@ -35,12 +37,12 @@ double winding_number(const std::vector<glm::vec3>& positions,
                       const std::vector<glm::uvec3>& triangles, const glm::dvec3& point);
 
 // What a pass that draws faces with analytic/shaders/regions.frag keeps of the scene: the
-// medium's table, made again only when the medium changes, and the kind of cone edge its
-// programs were made for (edge_defines).
+// medium's table, made again only when the medium changes, and the closed form and kind of cone
+// edge its programs were made for (closed_form_defines).
 class ClosedFormScene {
 public:
     // Updates the table; true when the programs must be made (again): on the first call, and
-    // when the light's edge changes between hard and smooth.
+    // when the medium's closed form or the light's edge (hard or smooth) changes.
     bool set_scene(const Scene& scene);
     GLuint medium_table() const { return medium_table_.id(); }
     // The table, named "<owner>/..." (none before the first set_scene).
@@ -48,8 +50,8 @@ public:
 
 private:
     Texture medium_table_;
-    std::optional<Medium> medium_;     // what medium_table_ was made for
-    std::optional<bool> smooth_edge_;  // what the programs were made for
+    std::optional<Medium> medium_;                     // what medium_table_ was made for
+    std::optional<std::vector<std::string>> defines_;  // what the programs were made for
 };
 
 // The GL state of a signed draw of region faces, for its scope: the surface depth at unit 0 and

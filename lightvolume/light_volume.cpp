@@ -157,7 +157,7 @@ public:
     void apply_update(const Scene& scene, const SceneChange&,
                       std::unique_ptr<gl::FrameWork>) override {
         if (closed_form_.set_scene(scene)) {
-            const std::vector<std::string> defines = analytic::edge_defines(scene.light);
+            const std::vector<std::string> defines = analytic::closed_form_defines(scene);
             program_ =
                 gl::create_program({{GL_VERTEX_SHADER, "lightvolume/shaders/light_volume.vert"},
                                     {GL_FRAGMENT_SHADER, "analytic/shaders/regions.frag"}},

@@ -264,6 +264,30 @@ TEST(InScattering, AnisotropicLimits) {
     }
 }
 
+// Near the antilight direction (the light behind the eye), near the light's own direction, and
+// through the light from behind, 1e-4 to 10 degrees off: the C++ integral equals quadrature of
+// e(z) to 1e-6 relative, over the whole ray and over a short lit piece of it (issue 33's blob).
+TEST(InScattering, NearTheLightAndItsAntipodeMatchesQuadrature) {
+    const SpotLight light = near_light_test_light();
+    const std::vector<NearLightRay> rays = near_light_rays(light);
+    int lit = 0;
+    for (const Medium& medium : near_light_media()) {
+        for (const NearLightRay& r : rays) {
+            const dvec3 closed = analytic::in_scattering(r.ray, r.z0, r.z1, light, medium);
+            const dvec3 oracle = quadrature(r.ray, r.z0, r.z1, light, medium);
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_TRUE(std::isfinite(closed[c]));
+                EXPECT_NEAR(closed[c], oracle[c], 1e-6 * std::abs(oracle[c]) + 1e-300)
+                    << to_string(r.kind) << " " << r.degrees << " deg, [" << r.z0 << ", " << r.z1
+                    << "], " << to_string(medium.model) << " a0 " << medium.a0 << " "
+                    << to_string(medium.phase) << " g " << medium.g << " channel " << c;
+            }
+            lit += oracle.x > 0.0;
+        }
+    }
+    EXPECT_GE(lit, int(rays.size()) * 20) << "most rays must see the light";
+}
+
 // A random light with a smooth edge over a fifth to all of its half-angle.
 SpotLight random_falloff_light(std::mt19937& rng) {
     SpotLight light = random_light(rng);

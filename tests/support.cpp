@@ -12,6 +12,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "analytic/in_scattering.h"
 #include "core/error.h"
@@ -200,6 +201,98 @@ std::vector<std::pair<std::string, Scene>> eye_and_light_views() {
         scenes.emplace_back(view.name, std::move(scene));
     }
     return scenes;
+}
+
+SpotLight near_light_test_light() {
+    SpotLight light;
+    light.position = glm::vec3(-2.15f, 6.17f, 1.22f);
+    light.target = glm::vec3(0.22f, 0.0f, 0.29f);
+    light.cone_half_angle_degrees = 26.0f;
+    light.near = 0.54f;
+    light.far = 7.7f;
+    light.intensity = glm::vec3(178.0f, 120.0f, 60.0f);
+    return light;
+}
+
+const char* to_string(NearLightKind kind) {
+    switch (kind) {
+        case NearLightKind::away:
+            return "away from the light";
+        case NearLightKind::toward:
+            return "toward the light";
+        case NearLightKind::through:
+            return "through the light";
+    }
+    return "?";
+}
+
+std::vector<NearLightRay> near_light_rays(const SpotLight& light) {
+    using glm::dvec3;
+    const dvec3 L(light.position), axis = glm::normalize(dvec3(light.direction()));
+    const dvec3 side = glm::normalize(glm::cross(axis, dvec3(0.3, 0.1, 1.0)));
+    const dvec3 other = glm::cross(axis, side);
+    auto tilt = [](dvec3 d, dvec3 p, double degrees) {
+        const double a = glm::radians(degrees);
+        return glm::normalize(std::cos(a) * d + std::sin(a) * p);
+    };
+    // Origins exact in float: the GLSL twin reads the rays as floats.
+    auto exact = [](dvec3 v) { return dvec3(glm::vec3(v)); };
+    std::vector<NearLightRay> rays;
+    for (const NearLightKind kind :
+         {NearLightKind::away, NearLightKind::toward, NearLightKind::through}) {
+        for (const double degrees : {1e-4, 1e-3, 1e-2, 0.1, 1.0, 10.0}) {
+            for (int eye = 0; eye < 2; ++eye) {
+                const dvec3 offset = eye == 0 ? side : other;
+                dvec3 origin, singular;
+                if (kind == NearLightKind::through) {
+                    origin = L - (1.5 + eye) * axis + 0.05 * offset;
+                    singular = glm::normalize(L - origin);
+                } else {
+                    origin = L + (1.5 + 1.5 * eye) * tilt(axis, offset, 8.0 + 6.0 * eye);
+                    singular =
+                        glm::normalize(kind == NearLightKind::away ? origin - L : L - origin);
+                }
+                const dvec3 perpendicular =
+                    glm::normalize(glm::cross(singular, offset + 0.3 * axis));
+                const analytic::EyeRay ray{exact(origin), tilt(singular, perpendicular, degrees)};
+                rays.push_back({ray, 0.0, 40.0, kind, degrees});
+                // A short lit piece: the ray's middle stretch inside the cone.
+                const analytic::Interval lit = analytic::light_interval(ray, light, 40.0);
+                if (!lit.empty()) {
+                    const double middle = 0.5 * (lit.begin + lit.end);
+                    const double half = 0.05 * (lit.end - lit.begin);
+                    rays.push_back({ray, middle - half, middle + half, kind, degrees});
+                }
+            }
+        }
+    }
+    return rays;
+}
+
+std::vector<Medium> near_light_media() {
+    std::vector<Medium> media;
+    for (const MediumModel model : {MediumModel::simplified, MediumModel::physical}) {
+        for (const float a0 : {1.0f, 0.0f}) {
+            if (model == MediumModel::physical && a0 == 0.0f)
+                continue;
+            Medium medium;
+            medium.model = model;
+            medium.sigma_s = glm::vec3(0.17f, 0.05f, 0.6f);
+            medium.sigma_a = glm::vec3(0.01f, 0.0f, 0.2f);
+            medium.a0 = a0;
+            medium.a1 = 1.0f;
+            media.push_back(medium);
+            for (const PhaseFunction phase :
+                 {PhaseFunction::henyey_greenstein, PhaseFunction::schlick}) {
+                for (const float g : {-0.9f, -0.5f, 0.0f, 0.6f, 0.82f, 0.9f}) {
+                    medium.phase = phase;
+                    medium.g = g;
+                    media.push_back(medium);
+                }
+            }
+        }
+    }
+    return media;
 }
 
 std::vector<float> render_test_pattern(const gl::shared::FrameUniforms& uniforms,

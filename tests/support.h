@@ -136,6 +136,32 @@ Scene boxes_scene(MediumModel model);
 // the light with the apex behind the camera. Named.
 std::vector<std::pair<std::string, Scene>> eye_and_light_views();
 
+// Eye rays at a small angle from the two directions where the light model's integral is worst
+// conditioned (issue 33): `away` leaves an eye inside the cone at that angle from the direction
+// straight away from the light (the antilight direction, light behind the eye); `toward` leaves an
+// eye inside the cone at that angle from the direction to the light; `through` starts behind the
+// light, outside its cone, and passes it at that angle on its way into the cone. Each with the
+// interval it is integrated over: the whole ray, or a short piece of it (a lit gap between two
+// shadows).
+enum class NearLightKind { away, toward, through };
+struct NearLightRay {
+    analytic::EyeRay ray;
+    double z0, z1;
+    NearLightKind kind;
+    double degrees;  // the angle from the singular direction
+};
+// The light the rays are made for: the issue's antilight reproducer's (cone 26°, near 0.54).
+SpotLight near_light_test_light();
+// For every kind, every angle of 1e-4, 1e-3, 1e-2, 0.1, 1 and 10 degrees, two eyes and both
+// intervals. The origins are exact in float; a GLSL twin reads the directions rounded to float
+// (1e-7 off), which the integral, well conditioned, does not notice.
+std::vector<NearLightRay> near_light_rays(const SpotLight& light);
+const char* to_string(NearLightKind kind);
+// The media they are integrated in: both models (the simplified one with and without its constant
+// term a0, which alone keeps H away from 0), isotropic, and Henyey-Greenstein and Schlick at
+// g = -0.9, -0.5, 0, 0.6, 0.82 and 0.9; the channels differ in density.
+std::vector<Medium> near_light_media();
+
 // The canonical scenes from the source tree.
 Scene load_canonical(const std::string& name);
 

@@ -1,31 +1,112 @@
 // The in-scattering antiderivative G(z) along an eye ray, GLSL twin of analytic/in_scattering.cpp
-// (tested against it): E(z0, z1) = G(z1) - G(z0) over the part of the ray inside the exact cone
-// and range (Nilsson §3.2.2 adds G on back faces and subtracts it on front faces).
+// (tested against it and against quadrature): E(z0, z1) = G(z1) - G(z0) over the part of the ray
+// inside the exact cone and range (Nilsson §3.2.2 adds G on back faces and subtracts it on front
+// faces).
 //   simplified, isotropic:   Nilsson eq. 2.17
 //   simplified, anisotropic: σs I / (a1 H) R(κ, β), H² = h² + a0/a1, κ = h / H,
 //                            β = atan((z - z_s) / H)
-//   physical, any phase:     2 σs I e^(-σt z_s) / h · F_p(σt h, ξ), ξ = π/4 + θ/2
-// R and F_p are the scene's `medium_table` (analytic/gpu_tables.h: F_p stored as (1 + u) F_p over
-// s = u / (1 + u)). A smooth cone edge multiplies the closed form of each of the shell's
+//   physical, any phase:     2 σs I e^(-σt z_s) / h · F_p(σt h, ζ), ζ = π/4 + θ/2, and past the
+//                            closest approach its tail 2 σs I e^(-σt (z + r)) T / (q (1 + σt q))
+// R, F_p, T and R's complement are the scene's `medium_table` (analytic/gpu_tables.h). A smooth
+// cone edge multiplies the closed form of each of the shell's
 // FALLOFF_PIECES pieces by the cone factor at its middle (in_scattering_integral, below). That
 // code is compiled only where SL_SMOOTH_CONE_EDGE is defined (a program per edge kind): left in
 // behind a uniform branch it made llvmpipe's hard-edge region pass 4.6x slower (134 ms against
 // 29 ms on toplight at 640x360).
+#include "gl/shaders/scattering.glsl"
 layout(binding = 7) uniform sampler2D medium_table;
 
-// Bilinear interpolation of a table in float arithmetic at `texel` (texel units, 0 at the first
-// sample's centre). The texture unit's own GL_LINEAR filter is not used: GPUs interpolate with
-// fixed-point weights (8 fractional bits on NVIDIA), which on these smooth tables leaves errors of
-// ~1e-4 relative, above what the 1024-sample tables are accurate to.
-float table_lookup(sampler2D table, vec2 texel) {
+// Bilinear interpolation of one channel of a table in float arithmetic at `texel` (texel units, 0
+// at the first sample's centre). The texture unit's own GL_LINEAR filter is not used: GPUs
+// interpolate with fixed-point weights (8 fractional bits on NVIDIA), which on these smooth tables
+// leaves errors of ~1e-4 relative, above what the tables are accurate to.
+float table_lookup(sampler2D table, vec2 texel, int channel) {
     ivec2 last = textureSize(table, 0) - 1;
     vec2 x = clamp(texel, vec2(0.0), vec2(last));
     ivec2 i = min(ivec2(x), max(last - 1, ivec2(0)));
     vec2 f = x - vec2(i);
     ivec2 j = min(i + 1, last);
-    float a = mix(texelFetch(table, i, 0).r, texelFetch(table, ivec2(j.x, i.y), 0).r, f.x);
-    float b = mix(texelFetch(table, ivec2(i.x, j.y), 0).r, texelFetch(table, j, 0).r, f.x);
+    float a = mix(texelFetch(table, i, 0)[channel], texelFetch(table, ivec2(j.x, i.y), 0)[channel], f.x);
+    float b = mix(texelFetch(table, ivec2(i.x, j.y), 0)[channel], texelFetch(table, j, 0)[channel], f.x);
     return mix(a, b, f.y);
+}
+
+// Row y of a table, linearly interpolated at x (texel units), one channel.
+float table_row(sampler2D table, float x, int y, int channel) {
+    int last = textureSize(table, 0).x - 1;
+    x = clamp(x, 0.0, float(last));
+    int i = min(int(x), max(last - 1, 0));
+    return mix(texelFetch(table, ivec2(i, y), 0)[channel],
+               texelFetch(table, ivec2(min(i + 1, last), y), 0)[channel], x - float(i));
+}
+
+// A cumulative table's value at angle w of its y axis (rows `step` apart from w = 0): the row at
+// the node below w, interpolated in x only, is exact in w; the rest of the cell, [node, w], is
+// added by 3-point Gauss-Legendre of the integrand the table sums. Linear interpolation in w would
+// stand for the integrand by its mean over the cell, which on a short lit piece near a phase
+// function's peak (g = 0.9: 1.2e-2 relative) is far from its value there.
+const float GAUSS3_NODE = 0.7745966692, GAUSS3_OUTER = 5.0 / 9.0, GAUSS3_INNER = 8.0 / 9.0;
+
+// F_p(u, ζ) = ∫_0^ζ e^(-u tan ζ') p(cos 2ζ') dζ', the physical model's front channel (stored as
+// (1 + u) F_p on s = u / (1 + u)). What is the same for every channel's u is made once: the row
+// below ζ, and the Gauss nodes' tan ζ and weighted p(cos 2ζ).
+struct FrontCell {
+    int row;
+    vec3 tangent;
+    vec3 weighted;
+};
+
+FrontCell front_cell(float zeta, vec2 last) {
+    float step = 0.5 * PI / last.y;
+    FrontCell cell;
+    cell.row = int(min(floor(zeta / step), last.y));
+    float node = float(cell.row) * step;
+    float half_cell = 0.5 * (zeta - node), mid = node + half_cell, d = GAUSS3_NODE * half_cell;
+    vec3 at = vec3(mid - d, mid, mid + d);
+    // float(π/2) lies past π/2, where tan turns negative: an empty cell there must add 0.
+    cell.tangent = half_cell > 0.0 ? tan(at) : vec3(0.0);
+    cell.weighted = half_cell * vec3(GAUSS3_OUTER * phase_function(cos(2.0 * at.x)),
+                                     GAUSS3_INNER * phase_function(cos(2.0 * at.y)),
+                                     GAUSS3_OUTER * phase_function(cos(2.0 * at.z)));
+    return cell;
+}
+
+float physical_front(FrontCell cell, float u, vec2 last) {
+    return table_row(medium_table, u / (1.0 + u) * last.x, cell.row, 0) / (1.0 + u) +
+           dot(cell.weighted, exp(-u * cell.tangent));
+}
+
+// The simplified model's integrand in an angle w from one end of β: cos α = ±cos w /
+// sqrt(κ² sin² w + cos² w), + from β = -π/2 (w = β + π/2), - from β = π/2 (w = π/2 - β).
+float simplified_phase(float kappa, float w, float sign) {
+    float c = cos(w), s = kappa * sin(w);
+    return phase_function(sign * c / max(sqrt(s * s + c * c), 1e-30));
+}
+
+float simplified_cell(float kappa, float a, float b, float sign) {
+    float half_cell = 0.5 * (b - a), mid = a + half_cell, d = GAUSS3_NODE * half_cell;
+    return half_cell * (GAUSS3_OUTER * (simplified_phase(kappa, mid - d, sign) +
+                                        simplified_phase(kappa, mid + d, sign)) +
+                        GAUSS3_INNER * simplified_phase(kappa, mid, sign));
+}
+
+// R from one end of β to the angle w from it: channel 0 from β = -π/2 (sign +1), channel 1, its
+// complement, from β = π/2 (sign -1). cos α turns over a width κ about β = 0 (w = π/2): the
+// cell's rest is split there.
+float simplified_cumulative(float kappa, float w, int channel, float sign, vec2 last) {
+    float step = PI / last.y;
+    int row = int(min(floor(w / step), last.y));
+    float node = float(row) * step;
+    float r = table_row(medium_table, kappa * last.x, row, channel);
+    if (w > node) {
+        float middle = 0.5 * PI;
+        if (node < middle && middle < w) {
+            r += simplified_cell(kappa, node, middle, sign) + simplified_cell(kappa, middle, w, sign);
+        } else {
+            r += simplified_cell(kappa, node, w, sign);
+        }
+    }
+    return r;
 }
 
 // The ray's interval inside a cone of the given half-angle about the light's axis and inside its
@@ -75,47 +156,104 @@ vec2 light_interval(vec3 origin, vec3 direction, float t_max) {
     return cone_interval(origin, direction, t_max, frame.light_cone.x);
 }
 
+// G(z) of the hard edge, in the three forms below; each is given the ray's closest approach to the
+// light (z_s along the ray, h away from it), x = z - z_s, d = |L - origin| and whether G is
+// anchored at the ray's far end.
+//
+// Where G is anchored (its zero) is the ray's, never the point's, so that every fragment of a ray
+// adds and subtracts the same function; it is chosen so that G stays of the size of what is
+// integrated (analytic/in_scattering.h, "Conditioning"):
+//   span beyond the closest approach (z_s <= span.x; every ray that points away from the light):
+//       anchored at z = +∞, from the tables' far-end channel;
+//   otherwise (toward the light, or across the closest approach, where h >= near):
+//       anchored at z = -∞.
+// The angles are taken with atan2 of (h or H, ±x), which keeps their digits where they approach
+// 0 or π (an angle in [0, π] written as π/2 + atan(x / h) loses them to the π/2).
+
+// Nilsson eq. 2.17 (as an antiderivative): atan(a1 x / C) + π/2 = atan2(C, -a1 x), and
+// atan(a1 x / C) - π/2 = -atan2(C, a1 x).
+vec3 simplified_isotropic_antiderivative(float z, float x, float h, bool far_anchor) {
+    vec3 source = frame.medium_sigma_s.rgb * frame.light_intensity.rgb;
+    float a0 = frame.medium_attenuation.x, a1 = frame.medium_attenuation.y;
+    if (a1 == 0.0) return source / (4.0 * PI * a0) * z;
+    float C = max(sqrt(a1 * (a1 * h * h + a0)), 1e-30);
+    float angle = far_anchor ? -atan(C, a1 * x) : atan(C, -a1 * x);
+    return source / (4.0 * PI * C) * angle;
+}
+
+// σs I / (a1 H) R(κ, β): the phase function's integral in β, tabulated (a1 > 0:
+// require_closed_form), R from β = -π/2 in the first channel, its complement from β = π/2 in the
+// second.
+vec3 simplified_table_antiderivative(float x, float h, bool far_anchor) {
+    vec3 source = frame.medium_sigma_s.rgb * frame.light_intensity.rgb;
+    float a0 = frame.medium_attenuation.x, a1 = frame.medium_attenuation.y;
+    vec2 last = vec2(textureSize(medium_table, 0) - 1);
+    float H = max(sqrt(h * h + a0 / a1), 1e-6);
+    float kappa = clamp(h / H, 0.0, 1.0);
+    if (far_anchor) {
+        return -source / (a1 * H) * simplified_cumulative(kappa, atan(H, x), 1, -1.0, last);
+    }
+    return source / (a1 * H) * simplified_cumulative(kappa, atan(H, -x), 0, 1.0, last);
+}
+
+// Sun et al. 2005 with the phase function: σt per channel, in_scattering.h's forms. Every point of
+// the ray has z + r >= d (the eye-light distance), so where σt d > 50 nothing reaches the eye
+// (e^-50): 0.
+vec3 physical_antiderivative(float z, float z_s, float x, float h, float d, bool far_anchor) {
+    vec3 sigma_s = frame.medium_sigma_s.rgb, intensity = frame.light_intensity.rgb;
+    vec2 last = vec2(textureSize(medium_table, 0) - 1);
+    h = max(h, 1e-6);
+    float r = sqrt(x * x + h * h);
+    // q = x + r = h tan ζ, written without cancellation on either side of the closest approach.
+    float q = x >= 0.0 ? x + r : h * h / (r - x);
+    vec3 sigma_t = frame.medium_sigma_t.rgb;
+    FrontCell cell = front_cell(x >= 0.0 ? 0.5 * PI : 0.5 * atan(h, -x), last);
+    vec3 result;
+    for (int c = 0; c < 3; ++c) {
+        float st = sigma_t[c];
+        if (st <= 0.0 || st * d > 50.0) { result[c] = 0.0; continue; }
+        // The tail ∫_z^∞ e dz = 2 σs I e^(-σt (z + r)) T / (q (1 + σt q)), T on
+        // (sqrt(h / q), sqrt(s / (1 + s))), s = σt q.
+        float tail = 0.0;
+        if (x >= 0.0) {
+            float s = st * q;
+            vec2 at = vec2(sqrt(h / q), sqrt(s / (1.0 + s)));
+            tail = 2.0 * sigma_s[c] * intensity[c] * exp(-st * (z + r)) *
+                   table_lookup(medium_table, at * last, 1) / (q * (1.0 + s));
+            if (far_anchor) { result[c] = -tail; continue; }
+        }
+        // 2 σs I e^(-σt z_s) / h · F_p(σt h, ζ) from ζ = 0 (z = -∞); past the closest approach,
+        // the whole line's less the tail.
+        float f = physical_front(cell, st * h, last);
+        result[c] = 2.0 * sigma_s[c] * intensity[c] * exp(-st * z_s) / h * f - tail;
+    }
+    return result;
+}
+
 // G(z) of the hard edge for the ray (origin, direction), per channel; z is clamped to the cone
-// interval `span` so that G(z1) - G(z0) integrates over [z0, z1] ∩ span only.
+// interval `span` so that G(z1) - G(z0) integrates over [z0, z1] ∩ span only. SL_MEDIUM_FORM
+// (closed_form_defines) compiles the scene's form alone: 0 Nilsson eq. 2.17, 1 the simplified
+// model's table, 2 the physical model. Without it all three are compiled behind branches on the
+// frame's uniforms, which llvmpipe runs every side of (the region pass 2x slower on toplight).
 vec3 in_scattering_antiderivative(vec3 origin, vec3 direction, vec2 span, float z) {
     if (!(span.y > span.x)) return vec3(0.0);
     z = clamp(z, span.x, span.y);
     vec3 delta = frame.light_position.xyz - origin;
     float z_s = dot(delta, direction);
     float h = length(delta - z_s * direction);
-    vec3 sigma_s = frame.medium_sigma_s.rgb, intensity = frame.light_intensity.rgb;
-    ivec2 last = textureSize(medium_table, 0) - 1;
-    if (frame.medium_sigma_t.w < 0.5) {
-        float a0 = frame.medium_attenuation.x, a1 = frame.medium_attenuation.y;
-        if (frame.medium_attenuation.z > 0.5) {
-            // The phase function's integral in β, tabulated (a1 > 0: require_closed_form).
-            float H = max(sqrt(h * h + a0 / a1), 1e-6);
-            float beta = atan((z - z_s) / H);
-            vec2 at = vec2(clamp(h / H, 0.0, 1.0), clamp(beta / PI + 0.5, 0.0, 1.0));
-            return sigma_s * intensity / (a1 * H) * table_lookup(medium_table, at * vec2(last));
-        }
-        // Nilsson eq. 2.17 (as an antiderivative).
-        if (a1 == 0.0) return sigma_s * intensity / (4.0 * PI * a0) * z;
-        float C = sqrt(a1 * (a1 * h * h + a0));
-        return sigma_s * intensity / (4.0 * PI * C) * atan(a1 * (z - z_s) / C);
-    }
-    // Sun et al. 2005 with the phase function: σt per channel. h > 0 away from the light's axis
-    // line. Every point of the ray has z + r >= d (the eye-light distance), so where σt d > 50
-    // nothing reaches the eye (e^-50), and e^(-σt z_s) alone could overflow: return 0.
-    h = max(h, 1e-6);
-    float d = length(delta);
-    vec3 sigma_t = frame.medium_sigma_t.rgb;
-    float xi = 0.25 * PI + 0.5 * atan((z - z_s) / h);
-    vec3 result;
-    for (int c = 0; c < 3; ++c) {
-        float st = sigma_t[c];
-        if (st <= 0.0 || st * d > 50.0) { result[c] = 0.0; continue; }
-        float u = st * h;
-        vec2 at = vec2(u / (1.0 + u), clamp(xi / (0.5 * PI), 0.0, 1.0));
-        float f = table_lookup(medium_table, at * vec2(last)) / (1.0 + u);
-        result[c] = 2.0 * sigma_s[c] * intensity[c] * exp(-st * z_s) / h * f;
-    }
-    return result;
+    float x = z - z_s;
+    bool far_anchor = z_s <= span.x;
+#if !defined(SL_MEDIUM_FORM)
+    if (frame.medium_sigma_t.w > 0.5) return physical_antiderivative(z, z_s, x, h, length(delta), far_anchor);
+    if (frame.medium_attenuation.z > 0.5) return simplified_table_antiderivative(x, h, far_anchor);
+    return simplified_isotropic_antiderivative(z, x, h, far_anchor);
+#elif SL_MEDIUM_FORM == 2
+    return physical_antiderivative(z, z_s, x, h, length(delta), far_anchor);
+#elif SL_MEDIUM_FORM == 1
+    return simplified_table_antiderivative(x, h, far_anchor);
+#else
+    return simplified_isotropic_antiderivative(z, x, h, far_anchor);
+#endif
 }
 
 // The ray's cone interval and, for a smooth falloff, its inner cone's (half-angle cone -
@@ -141,7 +279,7 @@ LightSpans light_spans(vec3 origin, vec3 direction) {
 
 #ifdef SL_SMOOTH_CONE_EDGE
 // ∫ of e times the cone factor over one shell interval up to z, in FALLOFF_PIECES pieces equal
-// in the angle at L (as in_scattering_pieces; edge_defines sets it to kFalloffPieces).
+// in the angle at L (as in_scattering_pieces; closed_form_defines sets it to kFalloffPieces).
 vec3 shell_integral(vec3 origin, vec3 direction, vec2 span, vec2 shell, float z) {
     if (!(shell.y > shell.x) || z <= shell.x) return vec3(0.0);
     vec3 delta = frame.light_position.xyz - origin;

@@ -1,6 +1,8 @@
 // The integrand e(z) of Nilsson eq. 2.7 at one point, GLSL twin of analytic::scattering_density
 // and analytic::phase (tested against them): what the sampling methods evaluate per sample.
-// Needs frame_uniforms.h and lighting.glsl.
+// Needs frame_uniforms.h and lighting.glsl; included once however often it is named.
+#ifndef SL_SCATTERING_GLSL
+#define SL_SCATTERING_GLSL
 
 // p(cos α) with asymmetry g, normalised over the sphere; the ids follow scenes/scene.h's
 // PhaseFunction.
@@ -48,3 +50,5 @@ vec3 scattering_density_g(vec3 origin, vec3 direction, float t, float g) {
 vec3 scattering_density(vec3 origin, vec3 direction, float t) {
     return scattering_density_g(origin, direction, t, frame.medium_attenuation.w);
 }
+
+#endif  // SL_SCATTERING_GLSL
