@@ -355,9 +355,15 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         GL.DepthMask(GL_TRUE);
         GL.Enable(GL_POLYGON_OFFSET_FILL);
         GL.PolygonOffset(2.0f, 4.0f);  // slope-scaled bias against shadow acne
+        // The light's range bounds where it scatters, not what casts shadows (the beam tree and
+        // the reference see occluders from the light outward): an occluder between the light
+        // and its near plane is clamped to depth 0 (and keeps its linear depth in the VSM
+        // moments) instead of being clipped away, so it shadows everything in range behind it.
+        GL.Enable(GL_DEPTH_CLAMP);
         const GLuint program = vsm ? shadow_moments_program_.id() : shadow_program_.id();
         GL.UseProgram(program);
         draw_objects(program, false);
+        GL.Disable(GL_DEPTH_CLAMP);
         GL.Disable(GL_POLYGON_OFFSET_FILL);
         if (vsm && shadow_.radius > 0) {
             // Separable Gaussian: moments -> scratch (x), scratch -> moments (y).
