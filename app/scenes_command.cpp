@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "core/error.h"
+#include "core/text.h"
 #include "gl/platform.h"
 #include "gl/volume_method.h"
 #include "methods/registry.h"
@@ -14,15 +16,19 @@ Command add_scenes_command(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "scenes", "List the canonical scenes (objects, triangles, light) or generate multiple:N");
     auto names_only = std::make_shared<bool>(false);
-    auto generate = std::make_shared<int>(0);
+    auto generate = std::make_shared<std::string>();
     command->add_flag("--names", *names_only, "Print only the names, one per line");
-    command
-        ->add_option("--generate", *generate,
-                     "Print the TOML of the generated scene multiple:N and exit")
-        ->check(CLI::Range(1, kMultipleMaxCount));
+    command->add_option("--generate", *generate,
+                        "Print the TOML of a generated scene and exit: multiple:N (or N alone) "
+                        "or boxes:SEED");
     return [=] {
-        if (*generate > 0) {
-            std::fputs(generate_multiple_scene(*generate).c_str(), stdout);
+        if (!generate->empty()) {
+            const bool count_alone = generate->find_first_not_of("0123456789") == std::string::npos;
+            const std::string name = count_alone ? "multiple:" + *generate : *generate;
+            if (!name.starts_with("multiple:") && !name.starts_with("boxes:")) {
+                fail("--generate {}: expected multiple:N, N or boxes:SEED", quote(*generate));
+            }
+            std::fputs(generated_scene_text(name).c_str(), stdout);
             return 0;
         }
         const SceneSearchPaths paths = SceneSearchPaths::defaults();
@@ -44,6 +50,9 @@ Command add_scenes_command(CLI::App& app) {
         }
         if (!*names_only) {
             fmt::print("multiple:N  generated: N objects under one spot light\n");
+            fmt::print(
+                "boxes:SEED  generated: random boxes (their own bounding volumes) under a random "
+                "spot light and medium, the eye inside the cone on odd seeds\n");
         }
         return 0;
     };

@@ -1,9 +1,18 @@
-// The `multiple:N` family of scenes (DESIGN.md §5): N objects on a jittered grid under one spot
-// light pointing down, for beam-tree scaling studies. Emitted as TOML so that generated and
-// hand-written scenes go through the same reader.
+// The generated scene families, emitted as TOML so that generated and hand-written scenes go
+// through the same reader:
+//   multiple:N  N objects on a jittered grid under one spot light pointing down, for beam-tree
+//               scaling studies (DESIGN.md §5);
+//   boxes:SEED  a few rotated boxes under a randomly placed spot light in a random medium, the
+//               eye inside the cone on odd seeds: every object is its own bounding volume, so the
+//               region methods must equal the reference (issue 33's search for wrong images).
 
+#include <array>
 #include <cmath>
 #include <random>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <glm/vec3.hpp>
 
 #include <fmt/format.h>
 
@@ -108,6 +117,152 @@ material = "floor"
             "\n[[objects]]\nname = \"{}{}\"\nshape = \"{}\"\n{}\nmaterial = \"object\"\n"
             "translate = [{:.4f}, {:.4f}, {:.4f}]\nrotate = [0.0, {:.2f}, 0.0]\n",
             shape, i, shape, parameters, x, height, z, yaw);
+    }
+    return toml;
+}
+
+namespace {
+
+std::string toml_vec3(glm::vec3 v) {
+    return fmt::format("[{:.5f}, {:.5f}, {:.5f}]", v.x, v.y, v.z);
+}
+
+// A unit vector uniform on the sphere.
+glm::vec3 random_direction(std::mt19937& rng) {
+    for (;;) {
+        const glm::vec3 v(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+        if (const float l = glm::length(v); l > 0.1f && l <= 1.0f)
+            return v / l;
+    }
+}
+
+// `d` turned by `degrees` towards a random perpendicular.
+glm::vec3 tilted(std::mt19937& rng, glm::vec3 d, float degrees) {
+    glm::vec3 side = glm::cross(d, random_direction(rng));
+    while (glm::length(side) < 1e-3f)
+        side = glm::cross(d, random_direction(rng));
+    const float a = glm::radians(degrees);
+    return glm::normalize(std::cos(a) * d + std::sin(a) * glm::normalize(side));
+}
+
+}  // namespace
+
+std::string generate_boxes_scene(int seed) {
+    std::mt19937 rng(0xb0c5 + unsigned(seed));
+    const bool eye_inside = seed % 2 == 1;
+    const bool physical = (seed / 2) % 2 == 1;
+    // The light: above the floor, aimed at it, any cone and range.
+    const glm::vec3 light(uniform(rng, -2, 2), uniform(rng, 4, 7), uniform(rng, -2, 2));
+    const glm::vec3 target(uniform(rng, -1.5f, 1.5f), 0.0f, uniform(rng, -1.5f, 1.5f));
+    const glm::vec3 axis = glm::normalize(target - light);
+    const float cone = uniform(rng, 15, 45), near = uniform(rng, 0.1f, 1.0f);
+    const float far = uniform(rng, 7, 12);
+    // The medium: either model, isotropic or Henyey-Greenstein or Schlick at any asymmetry.
+    const char* phases[] = {"isotropic", "henyey-greenstein", "schlick"};
+    const char* phase = phases[rng() % 3];
+    const float g = uniform(rng, -0.9f, 0.9f);
+    std::string medium =
+        fmt::format("model = \"{}\"\nsigma_s = {}\nphase = \"{}\"\ng = {:.4f}\n",
+                    physical ? "physical" : "simplified",
+                    toml_vec3(glm::vec3(uniform(rng, 0.05f, 0.25f), uniform(rng, 0.05f, 0.25f),
+                                        uniform(rng, 0.05f, 0.25f))),
+                    phase, g);
+    if (physical) {
+        medium += fmt::format("sigma_a = {}\n", toml_vec3(glm::vec3(uniform(rng, 0.0f, 0.05f))));
+    } else {
+        // a0 = 0 on one seed in four: H = h, the form the table must hold alone.
+        medium +=
+            fmt::format("a0 = {:.4f}\na1 = {:.4f}\n",
+                        rng() % 4 == 0 ? 0.0f : uniform(rng, 0.2f, 2.0f), uniform(rng, 0.5f, 2.0f));
+    }
+    // Boxes: in the cone, at any height and turn; on one seed in three a small one between the
+    // light and its near plane. None holds the light.
+    struct Placed {
+        glm::vec3 centre, size, turn;
+    };
+    std::vector<Placed> boxes;
+    const int count = 2 + int(rng() % 6);
+    for (int i = 0; i < count; ++i) {
+        const float along = uniform(rng, 1.0f, glm::length(target - light) - 0.3f);
+        const glm::vec3 centre = light + along * tilted(rng, axis, uniform(rng, 0, 0.8f * cone));
+        const glm::vec3 size(uniform(rng, 0.2f, 1.4f), uniform(rng, 0.2f, 1.4f),
+                             uniform(rng, 0.2f, 1.4f));
+        boxes.push_back(
+            {centre, size,
+             glm::vec3(uniform(rng, 0, 90), uniform(rng, 0, 180), uniform(rng, 0, 90))});
+    }
+    if (rng() % 3 == 0) {
+        const glm::vec3 centre =
+            light + 0.6f * near * tilted(rng, axis, uniform(rng, 0, 0.5f * cone));
+        boxes.push_back({centre, glm::vec3(0.35f * near), glm::vec3(uniform(rng, 0, 90), 0, 0)});
+    }
+    std::erase_if(boxes, [&](const Placed& b) {
+        return glm::length(light - b.centre) < 0.5f * glm::length(b.size) + 0.05f;
+    });
+    // The eye: inside the cone and its range looking away from the light, down or anywhere; or
+    // outside it, looking at the cone's middle.
+    glm::vec3 eye, look;
+    if (eye_inside) {
+        const float along = uniform(rng, std::max(1.5f * near, 0.8f), 0.45f * far);
+        eye = light + along * tilted(rng, axis, uniform(rng, 0, 0.6f * cone));
+        eye.y = std::max(eye.y, 0.3f);
+        const int view = int(rng() % 3);
+        const glm::vec3 away = glm::normalize(eye - light);
+        look = view == 0   ? eye + tilted(rng, away, uniform(rng, 0, 20))
+               : view == 1 ? glm::vec3(uniform(rng, -2, 2), 0.0f, uniform(rng, -2, 2))
+                           : eye + random_direction(rng);
+    } else {
+        eye = glm::vec3(uniform(rng, -9, 9), uniform(rng, 0.5f, 8), uniform(rng, 6, 11));
+        if (rng() % 2)
+            eye.z = -eye.z;
+        look = light + 0.5f * glm::length(target - light) * axis;
+    }
+    // No box holds the eye either (with room to see past it).
+    std::erase_if(boxes, [&](const Placed& b) {
+        return glm::length(eye - b.centre) < 0.5f * glm::length(b.size) + 0.5f;
+    });
+    if (glm::length(look - eye) < 1e-3f)
+        look = eye + glm::vec3(0, -1, 0);
+    const glm::vec3 view = glm::normalize(look - eye);
+    const char* up = std::abs(view.y) > 0.99f ? "[0.0, 0.0, 1.0]" : "[0.0, 1.0, 0.0]";
+    std::string toml = fmt::format(
+        R"(# The generated scene boxes:{0}: boxes that are their own bounding volumes under a random
+# spot light (eye {1} the cone).
+[scene]
+name = "boxes-{0}"
+ambient = [0.0, 0.0, 0.0]
+
+[camera]
+position = {2}
+target = {3}
+up = {4}
+fov = {5:.2f}
+near = 0.05
+far = 60.0
+
+[light]
+position = {6}
+target = {7}
+cone_angle = {8:.3f}
+near = {9:.4f}
+far = {10:.4f}
+intensity = {11}
+
+[medium]
+{12}
+[[objects]]
+name = "floor"
+shape = "plane"
+size = [40.0, 0.0, 40.0]
+)",
+        seed, eye_inside ? "inside" : "outside", toml_vec3(eye), toml_vec3(look), up,
+        uniform(rng, 40, 70), toml_vec3(light), toml_vec3(target), cone, near, far,
+        toml_vec3(glm::vec3(uniform(rng, 50, 200))), medium);
+    for (size_t i = 0; i < boxes.size(); ++i) {
+        toml += fmt::format(
+            "\n[[objects]]\nname = \"box{}\"\nshape = \"box\"\nsize = {}\ntranslate = {}\n"
+            "rotate = {}\n",
+            i, toml_vec3(boxes[i].size), toml_vec3(boxes[i].centre), toml_vec3(boxes[i].turn));
     }
     return toml;
 }

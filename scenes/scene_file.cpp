@@ -426,16 +426,8 @@ struct SceneText {
 
 // A canonical name, multiple:N, or a file (relative paths from `dir` first, then as given).
 SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSearchPaths& paths) {
-    constexpr std::string_view kMultiple = "multiple:";
-    if (name.starts_with(kMultiple)) {
-        const std::string count_text = name.substr(kMultiple.size());
-        char* end = nullptr;
-        const long count = std::strtol(count_text.c_str(), &end, 10);
-        if (count_text.empty() || *end != '\0' || count < 1 || count > kMultipleMaxCount) {
-            fail("scene {}: N in multiple:N must be an integer in [1, {}]", quote(name),
-                 kMultipleMaxCount);
-        }
-        return {generate_multiple_scene(int(count)), name, paths.scenes};
+    if (name.starts_with("multiple:") || name.starts_with("boxes:")) {
+        return {generated_scene_text(name), name, paths.scenes};
     }
     auto names = canonical_scene_names();
     const auto effects = effect_scene_names();
@@ -459,10 +451,36 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
         effect_list += (effect_list.empty() ? "" : ", ") + effect;
     }
     fail(
-        "unknown scene {} (canonical: toplight, parallel, multiple, multiple:N; animated: "
+        "unknown scene {} (canonical: toplight, parallel, multiple, multiple:N; random: "
+        "boxes:SEED; animated: "
         "toplight-orbit, parallel-walk, multiple-moving; effects: {}; or a .toml file)",
         quote(name), effect_list);
 }
+
+}  // namespace
+
+std::string generated_scene_text(const std::string& name) {
+    // The integer after the family's prefix, in [lo, hi].
+    auto number = [&](std::string_view prefix, long lo, long hi, const char* what) {
+        const std::string text = name.substr(prefix.size());
+        char* end = nullptr;
+        const long value = std::strtol(text.c_str(), &end, 10);
+        if (text.empty() || *end != '\0' || value < lo || value > hi) {
+            fail("scene {}: {} must be an integer in [{}, {}]", quote(name), what, lo, hi);
+        }
+        return int(value);
+    };
+    if (name.starts_with("multiple:")) {
+        return generate_multiple_scene(
+            number("multiple:", 1, kMultipleMaxCount, "N in multiple:N"));
+    }
+    if (name.starts_with("boxes:")) {
+        return generate_boxes_scene(number("boxes:", 0, kBoxesMaxSeed, "SEED in boxes:SEED"));
+    }
+    fail("scene {} is not a generated scene (multiple:N or boxes:SEED)", quote(name));
+}
+
+namespace {
 
 toml::table parse_toml(const std::string& text, const std::string& origin) {
     try {
@@ -718,7 +736,7 @@ std::vector<std::string> effect_scene_names() {
 Scene load_scene(const std::string& name, const SceneSearchPaths& paths) {
     const SceneText text = scene_text(name, {}, paths);
     Scene scene = parse_scene(text.text, text.origin, text.dir, paths);
-    if (!name.starts_with("multiple:")) {
+    if (!name.starts_with("multiple:") && !name.starts_with("boxes:")) {
         scene.source = text.origin;
     }
     return scene;

@@ -76,8 +76,17 @@ constexpr int kMultipleDefaultCount = 32;
 // The largest N: 10^4 objects (a beam tree of ~10^6 beams) is far past any scaling study here.
 constexpr int kMultipleMaxCount = 10000;
 std::string generate_multiple_scene(int count);
+// A few rotated boxes (their own bounding volumes) and a floor under a random spot light in a
+// random medium, the eye inside the cone on odd seeds, as TOML text, deterministic in the seed:
+// where the region methods must equal the reference (issue 33).
+constexpr int kBoxesMaxSeed = 1000000;
+std::string generate_boxes_scene(int seed);
+// The TOML text of a generated scene by its name, multiple:N or boxes:SEED (an error naming the
+// allowed range otherwise).
+std::string generated_scene_text(const std::string& name);
 
-// Resolves a canonical name ("toplight"), a generated name ("multiple:120") or a file path.
+// Resolves a canonical name ("toplight"), a generated name ("multiple:120", "boxes:7") or a
+// file path.
 Scene load_scene(const std::string& name_or_path, const SceneSearchPaths& paths);
 
 }  // namespace sl

@@ -2,6 +2,7 @@
 // C++ closed forms, and the method's I_s against the CPU reference where the objects are their
 // own bounding volumes (boxes), with the camera inside the beam and the light in view too.
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -21,6 +22,8 @@
 #include "gl/volume_method.h"
 #include "methods/registry.h"
 #include "reference/reference.h"
+#include "scenes/mesh.h"
+#include "scenes/scene_file.h"
 #include "tests/support.h"
 
 namespace sl::test {
@@ -274,6 +277,90 @@ TEST_F(GpuMethod, AnalyticMethodsMatchTheReferenceOnAnisotropicMedia) {
             EXPECT_LE(error.rel_rmse, 0.01) << method << " variant " << variant;
         }
     }
+}
+
+// Issue 33's reproducer: the eye inside the cone of a physical medium with HG g = 0.82 over a
+// floor, the antilight direction in view. The closed-form methods drew a blob of rings around it
+// (beamtree, hybrid3 and lightvolume 6.3% off); now within 1e-3 of the reference at 160x90, as at
+// every asymmetry the issue measured.
+TEST_F(GpuMethod, AnalyticMethodsMatchTheReferenceLookingAwayFromTheLight) {
+    Scene scene;
+    scene.name = "hg082";
+    scene.camera.position = glm::vec3(-1.69f, 5.0f, 0.59f);
+    scene.camera.target = glm::vec3(0.52f, -0.48f, -0.45f);
+    scene.camera.fov_y_degrees = 46.0f;
+    scene.light.position = glm::vec3(-2.15f, 6.17f, 1.22f);
+    scene.light.target = glm::vec3(0.22f, 0.0f, 0.29f);
+    scene.light.cone_half_angle_degrees = 26.0f;
+    scene.light.near = 0.54f;
+    scene.light.far = 7.7f;
+    scene.light.intensity = glm::vec3(178.0f);
+    scene.medium.model = MediumModel::physical;
+    scene.medium.sigma_s = glm::vec3(0.17f);
+    scene.medium.sigma_a = glm::vec3(0.01f);
+    scene.medium.phase = PhaseFunction::henyey_greenstein;
+    scene.materials.push_back(Material{.name = "default"});
+    Object floor;
+    floor.name = "floor";
+    floor.mesh = std::make_shared<const Mesh>(make_plane({40.0f, 40.0f}));
+    scene.objects.push_back(floor);
+    for (const float g : {0.0f, 0.7f, 0.82f, 0.9f}) {
+        scene.medium.g = g;
+        const Image exact = reference::ReferenceRenderer(scene).render(160, 90, {});
+        for (const char* method : {"beamtree", "hybrid3", "lightvolume"}) {
+            const ErrorMetrics error =
+                compare_images(render(scene, method, 160, 90).in_scattering, exact);
+            EXPECT_LE(error.rel_rmse, 1e-3) << method << " g " << g;
+        }
+    }
+}
+
+// Issue 33's class search: on random box scenes (boxes:SEED, scenes/generators.cpp: rotated boxes
+// that are their own bounding volumes, a random light and medium of either model, HG or Schlick at
+// any g, a0 = 0 on some, an occluder between the light and its near plane on some, the eye inside
+// the cone on odd seeds and looking away from the light on some), nothing is uncertain, so
+// `beamtree` equals the reference, at 128x72 on 80 seeds:
+//   - at most 0.3% of a scene's pixels are off by more than 1e-3 of its peak: a wrong closed form
+//     makes a blob (issue 33's covered hundreds), while the isolated pixels allowed are rays along
+//     lit slivers thinner than llvmpipe's subpixel grid (BoundaryOnTheGpu, 0-2 a scene);
+//   - relative RMSE at most 1e-2 on every scene and 3e-4 in the median (issue 33: 6.3%).
+// results/random_boxes measures the same at 320x180 on 200 seeds for beamtree, hybrid3 and
+// lightvolume.
+TEST_F(GpuMethod, BeamtreeMatchesTheReferenceOnRandomBoxScenes) {
+    constexpr int kSeeds = 80, kWidth = 128, kHeight = 72;
+    std::vector<double> errors;
+    int worst_off = 0;
+    for (int seed = 0; seed < kSeeds; ++seed) {
+        const std::string name = fmt::format("boxes:{}", seed);
+        const Scene scene = load_scene(name, SceneSearchPaths::defaults());
+        const gl::Frame frame = render(scene, "beamtree", kWidth, kHeight);
+        const Image exact = reference::ReferenceRenderer(scene).render(kWidth, kHeight, {});
+        const ErrorMetrics error = compare_images(frame.in_scattering, exact);
+        double peak = 0.0;
+        for (const float v : exact.rgb)
+            peak = std::max(peak, double(v));
+        int off = 0;
+        for (size_t pixel = 0; pixel < exact.rgb.size(); pixel += 3) {
+            bool far_off = false;
+            for (size_t c = pixel; c < pixel + 3; ++c) {
+                ASSERT_TRUE(std::isfinite(frame.in_scattering.rgb[c])) << name;
+                far_off = far_off ||
+                          std::abs(double(frame.in_scattering.rgb[c]) - exact.rgb[c]) > 1e-3 * peak;
+            }
+            off += far_off;
+        }
+        EXPECT_LE(off, kWidth * kHeight * 3 / 1000) << name << ": pixels off by > 1e-3 of the peak";
+        EXPECT_LE(error.rel_rmse, 1e-2) << name;
+        errors.push_back(error.rel_rmse);
+        worst_off = std::max(worst_off, off);
+    }
+    std::sort(errors.begin(), errors.end());
+    const double median = errors[errors.size() / 2];
+    EXPECT_LE(median, 3e-4);
+    std::printf(
+        "random boxes, beamtree against the reference: rel_rmse median %.2e, worst %.2e; at most "
+        "%d pixels off by > 1e-3 of the peak\n",
+        median, errors.back(), worst_off);
 }
 
 // The one medium the closed forms leave out is refused by name, with the methods that take it.
