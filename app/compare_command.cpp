@@ -23,6 +23,14 @@ struct CompareArguments {
 };
 
 int run_compare(const CompareArguments& args) {
+    if (!args.difference.empty()) {
+        std::error_code ec;
+        const std::filesystem::path path(args.difference);
+        if (!path.has_filename() || std::filesystem::is_directory(path, ec)) {
+            fail("--difference {}: a directory; expected the path of the PNG file to write",
+                 quote(args.difference));
+        }
+    }
     const Image image = read_exr(args.image), reference = read_exr(args.reference);
     // A NaN would score as a perfect or a meaningless match: name the file and the pixel.
     require_finite(image, args.image);

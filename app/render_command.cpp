@@ -210,14 +210,18 @@ void add_time_option(CLI::App& command, std::optional<double>& time) {
 }
 
 void parse_size(const std::string& text, int& width, int& height, const char* option) {
-    static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
+    static const std::regex pattern(R"((\d+)x(\d+))");
     std::smatch match;
     if (!std::regex_match(text, match, pattern)) {
         fail("{} {}: expected WIDTHxHEIGHT with positive integers, e.g. 640x360", option,
              quote(text));
     }
-    width = std::stoi(match[1]);
-    height = std::stoi(match[2]);
+    // Past five digits a side is out of range whatever it is (and would overflow an int).
+    auto side = [](const std::string& digits) {
+        return digits.size() > 5 ? 100000 : std::stoi(digits);
+    };
+    width = side(match[1]);
+    height = side(match[2]);
     if (width < 1 || height < 1 || width > 16384 || height > 16384) {
         fail("{} {}: width and height must be in 1..16384", option, quote(text));
     }

@@ -40,6 +40,11 @@ OutputFiles::~OutputFiles() {
 
 void OutputFiles::add(const std::string& name, const std::function<void(const fs::path&)>& write) {
     const fs::path final_path = directory_ / name;
+    std::error_code ec;
+    if (name.empty() || fs::is_directory(final_path, ec)) {
+        fail("{}: cannot write a file there: it is a directory (expected a file's path)",
+             final_path.string());
+    }
     const fs::path temporary =
         directory_ / fmt::format(".{}.{}.tmp", name, static_cast<long>(::getpid()));
     staged_.emplace_back(temporary, final_path);

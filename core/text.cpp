@@ -97,7 +97,10 @@ std::string quote(std::string_view text, size_t max_bytes) {
 std::string read_text_file(const std::filesystem::path& path, std::string_view what) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {
-        fail("{}: cannot read {} (no such file)", path.string(), what);
+        const char* why = std::filesystem::is_directory(path, ec) ? "it is a directory"
+                          : std::filesystem::exists(path, ec)     ? "not a regular file"
+                                                                  : "no such file";
+        fail("{}: cannot read {} ({})", path.string(), what, why);
     }
     std::ifstream in(path, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

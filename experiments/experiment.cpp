@@ -616,6 +616,20 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
         TomlTableReader r(section("table"), origin, "[table]");
         if (r.has("rows")) {
             x.table_rows = strings(r, "rows");
+            // A row dimension is the scene, the size or a parameter some method declares (the
+            // sweep's methods may be overridden, as for [sweep.params]).
+            const auto known = methods::volume_method_names();
+            for (const std::string& row : x.table_rows) {
+                if (row == "scene" || row == "size" ||
+                    std::any_of(known.begin(), known.end(), [&](const std::string& m) {
+                        return methods::create_volume_method(m)->has_parameter(row);
+                    })) {
+                    continue;
+                }
+                r.error("rows", fmt::format("unknown row {}: expected scene, size or a method's "
+                                            "parameter (see `shaftlab methods`)",
+                                            quote(row)));
+            }
         }
         x.table_metric = r.string("metric", x.table_metric);
         if (x.reference.empty() ||

@@ -27,11 +27,28 @@ constexpr GLint kTranslucentLocation = 5;
 // Normal offset of shadow lookups, in shadow-map texels at the receiver's distance.
 constexpr float kShadowNormalOffsetTexels = 1.5f;
 
-void require_complete(GLuint framebuffer, const char* what) {
+// A framebuffer of `size` x `size` (or width x height) texels whose targets the GL must have
+// allocated: an incompleteness here is a size the driver could not give memory to (llvmpipe
+// refuses any texture over 1 GiB: 16384² RGBA32F is 4 GiB), said as such.
+void require_complete(GLuint framebuffer, const char* what, int width, int height) {
     const GLenum status = GL.CheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-        fail("{} framebuffer is incomplete (status {:#x})", what, status);
+        const auto* renderer = reinterpret_cast<const char*>(GL.GetString(GL_RENDERER));
+        fail(
+            "the {} targets of {}x{} ({:.0f} MiB for each RGBA32F one) could not be allocated "
+            "by {} (framebuffer status {:#x}): use a smaller size",
+            what, width, height, double(width) * height * 16.0 / (1 << 20),
+            renderer ? renderer : "the GL", status);
     }
+}
+
+// The largest texture and framebuffer side this GL takes.
+int max_target_side() {
+    GLint texture = 0, width = 0, height = 0;
+    GL.GetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+    GL.GetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &width);
+    GL.GetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &height);
+    return std::min({texture, width, height});
 }
 
 // The frame's options, or a method's own `shadow` parameters.
@@ -144,6 +161,14 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
         options.height > 16384) {
         fail("render size {}x{} must be in 1..16384", options.width, options.height);
     }
+    if (const int side = max_target_side(); options.width > side || options.height > side) {
+        fail("render size {}x{} is beyond this GL's largest texture and framebuffer side, {}",
+             options.width, options.height, side);
+    }
+    if (const int side = max_target_side(); options.shadow.map_size > side) {
+        fail("shadow map size {} is beyond this GL's largest texture side, {}",
+             options.shadow.map_size, side);
+    }
     require_valid(options.shadow);  // before any GL work
     uniforms_ = make_frame_uniforms(scene, options);
     uniform_buffer_ = create_buffer(&uniforms_, sizeof(uniforms_), GL_DYNAMIC_STORAGE_BIT);
@@ -207,13 +232,13 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
                                0);
     GL.NamedFramebufferTexture(surface_framebuffer_.id(), GL_DEPTH_ATTACHMENT, surface_depth_.id(),
                                0);
-    require_complete(surface_framebuffer_.id(), "surface");
+    require_complete(surface_framebuffer_.id(), "surface", w, h);
 
     in_scattering_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
     volume_framebuffer_ = create_framebuffer();
     GL.NamedFramebufferTexture(volume_framebuffer_.id(), GL_COLOR_ATTACHMENT0, in_scattering_.id(),
                                0);
-    require_complete(volume_framebuffer_.id(), "in-scattering");
+    require_complete(volume_framebuffer_.id(), "in-scattering", w, h);
 
     hdr_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
     display_ = create_texture_2d(GL_RGBA8, w, h, GL_NEAREST);
@@ -222,7 +247,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     GL.NamedFramebufferTexture(composite_framebuffer_.id(), GL_COLOR_ATTACHMENT1, display_.id(), 0);
     const GLenum attachments[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     GL.NamedFramebufferDrawBuffers(composite_framebuffer_.id(), 2, attachments);
-    require_complete(composite_framebuffer_.id(), "composite");
+    require_complete(composite_framebuffer_.id(), "composite", w, h);
 
     for (Query& timer : timers_) {
         timer = create_query(GL_TIME_ELAPSED);
@@ -271,13 +296,13 @@ void SceneRenderer::allocate_shadow(const ShadowSettings& settings) {
             shadow_blur_framebuffer_[i] = create_framebuffer();
             GL.NamedFramebufferTexture(shadow_blur_framebuffer_[i].id(), GL_COLOR_ATTACHMENT0,
                                        targets[i], 0);
-            require_complete(shadow_blur_framebuffer_[i].id(), "shadow blur");
+            require_complete(shadow_blur_framebuffer_[i].id(), "shadow blur", size, size);
         }
     } else {
         GL.NamedFramebufferDrawBuffer(shadow_framebuffer_.id(), GL_NONE);
         shadow_scratch_ = Texture();
     }
-    require_complete(shadow_framebuffer_.id(), "shadow");
+    require_complete(shadow_framebuffer_.id(), "shadow map", size, size);
     uniforms_.shadow = shadow_uniform(settings);
 }
 

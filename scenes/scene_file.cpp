@@ -84,7 +84,12 @@ Camera read_camera(TableReader r) {
     if (glm::length(c.target - c.position) <= 0.0f) {
         r.error("target", "camera target equals its position");
     }
-    if (glm::length(glm::cross(c.target - c.position, c.up)) <= 1e-6f * glm::length(c.up)) {
+    if (c.up == glm::vec3(0.0f)) {
+        r.error("up", "up vector must not be [0, 0, 0]");
+    }
+    // In double, on unit vectors: any finite up of any length is judged by its direction alone.
+    const glm::dvec3 view = glm::normalize(glm::dvec3(c.target) - glm::dvec3(c.position));
+    if (glm::length(glm::cross(view, glm::normalize(glm::dvec3(c.up)))) <= 1e-6) {
         r.error("up", "up vector is parallel to the view direction");
     }
     r.finish();
@@ -526,7 +531,10 @@ toml::table resolve_base(toml::table root, const std::string& origin, const fs::
     try {
         base = scene_text(*base_name, dir, paths);
     } catch (const Error& e) {
-        fail("{}:{}: [scene] base: {}", origin, base_node->source().begin.line, e.what());
+        fail(
+            "{}:{}: [scene] base: {} (a base is a canonical scene's name, multiple:N, "
+            "boxes:SEED or a scene file)",
+            origin, base_node->source().begin.line, e.what());
     }
     toml::table merged =
         resolve_base(parse_toml(base.text, base.origin), base.origin, base.dir, paths, depth + 1);

@@ -6,6 +6,7 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <set>
 #include <string>
@@ -16,6 +17,11 @@
 #include "core/error.h"
 
 namespace sl {
+
+// The largest magnitude of a scene's vector components (positions, directions, sizes, angles in
+// degrees, coefficients, intensities): the GPU computes in float32, whose 7 digits leave nothing
+// of a scene laid out beyond it, and whose range a product of two such values must not leave.
+inline constexpr double kMaxSceneValue = 1e6;
 
 // `text` as a TOML basic string literal, quotes and backslashes escaped (for files we write).
 inline std::string toml_quoted(const std::string& text) {
@@ -58,6 +64,11 @@ public:
         }
         if (!std::isfinite(*value)) {
             error(key, fmt::format("value {} is not finite", *value));
+        }
+        if (std::abs(*value) > double(std::numeric_limits<float>::max())) {
+            error(key, fmt::format("value {} overflows a float (largest {:.3g}): it is read as "
+                                   "float32",
+                                   *value, double(std::numeric_limits<float>::max())));
         }
         return *value;
     }
@@ -104,6 +115,11 @@ public:
             }
             if (!std::isfinite(*c)) {
                 error(key, fmt::format("component {} is not finite", i));
+            }
+            if (std::abs(*c) > kMaxSceneValue) {
+                error(key, fmt::format("component {} is {}: must be within ±{:g} (the GPU computes "
+                                       "in float32)",
+                                       i, *c, kMaxSceneValue));
             }
             v[i] = float(*c);
         }

@@ -236,6 +236,7 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
     write_text(scenes / "env-shading.toml",
                view + "[environment]\nfile = \"courtyard\"\nshading = \"phong\"\n");
     const std::string dir = scenes.path().string();
+    write_text(scenes / "directory-base.toml", "[scene]\nbase = \"" + dir + "\"\n");
     const std::pair<std::string, std::string> cases[] = {
         {"--scene " + dir + "/no-env.toml", "[environment] file: no environment 'atlantis'"},
         {"--scene " + dir + "/env-size.toml", "[environment] face_size: 100 is not a power of two"},
@@ -254,6 +255,10 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
         {"--scene toplight --size=-64x36", "--size '-64x36'"},
         {"--scene toplight --size 0x36", "width and height must be in 1..16384"},
         {"--scene toplight --size 64", "expected WIDTHxHEIGHT"},
+        {"--scene toplight --size 100000x1", "width and height must be in 1..16384"},
+        {"--scene " + dir + "/directory-base.toml", "directory-base.toml:2: [scene] base: " + dir +
+                                                        ": cannot read scene file (it is a "
+                                                        "directory)"},
         {"--scene nowhere", "unknown scene 'nowhere'"},
         {"--scene " + dir + "/absent.toml", "absent.toml: cannot read scene file"},
         {"--scene " + dir + "/nan.toml", "nan.toml:4: [camera] fov: value nan is not finite"},
@@ -338,6 +343,13 @@ TEST(Cli, CompareScoresAndRejectsMismatchedSizes) {
     EXPECT_TRUE(bad.output.starts_with("shaftlab: error: ")) << bad.output;
     EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "bad.png"));
+    // A directory as the difference picture's path is named as such, before any work.
+    const CommandResult directory =
+        run_shaftlab("compare " + d + "/a.exr " + d + "/b.exr --difference /");
+    EXPECT_NE(directory.exit_code, 0);
+    EXPECT_NE(directory.output.find("--difference '/': a directory; expected the path of the PNG"),
+              std::string::npos)
+        << directory.output;
 }
 
 // A NaN or an infinity never scores: compare names the file and the first bad pixel, whether

@@ -189,6 +189,11 @@ TEST(Experiment, BadFilesGiveOneErrorNamingTheFileAndKey) {
     EXPECT_NE(parse_error(base, {"protocol.frmes=2"}).find("frmes: unknown key"),
               std::string::npos);
     EXPECT_NE(parse_error(base, {"protocol.frmes=2"}).find("command line"), std::string::npos);
+    // A table row that is neither scene, size nor a parameter was silently dropped (issue 33).
+    EXPECT_NE(parse_error(base, {"table.rows=[\"nope\"]"})
+                  .find("[table] rows: unknown row 'nope': expected scene, size or a method's "
+                        "parameter"),
+              std::string::npos);
 }
 
 TEST(Experiment, PercentilesInterpolateBetweenOrderStatistics) {
