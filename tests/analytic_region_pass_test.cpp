@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -13,6 +14,7 @@
 #include "analytic/gpu_tables.h"
 #include "analytic/in_scattering.h"
 #include "analytic/phase_functions.h"
+#include "analytic/quadrature.h"
 #include "analytic/region_pass.h"
 #include "core/error.h"
 #include "core/metrics.h"
@@ -96,6 +98,72 @@ Scene medium_variant(int variant, float g) {
     if (variant == 4)
         scene.medium.sigma_a = glm::vec3(0.02f, 0.04f, 0.08f);
     return scene;
+}
+
+// The physical table's tail channel (analytic/gpu_tables.h) against its definition, integrated
+// by adaptive quadrature in s' on entries spread over the table: T(a, b) = s (1 + s) e^s
+// ∫_s^∞ e^(-s') p(c) / (u² + s'²) ds', u = a s, c = (u² - s'²) / (u² + s'²), on x = sqrt(a) and
+// y = b = sqrt(s / (1 + s)); the first and last rows are the limits s -> 0 and s -> ∞. The
+// simplified table's complement channel plus its first is the whole integral R(κ, π/2) in every
+// row.
+TEST(MediumTable, ChannelsAreTheirIntegrals) {
+    std::mt19937 rng(33);
+    for (const auto& [phase, g] :
+         {std::pair{PhaseFunction::henyey_greenstein, -0.9f},
+          std::pair{PhaseFunction::henyey_greenstein, 0.6f},
+          std::pair{PhaseFunction::schlick, 0.82f}, std::pair{PhaseFunction::mie_murky, 0.0f}}) {
+        Medium medium;
+        medium.model = MediumModel::physical;
+        medium.phase = phase;
+        medium.g = g;
+        const auto table = analytic::medium_table(medium);
+        const int n = table->size;
+        auto p = [&](double c) { return analytic::phase(phase, g, c); };
+        for (int i = 0; i < 300; ++i) {
+            const int x = int(rng() % unsigned(n)), y = int(rng() % unsigned(n));
+            const double root_a = double(x) / (n - 1), a = root_a * root_a;
+            const double b = double(y) / (n - 1);
+            double expected = 0.0;
+            if (y == n - 1) {
+                expected = p((a * a - 1.0) / (a * a + 1.0)) / (1.0 + a * a);
+            } else if (y == 0) {
+                // s -> 0: ∫_1^∞ p(c) / (a² + τ²) dτ (s' = s τ), and τ = 1 / w.
+                expected = analytic::integrate(
+                    [&](double w) {
+                        const double aw2 = a * a * w * w;
+                        return p((aw2 - 1.0) / (aw2 + 1.0)) / (aw2 + 1.0);
+                    },
+                    0.0, 1.0, 1e-11);
+            } else {
+                const double s = b * b / (1.0 - b * b), u = a * s;
+                auto f = [&](double t) {  // s' = s + t
+                    const double q = (s + t) * (s + t);
+                    return std::exp(-t) * p((u * u - q) / (u * u + q)) / (u * u + q);
+                };
+                double sum = 0.0;
+                for (const auto& [lo, hi] :
+                     {std::pair{0.0, s + 1e-3}, std::pair{s + 1e-3, 1.0 + s},
+                      std::pair{1.0 + s, 8.0 + s}, std::pair{8.0 + s, 60.0}}) {
+                    if (hi > lo)
+                        sum += analytic::integrate(f, lo, hi, 1e-11);
+                }
+                expected = s * (1.0 + s) * sum;
+            }
+            const double stored = table->values[2 * (size_t(y) * n + x) + 1];
+            EXPECT_NEAR(stored, expected, 2e-6 * std::abs(expected) + 1e-12)
+                << to_string(phase) << " g " << g << " x " << x << " y " << y;
+        }
+        medium.model = MediumModel::simplified;
+        const auto simplified = analytic::medium_table(medium);
+        for (int x = 0; x < n; x += 37) {
+            const double whole = simplified->values[2 * (size_t(n - 1) * n + x)];
+            for (int y = 0; y < n; y += 29) {
+                const double from_start = simplified->values[2 * (size_t(y) * n + x)];
+                const double to_end = simplified->values[2 * (size_t(n - 1 - y) * n + x) + 1];
+                EXPECT_NEAR(from_start + to_end, whole, 1e-6 * whole) << x << " " << y;
+            }
+        }
+    }
 }
 
 // Very dense media on the GPU: σt h up to 10^3 and σt d beyond the cut-off (e^-50) stay finite
