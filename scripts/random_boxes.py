@@ -29,7 +29,7 @@ def main(csv_path, out_path):
     rows = {}
     with open(csv_path, newline="") as f:
         for row in csv.DictReader(f):
-            match = re.fullmatch(r"boxes[-:_](\d+)", row["scene"])
+            match = re.fullmatch(r"boxes[-:_](\d+)(\.scene)?", row["scene"])
             if not match or not row["rel_rmse"]:
                 continue
             seed = int(match.group(1))
