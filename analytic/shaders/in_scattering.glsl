@@ -196,11 +196,29 @@ vec3 simplified_table_antiderivative(float x, float h, bool far_anchor) {
     return source / (a1 * H) * simplified_cumulative(kappa, atan(H, -x), 0, 1.0, last);
 }
 
-// Sun et al. 2005 with the phase function: σt per channel, in_scattering.h's forms. Every point of
-// the ray has z + r >= d (the eye-light distance), so where σt d > 50 nothing reaches the eye
-// (e^-50): 0.
+// Sun et al. 2005 with the phase function, in in_scattering.h's forms: G / (2 σs I) for one σt.
+// Every point of the ray has z + r >= d (the eye-light distance), so where σt d > 50 nothing
+// reaches the eye (e^-50): 0.
+float physical_shape(float st, float z, float z_s, float x, float h, float d, float r, float q,
+                     FrontCell cell, bool far_anchor, vec2 last) {
+    if (st <= 0.0 || st * d > 50.0) return 0.0;
+    // The tail ∫_z^∞ e dz / (2 σs I) = e^(-σt (z + r)) T / (q (1 + σt q)), T on
+    // (sqrt(h / q), sqrt(s / (1 + s))), s = σt q.
+    float tail = 0.0;
+    if (x >= 0.0) {
+        float s = st * q;
+        vec2 at = vec2(sqrt(h / q), sqrt(s / (1.0 + s)));
+        tail = exp(-st * (z + r)) * table_lookup(medium_table, at * last, 1) / (q * (1.0 + s));
+        if (far_anchor) return -tail;
+    }
+    // e^(-σt z_s) / h · F_p(σt h, ζ) from ζ = 0 (z = -∞); past the closest approach, the whole
+    // line's less the tail.
+    return exp(-st * z_s) / h * physical_front(cell, st * h, last) - tail;
+}
+
+// The physical model's G per channel. A grey medium (σt the same in every channel, as most are)
+// has one shape for all three.
 vec3 physical_antiderivative(float z, float z_s, float x, float h, float d, bool far_anchor) {
-    vec3 sigma_s = frame.medium_sigma_s.rgb, intensity = frame.light_intensity.rgb;
     vec2 last = vec2(textureSize(medium_table, 0) - 1);
     h = max(h, 1e-6);
     float r = sqrt(x * x + h * h);
@@ -208,26 +226,16 @@ vec3 physical_antiderivative(float z, float z_s, float x, float h, float d, bool
     float q = x >= 0.0 ? x + r : h * h / (r - x);
     vec3 sigma_t = frame.medium_sigma_t.rgb;
     FrontCell cell = front_cell(x >= 0.0 ? 0.5 * PI : 0.5 * atan(h, -x), last);
-    vec3 result;
-    for (int c = 0; c < 3; ++c) {
-        float st = sigma_t[c];
-        if (st <= 0.0 || st * d > 50.0) { result[c] = 0.0; continue; }
-        // The tail ∫_z^∞ e dz = 2 σs I e^(-σt (z + r)) T / (q (1 + σt q)), T on
-        // (sqrt(h / q), sqrt(s / (1 + s))), s = σt q.
-        float tail = 0.0;
-        if (x >= 0.0) {
-            float s = st * q;
-            vec2 at = vec2(sqrt(h / q), sqrt(s / (1.0 + s)));
-            tail = 2.0 * sigma_s[c] * intensity[c] * exp(-st * (z + r)) *
-                   table_lookup(medium_table, at * last, 1) / (q * (1.0 + s));
-            if (far_anchor) { result[c] = -tail; continue; }
-        }
-        // 2 σs I e^(-σt z_s) / h · F_p(σt h, ζ) from ζ = 0 (z = -∞); past the closest approach,
-        // the whole line's less the tail.
-        float f = physical_front(cell, st * h, last);
-        result[c] = 2.0 * sigma_s[c] * intensity[c] * exp(-st * z_s) / h * f - tail;
-    }
-    return result;
+    vec3 shape;
+    shape.r = physical_shape(sigma_t.r, z, z_s, x, h, d, r, q, cell, far_anchor, last);
+    shape.g = sigma_t.g == sigma_t.r
+                  ? shape.r
+                  : physical_shape(sigma_t.g, z, z_s, x, h, d, r, q, cell, far_anchor, last);
+    shape.b = sigma_t.b == sigma_t.r   ? shape.r
+              : sigma_t.b == sigma_t.g ? shape.g
+                                       : physical_shape(sigma_t.b, z, z_s, x, h, d, r, q, cell,
+                                                        far_anchor, last);
+    return 2.0 * frame.medium_sigma_s.rgb * frame.light_intensity.rgb * shape;
 }
 
 // G(z) of the hard edge for the ray (origin, direction), per channel; z is clamped to the cone
