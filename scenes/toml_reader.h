@@ -6,7 +6,6 @@
 #include <toml++/toml.h>
 
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <set>
 #include <string>
@@ -64,11 +63,6 @@ public:
         }
         if (!std::isfinite(*value)) {
             error(key, fmt::format("value {} is not finite", *value));
-        }
-        if (std::abs(*value) > double(std::numeric_limits<float>::max())) {
-            error(key, fmt::format("value {} overflows a float (largest {:.3g}): it is read as "
-                                   "float32",
-                                   *value, double(std::numeric_limits<float>::max())));
         }
         return *value;
     }
