@@ -419,10 +419,14 @@ void SubsurfacePass::render(const DrawObject& draw, const glm::mat4& view_projec
         GL.UseProgram(gbuffer);
         GL.ProgramUniformMatrix4fv(gbuffer, kViewProjectionLocation, 1, GL_FALSE,
                                    glm::value_ptr(light_view_projection));
+        // As the frame's shadow map: what lies between the light and its near plane still
+        // occludes (clamped to the map's near plane, its positions kept), not clipped away.
+        GL.Enable(GL_DEPTH_CLAMP);
         for (size_t i = 0; i < scene_.objects.size(); ++i) {
             GL.ProgramUniform1f(gbuffer, kGbufferObjectLocation, float(i + 1));
             draw(i, gbuffer);
         }
+        GL.Disable(GL_DEPTH_CLAMP);
         if (any_multipole_) {
             // The far side of each translucent object: its back faces, farthest first (§5.1.2).
             const float nothing = 0.0f;
