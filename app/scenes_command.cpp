@@ -25,7 +25,7 @@ Command add_scenes_command(CLI::App& app) {
         if (!generate->empty()) {
             const bool count_alone = generate->find_first_not_of("0123456789") == std::string::npos;
             const std::string name = count_alone ? "multiple:" + *generate : *generate;
-            if (!name.starts_with("multiple:") && !name.starts_with("boxes:")) {
+            if (!is_generated_scene_name(name)) {
                 fail("--generate {}: expected multiple:N, N or boxes:SEED", quote(*generate));
             }
             std::fputs(generated_scene_text(name).c_str(), stdout);

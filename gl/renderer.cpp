@@ -165,10 +165,6 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
         fail("render size {}x{} is beyond this GL's largest texture and framebuffer side, {}",
              options.width, options.height, side);
     }
-    if (const int side = max_target_side(); options.shadow.map_size > side) {
-        fail("shadow map size {} is beyond this GL's largest texture side, {}",
-             options.shadow.map_size, side);
-    }
     require_valid(options.shadow);  // before any GL work
     uniforms_ = make_frame_uniforms(scene, options);
     uniform_buffer_ = create_buffer(&uniforms_, sizeof(uniforms_), GL_DYNAMIC_STORAGE_BIT);
@@ -272,8 +268,12 @@ SceneRenderer::~SceneRenderer() = default;
 
 void SceneRenderer::allocate_shadow(const ShadowSettings& settings) {
     require_valid(settings);
-    shadow_ = settings;
     const int size = settings.map_size;
+    // The frame's map or a method's own: either must fit this GL.
+    if (const int side = max_target_side(); size > side) {
+        fail("shadow map size {} is beyond this GL's largest texture side, {}", size, side);
+    }
+    shadow_ = settings;
     // Depth compared in the sampler; linear filtering adds 2x2 PCF per tap, nearest keeps the
     // hard variant hard.
     shadow_map_ = create_texture_2d(GL_DEPTH_COMPONENT32F, size, size,

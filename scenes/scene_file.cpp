@@ -431,7 +431,7 @@ struct SceneText {
 
 // A canonical name, multiple:N, or a file (relative paths from `dir` first, then as given).
 SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSearchPaths& paths) {
-    if (name.starts_with("multiple:") || name.starts_with("boxes:")) {
+    if (is_generated_scene_name(name)) {
         return {generated_scene_text(name), name, paths.scenes};
     }
     auto names = canonical_scene_names();
@@ -463,6 +463,10 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
 }
 
 }  // namespace
+
+bool is_generated_scene_name(const std::string& name) {
+    return name.starts_with("multiple:") || name.starts_with("boxes:");
+}
 
 std::string generated_scene_text(const std::string& name) {
     // The integer after the family's prefix, in [lo, hi].
@@ -744,7 +748,7 @@ std::vector<std::string> effect_scene_names() {
 Scene load_scene(const std::string& name, const SceneSearchPaths& paths) {
     const SceneText text = scene_text(name, {}, paths);
     Scene scene = parse_scene(text.text, text.origin, text.dir, paths);
-    if (!name.starts_with("multiple:") && !name.starts_with("boxes:")) {
+    if (!is_generated_scene_name(name)) {
         scene.source = text.origin;
     }
     return scene;

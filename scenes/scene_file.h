@@ -81,8 +81,9 @@ std::string generate_multiple_scene(int count);
 // where the region methods must equal the reference (issue 33).
 constexpr int kBoxesMaxSeed = 1000000;
 std::string generate_boxes_scene(int seed);
-// The TOML text of a generated scene by its name, multiple:N or boxes:SEED (an error naming the
-// allowed range otherwise).
+// Whether `name` names a generated scene (multiple:N or boxes:SEED), and its TOML text (an error
+// naming the allowed range, or the families, otherwise).
+bool is_generated_scene_name(const std::string& name);
 std::string generated_scene_text(const std::string& name);
 
 // Resolves a canonical name ("toplight"), a generated name ("multiple:120", "boxes:7") or a

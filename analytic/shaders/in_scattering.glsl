@@ -20,17 +20,6 @@ layout(binding = 7) uniform sampler2D medium_table;
 // at the first sample's centre). The texture unit's own GL_LINEAR filter is not used: GPUs
 // interpolate with fixed-point weights (8 fractional bits on NVIDIA), which on these smooth tables
 // leaves errors of ~1e-4 relative, above what the tables are accurate to.
-float table_lookup(sampler2D table, vec2 texel, int channel) {
-    ivec2 last = textureSize(table, 0) - 1;
-    vec2 x = clamp(texel, vec2(0.0), vec2(last));
-    ivec2 i = min(ivec2(x), max(last - 1, ivec2(0)));
-    vec2 f = x - vec2(i);
-    ivec2 j = min(i + 1, last);
-    float a = mix(texelFetch(table, i, 0)[channel], texelFetch(table, ivec2(j.x, i.y), 0)[channel], f.x);
-    float b = mix(texelFetch(table, ivec2(i.x, j.y), 0)[channel], texelFetch(table, j, 0)[channel], f.x);
-    return mix(a, b, f.y);
-}
-
 // Row y of a table, linearly interpolated at x (texel units), one channel.
 float table_row(sampler2D table, float x, int y, int channel) {
     int last = textureSize(table, 0).x - 1;
@@ -38,6 +27,14 @@ float table_row(sampler2D table, float x, int y, int channel) {
     int i = min(int(x), max(last - 1, 0));
     return mix(texelFetch(table, ivec2(i, y), 0)[channel],
                texelFetch(table, ivec2(min(i + 1, last), y), 0)[channel], x - float(i));
+}
+
+float table_lookup(sampler2D table, vec2 texel, int channel) {
+    int last = textureSize(table, 0).y - 1;
+    float y = clamp(texel.y, 0.0, float(last));
+    int i = min(int(y), max(last - 1, 0));
+    return mix(table_row(table, texel.x, i, channel), table_row(table, texel.x, min(i + 1, last), channel),
+               y - float(i));
 }
 
 // A cumulative table's value at angle w of its y axis (rows `step` apart from w = 0): the row at
@@ -225,7 +222,10 @@ vec3 physical_antiderivative(float z, float z_s, float x, float h, float d, bool
     // q = x + r = h tan ζ, written without cancellation on either side of the closest approach.
     float q = x >= 0.0 ? x + r : h * h / (r - x);
     vec3 sigma_t = frame.medium_sigma_t.rgb;
-    FrontCell cell = front_cell(x >= 0.0 ? 0.5 * PI : 0.5 * atan(h, -x), last);
+    // Past the closest approach the front term is the whole line's, F_p(u, π/2): the table's
+    // last row, with no cell left to add (and only the tail where G is anchored at +∞).
+    FrontCell cell = x >= 0.0 ? FrontCell(int(last.y), vec3(0.0), vec3(0.0))
+                              : front_cell(0.5 * atan(h, -x), last);
     vec3 shape;
     shape.r = physical_shape(sigma_t.r, z, z_s, x, h, d, r, q, cell, far_anchor, last);
     shape.g = sigma_t.g == sigma_t.r
