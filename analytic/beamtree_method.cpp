@@ -9,11 +9,11 @@ namespace sl::analytic {
 
 namespace {
 
-class BeamTreeMethod final : public gl::VolumeMethod {
+class BeamTreeMethod final : public frame::VolumeMethod {
 public:
     BeamTreeMethod() {
         declare({.name = "surfaces",
-                 .type = gl::Parameter::Type::choice,
+                 .type = frame::Parameter::Type::choice,
                  .default_value = 0,
                  .description = "boundary: the lit union's boundary, each plane's faces merged "
                                 "into maximal polygons (DESIGN.md §9); cells: every lit cell's "
@@ -27,8 +27,8 @@ public:
         built_ = false;
         update(scene, SceneChange::everything(scene));
     }
-    std::unique_ptr<gl::FrameWork> cpu_update(const Scene& scene,
-                                              const SceneChange& change) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
+                                                 const SceneChange& change) const override {
         AnalyticRegionPass::require_closed_form(scene, name());
         const auto surfaces = int(parameter("surfaces"));
         return region_frame_work(
@@ -39,7 +39,7 @@ public:
             built_);
     }
     void apply_update(const Scene& scene, const SceneChange&,
-                      std::unique_ptr<gl::FrameWork> work) override {
+                      std::unique_ptr<frame::FrameWork> work) override {
         if (auto* regions = dynamic_cast<RegionFrameWork*>(work.get())) {
             const bt::FrameRegions& r = regions->regions;
             stages_ = r.ms;
@@ -48,10 +48,10 @@ public:
         }
         pass_.set_scene(scene);
     }
-    void render(const gl::VolumeInputs& inputs) override { pass_.draw(inputs); }
+    void render(const frame::VolumeInputs& inputs) override { pass_.draw(inputs); }
     gl::TextureViews textures() const override { return pass_.textures(name()); }
-    gl::MethodStatistics statistics() const override {
-        gl::MethodStatistics stats = region_statistics(stages_);
+    frame::MethodStatistics statistics() const override {
+        frame::MethodStatistics stats = region_statistics(stages_);
         stats.push_back({"region_faces", double(pass_.triangle_count())});
         stats.push_back({"fragments_analytic", pass_.fragments()});
         stats.push_back({"fragments_rasterized", pass_.rasterized()});
@@ -66,7 +66,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<gl::VolumeMethod> create_beamtree_method() {
+std::unique_ptr<frame::VolumeMethod> create_beamtree_method() {
     return std::make_unique<BeamTreeMethod>();
 }
 

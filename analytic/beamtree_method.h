@@ -7,10 +7,10 @@
 
 #include <memory>
 
-#include "gl/volume_method.h"
+#include "frame/volume_method.h"
 
 namespace sl::analytic {
 
-std::unique_ptr<gl::VolumeMethod> create_beamtree_method();
+std::unique_ptr<frame::VolumeMethod> create_beamtree_method();
 
 }  // namespace sl::analytic

@@ -129,16 +129,16 @@ void AnalyticRegionPass::set_scene(const Scene& scene) {
     }
 }
 
-gl::MethodStatistics region_statistics(const bt::RegionStageTimes& ms) {
-    gl::MethodStatistics stats = {{"cpu_ms_beamtree", ms.total()}};
+frame::MethodStatistics region_statistics(const bt::RegionStageTimes& ms) {
+    frame::MethodStatistics stats = {{"cpu_ms_beamtree", ms.total()}};
     for (const auto& [stage, value] : ms.named()) {
         stats.push_back({"cpu_ms_region_" + stage, value});
     }
     return stats;
 }
 
-std::unique_ptr<gl::FrameWork> region_frame_work(const Scene& scene, const SceneChange& change,
-                                                 const bt::RegionRequest& request, bool built) {
+std::unique_ptr<frame::FrameWork> region_frame_work(const Scene& scene, const SceneChange& change,
+                                                    const bt::RegionRequest& request, bool built) {
     if (built && !change.regions()) {
         return nullptr;
     }

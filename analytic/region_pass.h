@@ -12,17 +12,17 @@
 
 #include "beamtree/frame_regions.h"
 
+#include "frame/volume_method.h"
 #include "gl/objects.h"
-#include "gl/volume_method.h"
 #include "scenes/scene.h"
 
 namespace sl::analytic {
 
+using frame::VolumeInputs;
 using gl::Program;
 using gl::Query;
 using gl::Texture;
 using gl::TextureViews;
-using gl::VolumeInputs;
 
 // The defines of a program that includes analytic/shaders/in_scattering.glsl for this scene:
 // SL_MEDIUM_FORM, the one closed form its medium needs (0 Nilsson eq. 2.17, 1 the simplified
@@ -119,15 +119,15 @@ private:
 
 // The CPU half of a region method's per-frame update (VolumeMethod::cpu_update): the frame's
 // tree and meshes (beamtree/frame_regions.h).
-struct RegionFrameWork final : gl::FrameWork {
+struct RegionFrameWork final : frame::FrameWork {
     bt::FrameRegions regions;
 };
 // The statistics of the last region build: cpu_ms_beamtree (the whole CPU update) and
 // cpu_ms_region_<stage> for each stage of bt::RegionStageTimes.
-gl::MethodStatistics region_statistics(const bt::RegionStageTimes& ms);
+frame::MethodStatistics region_statistics(const bt::RegionStageTimes& ms);
 // The frame's regions as `request` asks, or null when `change` leaves them as they are (and
 // `built` says there are some).
-std::unique_ptr<gl::FrameWork> region_frame_work(const Scene& scene, const SceneChange& change,
-                                                 const bt::RegionRequest& request, bool built);
+std::unique_ptr<frame::FrameWork> region_frame_work(const Scene& scene, const SceneChange& change,
+                                                    const bt::RegionRequest& request, bool built);
 
 }  // namespace sl::analytic

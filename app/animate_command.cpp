@@ -11,10 +11,11 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/output_files.h"
-#include "experiments/measure.h"
-#include "gl/frame_loop.h"
+#include "core/statistics.h"
+#include "frame/frame_loop.h"
+#include "frame/renderer.h"
 #include "gl/platform.h"
-#include "gl/renderer.h"
+#include "methods/configured_method.h"
 #include "scenes/animation.h"
 #include "scenes/scene_file.h"
 
@@ -34,16 +35,16 @@ struct AnimateArguments {
 };
 
 int run_animate(const AnimateArguments& args) {
-    gl::RenderOptions options;
+    frame::RenderOptions options;
     parse_size(args.size, options.width, options.height);
-    std::vector<gl::FrameMode> modes;
+    std::vector<frame::FrameMode> modes;
     if (args.mode == "both") {
-        modes = {gl::FrameMode::serial, gl::FrameMode::pipelined};
+        modes = {frame::FrameMode::serial, frame::FrameMode::pipelined};
     } else {
-        modes = {gl::parse_frame_mode(args.mode)};
+        modes = {frame::parse_frame_mode(args.mode)};
     }
-    const std::unique_ptr<gl::VolumeMethod> method = experiments::create_configured_method(
-        args.method, options.shadow, experiments::parse_settings(args.settings));
+    const std::unique_ptr<frame::VolumeMethod> method = methods::create_configured_method(
+        args.method, options.shadow, methods::parse_settings(args.settings));
     const Scene scene = load_scene(args.scene, SceneSearchPaths::defaults());
     if (!scene.animation) {
         fail(
@@ -62,21 +63,21 @@ int run_animate(const AnimateArguments& args) {
     const auto platform = gl::create_headless_platform();
     const gl::ContextInfo context = platform->info();
     OutputFiles outputs(args.out);
-    for (const gl::FrameMode mode : modes) {
+    for (const frame::FrameMode mode : modes) {
         Scene live = scene_at(scene, animation.frame_time(0));
-        gl::SceneRenderer renderer(live, options);
+        frame::SceneRenderer renderer(live, options);
         method->prepare(live);
         for (int i = 0; i < args.warmup; ++i) {
             renderer.draw(*method);  // shader compilation and first-use costs
         }
-        std::vector<gl::FrameRecord> records;
+        std::vector<frame::FrameRecord> records;
         std::string csv =
             "frame,time_s,update_ms,update_on_worker,apply_ms,wait_ms,draw_ms,frame_ms,"
             "overlap_ms,critical_cpu_ms,gpu_ms\n";
-        gl::FrameLoop loop(renderer, *method, live, mode);
+        frame::FrameLoop loop(renderer, *method, live, mode);
         loop.play(
             frames, [&](int k) { return scene_at(scene, animation.frame_time(k)); },
-            [&](const gl::FrameRecord& r) {
+            [&](const frame::FrameRecord& r) {
                 records.push_back(r);
                 csv += fmt::format(
                     "{},{:.6f},{:.4f},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},"
@@ -85,9 +86,9 @@ int run_animate(const AnimateArguments& args) {
                     r.apply_ms, r.wait_ms, r.draw_ms, r.frame_ms, r.overlap_ms, r.critical_cpu_ms(),
                     r.gpu.total_ms());
             });
-        const gl::Frame last = renderer.read_back();
+        const frame::Frame last = renderer.read_back();
         const std::string stem =
-            fmt::format("{}.{}.{}", scene.name, method->name(), gl::to_string(mode));
+            fmt::format("{}.{}.{}", scene.name, method->name(), frame::to_string(mode));
         outputs.add_text(stem + ".frames.csv", csv);
         outputs.add(stem + ".last.png", [&](const std::filesystem::path& path) {
             write_png(last.display_srgb8, options.width, options.height, path);
@@ -97,17 +98,18 @@ int run_animate(const AnimateArguments& args) {
             std::vector<double> v;
             for (size_t i = records.size() > 1 ? 1 : 0; i < records.size(); ++i)
                 v.push_back(get(records[i]));
-            return experiments::median(std::move(v));
+            return sl::median(std::move(v));
         };
         fmt::print(
             "{} {} {} ({} frames, {}x{}, {}): median frame {:.2f} ms, CPU critical path {:.2f} "
             "ms, update {:.2f} ms, GPU {:.2f} ms, overlap {:.2f} ms\n",
-            scene.name, method->name(), gl::to_string(mode), frames, options.width, options.height,
-            context.renderer, column([](const gl::FrameRecord& r) { return r.frame_ms; }),
-            column([](const gl::FrameRecord& r) { return r.critical_cpu_ms(); }),
-            column([](const gl::FrameRecord& r) { return r.update_ms; }),
-            column([](const gl::FrameRecord& r) { return r.gpu.total_ms(); }),
-            column([](const gl::FrameRecord& r) { return r.overlap_ms; }));
+            scene.name, method->name(), frame::to_string(mode), frames, options.width,
+            options.height, context.renderer,
+            column([](const frame::FrameRecord& r) { return r.frame_ms; }),
+            column([](const frame::FrameRecord& r) { return r.critical_cpu_ms(); }),
+            column([](const frame::FrameRecord& r) { return r.update_ms; }),
+            column([](const frame::FrameRecord& r) { return r.gpu.total_ms(); }),
+            column([](const frame::FrameRecord& r) { return r.overlap_ms; }));
     }
     outputs.commit();
     fmt::print("  -> {}/{}.{}.<mode>.{{frames.csv,last.png}}\n", args.out, scene.name,

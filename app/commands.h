@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "experiments/measure.h"
+#include "core/statistics.h"
 #include "scenes/scene.h"
 
 namespace sl::app {
@@ -32,7 +32,7 @@ Command add_sss_command(CLI::App& app);
 using Clock = std::chrono::steady_clock;
 
 // Milliseconds of wall time since `start`, for the stage timings the commands report.
-using experiments::ms_since;
+using sl::ms_since;
 
 // The scene by name or file, at `time` of its [animation] when one is given (--time): the still
 // frame of a moving scene. Throws sl::Error when the scene has no animation or the time is out of

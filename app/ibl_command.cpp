@@ -17,8 +17,8 @@
 #include "core/error.h"
 #include "core/metrics.h"
 #include "core/output_files.h"
+#include "frame/renderer.h"
 #include "gl/platform.h"
-#include "gl/renderer.h"
 #include "ibl/environment.h"
 #include "methods/registry.h"
 #include "reference/environment_light.h"
@@ -163,12 +163,12 @@ int run_reference(const ReferenceArguments& a) {
         fail("scene {} has no [environment]", quote(a.scene));
     }
     const auto platform = gl::create_headless_platform();
-    gl::SceneRenderer renderer(scene, {.width = width, .height = height});
+    frame::SceneRenderer renderer(scene, {.width = width, .height = height});
     const auto method = methods::create_volume_method("none");
     method->prepare(scene);
     renderer.draw(*method);  // warm-up
-    const gl::FrameTimings timings = renderer.draw(*method);
-    const gl::Frame frame = renderer.read_back();
+    const frame::FrameTimings timings = renderer.draw(*method);
+    const frame::Frame frame = renderer.read_back();
 
     const auto start = std::chrono::steady_clock::now();
     std::vector<int> objects;

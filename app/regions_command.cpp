@@ -20,8 +20,8 @@
 #include "beamtree/regions.h"
 #include "core/error.h"
 #include "core/output_files.h"
+#include "frame/renderer.h"
 #include "gl/platform.h"
-#include "gl/renderer.h"
 #include "methods/registry.h"
 #include "scenes/scene_file.h"
 
@@ -75,7 +75,7 @@ struct PixelRegions {
 };
 
 PixelRegions trace_pixel(const bt::BeamTree& tree, const PixelUnprojector& pixels,
-                         const gl::Frame& frame, int width, int x, int y) {
+                         const frame::Frame& frame, int width, int x, int y) {
     PixelRegions result;
     const double depth = 2.0 * double(frame.depth[size_t(y) * width + x]) - 1.0;
     const dvec3 origin = pixels.point(x, y, -1.0);
@@ -109,7 +109,7 @@ PixelRegions trace_pixel(const bt::BeamTree& tree, const PixelUnprojector& pixel
 // of their interval ends (they are smooth in the pixel there; the difference is below the 8-bit
 // output), any other pixel is traced itself.
 std::vector<unsigned char> draw_regions(const Scene& scene, const bt::BeamTree& tree,
-                                        const gl::Frame& frame, int width, int height) {
+                                        const frame::Frame& frame, int width, int height) {
     const PixelUnprojector pixels(scene.camera, width, height);
     const double far = double(scene.light.far);
     const glm::dvec3 colors[3] = {{1.0, 0.82, 0.1}, {0.55, 0.55, 0.55}, {0.0, 0.0, 0.0}};
@@ -229,9 +229,9 @@ int run_regions(const RegionsArguments& args) {
 
     start = Clock::now();
     const auto platform = gl::create_headless_platform();
-    gl::SceneRenderer renderer(scene, {.width = width, .height = height});
+    frame::SceneRenderer renderer(scene, {.width = width, .height = height});
     const auto method = methods::create_volume_method("none");
-    const gl::Frame frame = renderer.render(*method);
+    const frame::Frame frame = renderer.render(*method);
     const double render_ms = ms_since(start);
     start = Clock::now();
     const std::vector<unsigned char> picture = draw_regions(scene, tree, frame, width, height);

@@ -12,9 +12,11 @@
 #include "core/error.h"
 #include "core/metrics.h"
 #include "core/output_files.h"
-#include "experiments/measure.h"
+#include "core/statistics.h"
+#include "frame/renderer.h"
 #include "gl/platform.h"
-#include "gl/renderer.h"
+#include "methods/configured_method.h"
+#include "methods/frame_measurement.h"
 #include "methods/registry.h"
 #include "scenes/animation.h"
 #include "scenes/scene_file.h"
@@ -39,15 +41,15 @@ struct RenderArguments {
 };
 
 int run_render(const RenderArguments& args) {
-    gl::RenderOptions options;
+    frame::RenderOptions options;
     parse_size(args.size, options.width, options.height);
-    options.shadow = {.filter = gl::parse_shadow_filter(args.shadow),
+    options.shadow = {.filter = frame::parse_shadow_filter(args.shadow),
                       .map_size = args.shadow_map_size,
                       .radius = args.pcf_radius};
     // Fail on an unknown method or setting before any expensive work. The run's shadow
     // options are the defaults of a method's own `shadow` parameters.
-    const std::unique_ptr<gl::VolumeMethod> method = experiments::create_configured_method(
-        args.method, options.shadow, experiments::parse_settings(args.settings));
+    const std::unique_ptr<frame::VolumeMethod> method = methods::create_configured_method(
+        args.method, options.shadow, methods::parse_settings(args.settings));
     if (!args.compare.empty() && args.compare != "reference") {
         fail("--compare {}: only 'reference' can be compared against", quote(args.compare));
     }
@@ -59,7 +61,7 @@ int run_render(const RenderArguments& args) {
     start = Clock::now();
     const auto platform = gl::create_headless_platform();
     const gl::ContextInfo context = platform->info();
-    gl::SceneRenderer renderer(scene, options);
+    frame::SceneRenderer renderer(scene, options);
     const double setup_ms = ms_since(start);
 
     start = Clock::now();
@@ -67,13 +69,13 @@ int run_render(const RenderArguments& args) {
     const double prepare_ms = ms_since(start);
     // Warm-up frames absorb shader compilation and first-use costs; timings are medians over
     // the measured frames, which read nothing back; the images are the last one's.
-    const experiments::FrameMeasurement measured =
-        experiments::measure_frames(renderer, *method, args.warmup, args.frames);
-    gl::Frame frame = renderer.read_back();
+    const methods::FrameMeasurement measured =
+        methods::measure_frames(renderer, *method, args.warmup, args.frames);
+    frame::Frame frame = renderer.read_back();
     frame.cpu_ms = measured.frame_ms_median();
     frame.gpu = measured.gpu;
     const double frame_gpu_ms = measured.gpu_total_ms;
-    const gl::ShadowSettings shadow = renderer.shadow();
+    const frame::ShadowSettings shadow = renderer.shadow();
 
     // Error against the reference on the I_s buffer, rendered by the same renderer (and cached).
     std::optional<ErrorMetrics> error;
@@ -92,8 +94,8 @@ int run_render(const RenderArguments& args) {
         {"parameters",
          [&] {
              nlohmann::ordered_json parameters = nlohmann::ordered_json::object();
-             for (const gl::Parameter& p : method->parameters())
-                 parameters[p.name] = p.type == gl::Parameter::Type::choice
+             for (const frame::Parameter& p : method->parameters())
+                 parameters[p.name] = p.type == frame::Parameter::Type::choice
                                           ? nlohmann::ordered_json(p.text())
                                           : nlohmann::ordered_json(p.value);
              return parameters;
@@ -101,7 +103,7 @@ int run_render(const RenderArguments& args) {
         {"width", options.width},
         {"height", options.height},
         {"shadow",
-         {{"filter", gl::to_string(shadow.filter)},
+         {{"filter", frame::to_string(shadow.filter)},
           {"radius", shadow.radius},
           {"map_size", shadow.map_size}}},
         {"protocol",

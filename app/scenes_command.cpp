@@ -5,8 +5,8 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/text.h"
+#include "frame/volume_method.h"
 #include "gl/platform.h"
-#include "gl/volume_method.h"
 #include "methods/registry.h"
 #include "scenes/scene_file.h"
 
@@ -64,15 +64,15 @@ Command add_methods_command(CLI::App& app) {
         for (const std::string& name : methods::volume_method_names()) {
             const auto method = methods::create_volume_method(name);
             fmt::print("{}\n  accepts: {}\n", name, method->accepts());
-            for (const gl::Parameter& p : method->parameters()) {
-                if (p.type == gl::Parameter::Type::choice) {
+            for (const frame::Parameter& p : method->parameters()) {
+                if (p.type == frame::Parameter::Type::choice) {
                     fmt::print("  {:<22} {:<8} default {:<8} one of {}  {}\n", p.name, "choice",
                                p.choices[size_t(p.default_value)], fmt::join(p.choices, "|"),
                                p.description);
                     continue;
                 }
                 fmt::print("  {:<22} {:<8} default {:<8} range [{}, {}]  {}\n", p.name,
-                           p.type == gl::Parameter::Type::integer ? "integer" : "real",
+                           p.type == frame::Parameter::Type::integer ? "integer" : "real",
                            p.default_value, p.min, p.max, p.description);
             }
         }

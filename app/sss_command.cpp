@@ -16,9 +16,9 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/output_files.h"
+#include "frame/renderer.h"
+#include "frame/volume_method.h"
 #include "gl/platform.h"
-#include "gl/renderer.h"
-#include "gl/volume_method.h"
 #include "methods/registry.h"
 #include "scenes/scene_file.h"
 #include "sss/diffusion.h"
@@ -129,7 +129,7 @@ int run_bench(const BenchArguments& a) {
                 Camera& camera = scene.camera;
                 camera.position =
                     camera.target + float(distance) * (camera.position - camera.target);
-                gl::SceneRenderer renderer(scene, {.width = width, .height = height});
+                frame::SceneRenderer renderer(scene, {.width = width, .height = height});
                 const auto method = methods::create_volume_method("none");
                 method->prepare(scene);
                 for (int i = 0; i < a.warmup; ++i) {
@@ -137,12 +137,12 @@ int run_bench(const BenchArguments& a) {
                 }
                 std::vector<double> total, subsurface;
                 for (int i = 0; i < a.frames; ++i) {
-                    const gl::FrameTimings t = renderer.draw(*method);
+                    const frame::FrameTimings t = renderer.draw(*method);
                     total.push_back(t.gpu.total_ms());
                     subsurface.push_back(t.gpu.subsurface_ms);
                 }
-                const double total_ms = experiments::median(total);
-                const double subsurface_ms = experiments::median(subsurface);
+                const double total_ms = sl::median(total);
+                const double subsurface_ms = sl::median(subsurface);
                 const sss::SubsurfacePass& pass = *renderer.subsurface();
                 rows.push_back({{"model", model},
                                 {"distance", distance},
@@ -157,7 +157,7 @@ int run_bench(const BenchArguments& a) {
                 fmt::print("{} {}x{} distance {}: {:.1f} ms GPU, subsurface {:.1f} ms\n", model, n,
                            m, distance, total_ms, subsurface_ms);
                 if (n == grids[grids.size() / 2].first && m == grids[grids.size() / 2].second) {
-                    const gl::Frame frame = renderer.read_back();
+                    const frame::Frame frame = renderer.read_back();
                     const std::string name =
                         fmt::format("{}.{}.{}x{}.d{}.png", base.name, model, n, m, distance);
                     files.add(name, [&](const fs::path& path) {

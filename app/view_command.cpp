@@ -3,7 +3,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
-#include "gl/volume_method.h"
+#include "frame/volume_method.h"
 #include "viewer/viewer.h"
 
 namespace sl::app {
@@ -22,7 +22,7 @@ struct ViewArguments {
 int run_view(ViewArguments& args) {
     viewer::ViewerOptions& options = args.options;
     parse_size(args.size, options.width, options.height);
-    options.shadow = {.filter = gl::parse_shadow_filter(args.shadow),
+    options.shadow = {.filter = frame::parse_shadow_filter(args.shadow),
                       .map_size = args.shadow_map_size,
                       .radius = args.pcf_radius};
     options.ui = !args.no_ui;

@@ -16,14 +16,17 @@
 #include "core/image.h"
 #include "core/metrics.h"
 #include "core/output_files.h"
+#include "core/statistics.h"
 #include "core/temporal_metrics.h"
 #include "experiments/equal_error.h"
-#include "experiments/measure.h"
 #include "experiments/report.h"
 #include "experiments/sequence.h"
-#include "gl/frame_loop.h"
+#include "frame/frame_loop.h"
+#include "frame/renderer.h"
 #include "gl/platform.h"
-#include "gl/renderer.h"
+#include "methods/configured_method.h"
+#include "methods/frame_measurement.h"
+#include "methods/region_statistics.h"
 #include "methods/registry.h"
 #include "reference/cache.h"
 #include "scenes/scene_file.h"
@@ -51,7 +54,7 @@ fs::path row_path(const fs::path& out, const Cell& cell, int rep) {
 // What one process keeps between cells: scenes, and the region statistics of each view.
 struct Caches {
     std::map<std::string, Scene> scenes;
-    std::map<std::tuple<std::string, int, int, bool>, RegionStatistics> regions;
+    std::map<std::tuple<std::string, int, int, bool>, methods::RegionStatistics> regions;
 
     const Scene& scene(const std::string& name) {
         auto found = scenes.find(name);
@@ -61,10 +64,10 @@ struct Caches {
         return found->second;
     }
     // The region statistics of the cell's view (an animation cell: of its first frame).
-    const RegionStatistics& region(const Cell& cell, const Scene& view, bool animated) {
+    const methods::RegionStatistics& region(const Cell& cell, const Scene& view, bool animated) {
         const auto key = std::make_tuple(cell.scene, cell.width, cell.height, animated);
         if (!regions.contains(key)) {
-            regions[key] = region_statistics(view, cell.width, cell.height);
+            regions[key] = methods::region_statistics(view, cell.width, cell.height);
         }
         return regions[key];
     }
@@ -73,8 +76,8 @@ struct Caches {
 // What every cell sets up: the scene, the configured method, a fresh GL context and renderer.
 struct CellSetup {
     const Scene* scene = nullptr;
-    gl::RenderOptions options;
-    std::unique_ptr<gl::VolumeMethod> method;
+    frame::RenderOptions options;
+    std::unique_ptr<frame::VolumeMethod> method;
     double load_ms = 0.0;
 };
 
@@ -85,14 +88,14 @@ CellSetup set_up(const Experiment& x, const Cell& cell, Caches& caches) {
     s.load_ms = ms_since(start);
     s.options = {.width = cell.width,
                  .height = cell.height,
-                 .shadow = {.filter = gl::parse_shadow_filter(x.render.shadow),
+                 .shadow = {.filter = frame::parse_shadow_filter(x.render.shadow),
                             .map_size = x.render.shadow_map_size,
                             .radius = x.render.pcf_radius}};
     std::vector<std::pair<std::string, std::string>> settings;
     for (const Setting& setting : cell.settings) {
         settings.emplace_back(setting.name, setting.value);
     }
-    s.method = create_configured_method(cell.method, s.options.shadow, settings);
+    s.method = methods::create_configured_method(cell.method, s.options.shadow, settings);
     return s;
 }
 
@@ -100,7 +103,7 @@ CellSetup set_up(const Experiment& x, const Cell& cell, Caches& caches) {
 struct CellContext {
     std::unique_ptr<gl::Platform> platform;
     gl::ContextInfo info;
-    std::unique_ptr<gl::SceneRenderer> renderer;
+    std::unique_ptr<frame::SceneRenderer> renderer;
     double setup_ms = 0.0;
     double prepare_ms = 0.0;
 };
@@ -110,7 +113,7 @@ CellContext open_context(const CellSetup& s, const Scene& scene) {
     auto start = Clock::now();
     c.platform = gl::create_headless_platform();
     c.info = c.platform->info();
-    c.renderer = std::make_unique<gl::SceneRenderer>(scene, s.options);
+    c.renderer = std::make_unique<frame::SceneRenderer>(scene, s.options);
     c.setup_ms = ms_since(start);
     start = Clock::now();
     s.method->prepare(scene);
@@ -120,7 +123,7 @@ CellContext open_context(const CellSetup& s, const Scene& scene) {
 
 // I_s (EXR) and the tone-mapped frame (PNG) of repetition 0; returns the row's image path.
 std::string write_images(const Experiment& x, const Cell& cell, int rep, const fs::path& out,
-                         const gl::Frame& frame) {
+                         const frame::Frame& frame) {
     std::string image;
     if (rep != 0) {
         return image;
@@ -162,7 +165,7 @@ Json row_head(const Experiment& x, const Cell& cell, int rep, int frames,
     };
 }
 
-void add_gpu(Json& row, const gl::PassTimings& gpu, double total_ms) {
+void add_gpu(Json& row, const frame::PassTimings& gpu, double total_ms) {
     row["gpu_ms_total"] = total_ms;
     row["gpu_ms_shadow"] = gpu.shadow_ms;
     row["gpu_ms_surface"] = gpu.surface_ms;
@@ -174,7 +177,7 @@ void add_gpu(Json& row, const gl::PassTimings& gpu, double total_ms) {
     }
 }
 
-double statistic(const gl::MethodStatistics& statistics, const std::string& name) {
+double statistic(const frame::MethodStatistics& statistics, const std::string& name) {
     for (const auto& [key, value] : statistics) {
         if (key == name) {
             return value;
@@ -190,9 +193,9 @@ Json metric_value(const Experiment& x, const char* name, bool scored, double val
 }
 
 // The region statistics, the method's counters and parameters, the shadow map and the context.
-void add_tail(Json& row, const Experiment& x, const gl::VolumeMethod& method,
-              const gl::MethodStatistics& statistics, const RegionStatistics& regions,
-              const gl::ShadowSettings& shadow, const gl::ContextInfo& context,
+void add_tail(Json& row, const Experiment& x, const frame::VolumeMethod& method,
+              const frame::MethodStatistics& statistics, const methods::RegionStatistics& regions,
+              const frame::ShadowSettings& shadow, const gl::ContextInfo& context,
               const std::string& image) {
     row["cpu_ms_beamtree_regions"] = regions.build_ms;
     for (const auto& [name, value] : statistics) {
@@ -226,10 +229,10 @@ void add_tail(Json& row, const Experiment& x, const gl::VolumeMethod& method,
             row["stat_" + name] = value;
         }
     }
-    for (const gl::Parameter& p : method.parameters()) {
+    for (const frame::Parameter& p : method.parameters()) {
         row["param_" + p.name] = p.text();
     }
-    row["shadow"] = gl::to_string(shadow.filter);
+    row["shadow"] = frame::to_string(shadow.filter);
     row["shadow_map_size"] = shadow.map_size;
     row["shadow_radius"] = shadow.radius;
     row["reference"] = x.reference;
@@ -246,13 +249,13 @@ Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs
     CellSetup s = set_up(x, cell, caches);
     const Scene& scene = *s.scene;
     const CellContext c = open_context(s, scene);
-    gl::SceneRenderer& renderer = *c.renderer;
+    frame::SceneRenderer& renderer = *c.renderer;
     const gl::ContextInfo& context = c.info;
     const double setup_ms = c.setup_ms, prepare_ms = c.prepare_ms;
 
-    const FrameMeasurement m =
-        measure_frames(renderer, *s.method, x.protocol.warmup, x.protocol.frames);
-    const gl::Frame frame = renderer.read_back();
+    const methods::FrameMeasurement m =
+        methods::measure_frames(renderer, *s.method, x.protocol.warmup, x.protocol.frames);
+    const frame::Frame frame = renderer.read_back();
 
     std::optional<ErrorMetrics> error;
     if (!x.reference.empty()) {
@@ -261,7 +264,7 @@ Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs
     }
 
     auto start = Clock::now();
-    const RegionStatistics& regions = caches.region(cell, scene, false);
+    const methods::RegionStatistics& regions = caches.region(cell, scene, false);
     const double regions_ms = ms_since(start);
     const std::string image = write_images(x, cell, rep, out, frame);
 
@@ -290,10 +293,10 @@ struct SequenceScores {
     explicit SequenceScores(int frames) : errors(static_cast<size_t>(frames)) {}
     std::vector<std::optional<ErrorMetrics>> errors;  // per frame, the scored ones set
     TemporalMetrics temporal;
-    std::optional<gl::Frame> picture;
+    std::optional<frame::Frame> picture;
     int picture_frame = -1;
 
-    void score(int k, gl::Frame frame, const Image& truth) {
+    void score(int k, frame::Frame frame, const Image& truth) {
         errors[size_t(k)] = compare_images(frame.in_scattering, truth);
         temporal.add(frame.in_scattering, truth);
         if (!picture || errors[size_t(k)]->rel_rmse > errors[size_t(picture_frame)]->rel_rmse) {
@@ -333,14 +336,14 @@ void add_sequence_scores(Json& row, const Experiment& x, const SequenceScores& s
 }
 
 // Every frame's costs and error, as the row's `per_frame` series (frames.csv).
-Json per_frame_series(const std::vector<gl::FrameRecord>& records, const Sequence& sequence,
+Json per_frame_series(const std::vector<frame::FrameRecord>& records, const Sequence& sequence,
                       const SequenceScores& scores) {
     Json series = Json::object();
     for (const char* name : {"frame", "time_s", "frame_ms", "update_ms", "apply_ms", "wait_ms",
                              "draw_ms", "gpu_ms", "gpu_ms_volume", "rel_rmse"}) {
         series[name] = Json::array();
     }
-    for (const gl::FrameRecord& r : records) {
+    for (const frame::FrameRecord& r : records) {
         series["frame"].push_back(r.frame);
         series["time_s"].push_back(sequence.time(r.frame));
         series["frame_ms"].push_back(r.frame_ms);
@@ -357,7 +360,7 @@ Json per_frame_series(const std::vector<gl::FrameRecord>& records, const Sequenc
 }
 
 // Plays one animation cell and repetition (DESIGN.md §11) in a fresh GL context: every frame's
-// CPU update, apply, draw and GPU passes through gl::FrameLoop, and every stride-th frame scored
+// CPU update, apply, draw and GPU passes through frame::FrameLoop, and every stride-th frame scored
 // against the reference of that frame (computed first, multithreaded, cached on disk, so that
 // the measured frames run undisturbed and a second repetition or an interrupted run pays for
 // nothing again). Returns its row, with the per-frame series in `per_frame`.
@@ -380,32 +383,33 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
 
     Scene live = sequence.state(0);
     const CellContext c = open_context(s, live);
-    gl::SceneRenderer& renderer = *c.renderer;
+    frame::SceneRenderer& renderer = *c.renderer;
     const gl::ContextInfo& context = c.info;
     const double setup_ms = c.setup_ms, prepare_ms = c.prepare_ms;
     for (int i = 0; i < x.protocol.warmup; ++i) {
         renderer.draw(*s.method);  // shader compilation and first-use costs
     }
 
-    const std::unique_ptr<gl::VolumeMethod> reference =
+    const std::unique_ptr<frame::VolumeMethod> reference =
         scoring ? methods::create_volume_method(x.reference) : nullptr;
     Scene reference_scene = live;
     if (reference) {
         reference->prepare(reference_scene);
     }
-    std::vector<gl::FrameRecord> records;
+    std::vector<frame::FrameRecord> records;
     NamedSeries statistics;
     SequenceScores scores(frames);
-    gl::FrameLoop loop(renderer, *s.method, live,
-                       x.protocol.pipelined ? gl::FrameMode::pipelined : gl::FrameMode::serial);
+    frame::FrameLoop loop(
+        renderer, *s.method, live,
+        x.protocol.pipelined ? frame::FrameMode::pipelined : frame::FrameMode::serial);
     loop.play(
         frames, [&](int k) { return sequence.state(k); },
-        [&](const gl::FrameRecord& record) {
+        [&](const frame::FrameRecord& record) {
             records.push_back(record);
             collect(statistics, s.method->statistics());
             const int k = record.frame;
             if (reference && k % stride == 0) {
-                gl::Frame frame = renderer.read_back();
+                frame::Frame frame = renderer.read_back();
                 reference->update(live, scene_change(reference_scene, live));
                 reference_scene = live;
                 scores.score(k, std::move(frame), renderer.render(*reference).in_scattering);
@@ -424,22 +428,22 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
 
     auto series = [&](auto get) {
         std::vector<double> v;
-        for (const gl::FrameRecord& r : records) {
+        for (const frame::FrameRecord& r : records) {
             v.push_back(get(r));
         }
         return v;
     };
     const std::vector<double> frame_ms = series([](const auto& r) { return r.frame_ms; });
     const std::vector<double> critical = series([](const auto& r) { return r.critical_cpu_ms(); });
-    PassSeries passes;
-    for (const gl::FrameRecord& r : records) {
+    methods::PassSeries passes;
+    for (const frame::FrameRecord& r : records) {
         passes.add(r.gpu);
     }
-    const gl::PassTimings gpu = passes.medians();
-    const gl::MethodStatistics method_statistics = medians(statistics);
+    const frame::PassTimings gpu = passes.medians();
+    const frame::MethodStatistics method_statistics = medians(statistics);
 
     start = Clock::now();
-    const RegionStatistics& regions = caches.region(cell, sequence.state(0), true);
+    const methods::RegionStatistics& regions = caches.region(cell, sequence.state(0), true);
     const double regions_ms = ms_since(start);
     const std::string image =
         scores.picture ? write_images(x, cell, rep, out, *scores.picture) : std::string();

@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 #include "experiments/sequence.h"
-#include "gl/volume_method.h"
+#include "frame/volume_method.h"
 #include "methods/registry.h"
 #include "scenes/scene_file.h"
 #include "scenes/toml_reader.h"
@@ -447,7 +447,7 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
         TomlTableReader r(section("render"), origin, "[render]");
         x.render.shadow = r.string("shadow", x.render.shadow);
         try {
-            gl::parse_shadow_filter(x.render.shadow);
+            frame::parse_shadow_filter(x.render.shadow);
         } catch (const Error& e) {
             r.error("shadow", e.what());
         }
@@ -687,15 +687,15 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
             } else {
                 continue;  // measured as is (beamtree has no parameter to trade)
             }
-            for (const gl::Parameter& p : instance->parameters()) {
+            for (const frame::Parameter& p : instance->parameters()) {
                 if (p.name != search.parameter) {
                     continue;
                 }
-                if (p.type == gl::Parameter::Type::choice) {
+                if (p.type == frame::Parameter::Type::choice) {
                     fail("{}: [equal_error.search.{}]: '{}' is a choice, not a number", origin,
                          method, p.name);
                 }
-                search.integer = p.type == gl::Parameter::Type::integer;
+                search.integer = p.type == frame::Parameter::Type::integer;
                 auto inside = [&](double v) { return v >= p.min && v <= p.max; };
                 if (!inside(search.cheap) || !inside(search.expensive) || !(search.cheap > 0.0) ||
                     !(search.expensive > 0.0) || search.cheap == search.expensive) {

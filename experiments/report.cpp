@@ -24,9 +24,9 @@
 
 #include "core/error.h"
 #include "core/output_files.h"
+#include "core/statistics.h"
 #include "experiments/bench.h"
 #include "experiments/equal_error.h"
-#include "experiments/measure.h"
 #include "experiments/statistics.h"
 
 #ifndef SHAFTLAB_SOURCE_DIR

@@ -4,7 +4,7 @@
 #include <random>
 
 #include "core/error.h"
-#include "experiments/measure.h"
+#include "core/statistics.h"
 
 namespace sl::experiments {
 

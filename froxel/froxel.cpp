@@ -16,8 +16,8 @@ namespace sl::froxel {
 
 namespace {
 
+using frame::Parameter;
 using gl::GL;
-using gl::Parameter;
 
 // Uniform locations of shaders/grid.glsl and the passes.
 namespace grid_uniform {
@@ -120,7 +120,7 @@ void FroxelIntegrator::integrate(const FroxelGrid& grid, GLuint densities,
 
 namespace {
 
-class FroxelMethod final : public gl::VolumeMethod {
+class FroxelMethod final : public frame::VolumeMethod {
 public:
     FroxelMethod() {
         declare({.name = "grid_scale",
@@ -192,12 +192,13 @@ public:
         frame_index_ = 0;
         update(scene, SceneChange::everything(scene));
     }
-    std::unique_ptr<gl::FrameWork> cpu_update(const Scene&, const SceneChange&) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update(const Scene&, const SceneChange&) const override {
         return nullptr;  // the grid is made on the GPU every frame
     }
-    void apply_update(const Scene&, const SceneChange&, std::unique_ptr<gl::FrameWork>) override {}
+    void apply_update(const Scene&, const SceneChange&,
+                      std::unique_ptr<frame::FrameWork>) override {}
 
-    void render(const gl::VolumeInputs& inputs) override {
+    void render(const frame::VolumeInputs& inputs) override {
         const FroxelGrid grid = make_grid(inputs.scene, inputs.width, inputs.height,
                                           parameter("grid_scale"), int(parameter("slices")),
                                           parameter("depth_extent"), parameter("linear_depth"));
@@ -266,7 +267,7 @@ public:
         }
     }
 
-    gl::MethodStatistics statistics() const override {
+    frame::MethodStatistics statistics() const override {
         return {{"froxels", double(grid_.size.x) * grid_.size.y * grid_.size.z},
                 {"grid_x", double(grid_.size.x)},
                 {"grid_y", double(grid_.size.y)},
@@ -338,7 +339,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<gl::VolumeMethod> create_froxel_method() {
+std::unique_ptr<frame::VolumeMethod> create_froxel_method() {
     return std::make_unique<FroxelMethod>();
 }
 

@@ -23,8 +23,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "frame/volume_method.h"
 #include "gl/objects.h"
-#include "gl/volume_method.h"
 
 namespace sl::froxel {
 
@@ -65,6 +65,6 @@ private:
     mutable gl::Program program_;
 };
 
-std::unique_ptr<gl::VolumeMethod> create_froxel_method();
+std::unique_ptr<frame::VolumeMethod> create_froxel_method();
 
 }  // namespace sl::froxel

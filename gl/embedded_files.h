@@ -1,6 +1,6 @@
 #pragma once
 // Files embedded into the binary at build time (cmake/embed_files.cmake), keyed by their path
-// relative to the project root, e.g. "gl/shaders/surface.frag".
+// relative to the project root, e.g. "frame/shaders/surface.frag".
 
 #include <map>
 #include <string_view>

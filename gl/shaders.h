@@ -12,7 +12,7 @@ namespace sl::gl {
 
 struct ShaderStage {
     GLenum type;       // GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, ...
-    std::string path;  // embedded file, e.g. "gl/shaders/surface.frag"
+    std::string path;  // embedded file, e.g. "frame/shaders/surface.frag"
 };
 
 // The source of an embedded file with its includes expanded and `defines` inserted after the

@@ -8,7 +8,7 @@
 
 #include "gl/objects.h"
 #include "gl/shaders/frame_uniforms.h"
-#include "gl/volume_method.h"
+#include "gl/texture_view.h"
 #include "ibl/environment.h"
 #include "scenes/scene.h"
 

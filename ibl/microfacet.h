@@ -11,7 +11,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "ibl/settings.h"
+#include "materials/ibl_settings.h"
 
 namespace sl::ibl {
 

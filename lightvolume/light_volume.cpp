@@ -16,8 +16,8 @@ namespace sl::lightvolume {
 
 namespace {
 
+using frame::Parameter;
 using gl::GL;
-using gl::Parameter;
 
 // Uniform locations of shaders/grid.glsl.
 namespace grid_uniform {
@@ -116,7 +116,7 @@ glm::mat4 light_clip_to_world(const SpotLight& light) {
 
 namespace {
 
-class LightVolumeMethod final : public gl::VolumeMethod {
+class LightVolumeMethod final : public frame::VolumeMethod {
 public:
     LightVolumeMethod() {
         declare({.name = "resolution",
@@ -149,13 +149,13 @@ public:
         }
         update(scene, SceneChange::everything(scene));
     }
-    std::unique_ptr<gl::FrameWork> cpu_update(const Scene& scene,
-                                              const SceneChange&) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
+                                                 const SceneChange&) const override {
         analytic::AnalyticRegionPass::require_closed_form(scene, name());
         return nullptr;  // the volume is made on the GPU from the frame's shadow map
     }
     void apply_update(const Scene& scene, const SceneChange&,
-                      std::unique_ptr<gl::FrameWork>) override {
+                      std::unique_ptr<frame::FrameWork>) override {
         if (closed_form_.set_scene(scene)) {
             const std::vector<std::string> defines = analytic::closed_form_defines(scene);
             program_ =
@@ -172,7 +172,7 @@ public:
         clip_to_world_ = light_clip_to_world(scene.light);
     }
 
-    void render(const gl::VolumeInputs& inputs) override {
+    void render(const frame::VolumeInputs& inputs) override {
         int map_size = 0;
         GL.GetTextureLevelParameteriv(inputs.shadow_map, 0, GL_TEXTURE_WIDTH, &map_size);
         const int wanted = int(parameter("resolution"));
@@ -214,7 +214,7 @@ public:
         GL.BindSampler(kLightDepthUnit, 0);
     }
 
-    gl::MethodStatistics statistics() const override {
+    frame::MethodStatistics statistics() const override {
         GLuint64 fragments = 0;
         GL.GetQueryObjectui64v(fragments_.id(), GL_QUERY_RESULT, &fragments);
         return {{"grid_resolution", double(resolution_)},
@@ -238,7 +238,7 @@ public:
     }
 
 private:
-    void draw_wireframe(const gl::VolumeInputs& inputs) {
+    void draw_wireframe(const frame::VolumeInputs& inputs) {
         GLint target = 0;
         GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
         if (wireframe_width_ != inputs.width || wireframe_height_ != inputs.height) {
@@ -277,7 +277,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<gl::VolumeMethod> create_light_volume_method() {
+std::unique_ptr<frame::VolumeMethod> create_light_volume_method() {
     return std::make_unique<LightVolumeMethod>();
 }
 

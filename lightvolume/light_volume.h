@@ -19,7 +19,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "gl/volume_method.h"
+#include "frame/volume_method.h"
 
 namespace sl::lightvolume {
 
@@ -39,6 +39,6 @@ std::vector<glm::dvec3> light_volume_positions(const std::vector<float>& depths,
 // double precision rounded to float: what the grid's vertices are unprojected with.
 glm::mat4 light_clip_to_world(const SpotLight& light);
 
-std::unique_ptr<gl::VolumeMethod> create_light_volume_method();
+std::unique_ptr<frame::VolumeMethod> create_light_volume_method();
 
 }  // namespace sl::lightvolume

@@ -18,13 +18,13 @@ namespace sl::methods {
 
 namespace {
 
-using Factory = std::function<std::unique_ptr<gl::VolumeMethod>()>;
+using Factory = std::function<std::unique_ptr<frame::VolumeMethod>()>;
 
 const std::vector<std::pair<std::string, Factory>>& registry() {
     using sampling::MarchVariant;
     using sampling::PlanesVariant;
     static const std::vector<std::pair<std::string, Factory>> methods = {
-        {"none", gl::create_no_volume},
+        {"none", frame::create_no_volume},
         {"beamtree", analytic::create_beamtree_method},
         {"planes", [] { return sampling::create_planes_method(PlanesVariant::planes); }},
         {"hybrid1", [] { return sampling::create_planes_method(PlanesVariant::hybrid1); }},
@@ -48,7 +48,7 @@ std::vector<std::string> volume_method_names() {
     return names;
 }
 
-std::unique_ptr<gl::VolumeMethod> create_volume_method(const std::string& name) {
+std::unique_ptr<frame::VolumeMethod> create_volume_method(const std::string& name) {
     for (const auto& [known, factory] : registry()) {
         if (known == name) {
             return factory();

@@ -1,6 +1,6 @@
 #pragma once
 // The registry of volumetric methods: every method is created by name from here, and the
-// renderer, the harness and the viewer know methods only through gl::VolumeMethod. A method
+// renderer, the harness and the viewer know methods only through frame::VolumeMethod. A method
 // lives in its family's folder (analytic/, sampling/, froxel/, lightvolume/,
 // reference/); this is the table.
 
@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "gl/volume_method.h"
+#include "frame/volume_method.h"
 
 namespace sl::methods {
 
 // The methods that exist, in display order.
 std::vector<std::string> volume_method_names();
 // Throws sl::Error naming the known methods when `name` is not one of them.
-std::unique_ptr<gl::VolumeMethod> create_volume_method(const std::string& name);
+std::unique_ptr<frame::VolumeMethod> create_volume_method(const std::string& name);
 
 }  // namespace sl::methods

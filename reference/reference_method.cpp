@@ -17,10 +17,10 @@ namespace sl::reference {
 
 namespace {
 
+using frame::Parameter;
 using gl::GL;
-using gl::Parameter;
 
-class ReferenceMethod final : public gl::VolumeMethod {
+class ReferenceMethod final : public frame::VolumeMethod {
 public:
     ReferenceMethod() {
         declare({.name = "shadow_samples",
@@ -42,11 +42,12 @@ public:
     }
     void prepare(const Scene&) override {}
     // Nothing per frame: render() recomputes (or loads) the reference when its key changes.
-    std::unique_ptr<gl::FrameWork> cpu_update(const Scene&, const SceneChange&) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update(const Scene&, const SceneChange&) const override {
         return nullptr;
     }
-    void apply_update(const Scene&, const SceneChange&, std::unique_ptr<gl::FrameWork>) override {}
-    void render(const gl::VolumeInputs& inputs) override {
+    void apply_update(const Scene&, const SceneChange&,
+                      std::unique_ptr<frame::FrameWork>) override {}
+    void render(const frame::VolumeInputs& inputs) override {
         // Recomputed (or loaded from the cache) whenever anything it depends on changes: the
         // viewer moves the camera and the light between frames.
         const uint64_t key = reference_key(inputs.scene, inputs.width, inputs.height, options());
@@ -115,7 +116,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<gl::VolumeMethod> create_reference_method() {
+std::unique_ptr<frame::VolumeMethod> create_reference_method() {
     return std::make_unique<ReferenceMethod>();
 }
 

@@ -6,10 +6,10 @@
 
 #include <memory>
 
-#include "gl/volume_method.h"
+#include "frame/volume_method.h"
 
 namespace sl::reference {
 
-std::unique_ptr<gl::VolumeMethod> create_reference_method();
+std::unique_ptr<frame::VolumeMethod> create_reference_method();
 
 }  // namespace sl::reference

@@ -18,8 +18,8 @@ namespace sl::sampling {
 
 namespace {
 
+using frame::Parameter;
 using gl::GL;
-using gl::Parameter;
 
 // Uniform locations of sampling/shaders/march.frag and march_resolve.frag.
 namespace march_uniform {
@@ -33,7 +33,7 @@ constexpr GLint buffer_scale = 0, blur = 1;
 
 constexpr double kScales[] = {1.0, 0.5, 0.25};
 
-class MarchMethod final : public gl::VolumeMethod {
+class MarchMethod final : public frame::VolumeMethod {
 public:
     explicit MarchMethod(MarchVariant variant) : variant_(variant) {
         declare({.name = "samples",
@@ -125,8 +125,8 @@ public:
         frame_index_ = 0;
     }
 
-    std::unique_ptr<gl::FrameWork> cpu_update(const Scene& scene,
-                                              const SceneChange& change) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
+                                                 const SceneChange& change) const override {
         if (variant_ != MarchVariant::hybrid3) {
             return nullptr;
         }
@@ -135,7 +135,7 @@ public:
             scene, change, {.lit = true, .uncertain = true, .gpu_tree = true}, built_);
     }
     void apply_update(const Scene& scene, const SceneChange&,
-                      std::unique_ptr<gl::FrameWork> work) override {
+                      std::unique_ptr<frame::FrameWork> work) override {
         if (auto* regions = dynamic_cast<analytic::RegionFrameWork*>(work.get())) {
             const bt::FrameRegions& r = regions->regions;
             stages_ = r.ms;
@@ -155,7 +155,7 @@ public:
         }
     }
 
-    void render(const gl::VolumeInputs& inputs) override {
+    void render(const frame::VolumeInputs& inputs) override {
         GLint target = 0;
         GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
         const double scale = kScales[int(parameter("resolution_scale"))];
@@ -245,7 +245,7 @@ public:
         GL.Disable(GL_BLEND);
     }
 
-    gl::MethodStatistics statistics() const override {
+    frame::MethodStatistics statistics() const override {
         // Samples evaluated: the marching buffer's alpha, summed (read back here, not timed).
         std::vector<float> rgba(size_t(buffer_width_) * buffer_height_ * 4);
         GL.GetTextureImage(march_target_.id(), 0, GL_RGBA, GL_FLOAT,
@@ -253,11 +253,11 @@ public:
         double samples = 0.0;
         for (size_t i = 3; i < rgba.size(); i += 4)
             samples += rgba[i];
-        gl::MethodStatistics stats = {{"samples_evaluated", samples},
-                                      {"buffer_width", double(buffer_width_)},
-                                      {"buffer_height", double(buffer_height_)}};
+        frame::MethodStatistics stats = {{"samples_evaluated", samples},
+                                         {"buffer_width", double(buffer_width_)},
+                                         {"buffer_height", double(buffer_height_)}};
         if (variant_ == MarchVariant::hybrid3) {
-            const gl::MethodStatistics regions = analytic::region_statistics(stages_);
+            const frame::MethodStatistics regions = analytic::region_statistics(stages_);
             stats.insert(stats.end(), regions.begin(), regions.end());
             stats.insert(stats.end(), {{"region_faces", double(analytic_.triangle_count())},
                                        {"uncertain_faces", double(lists_.triangle_count(1))},
@@ -349,7 +349,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<gl::VolumeMethod> create_march_method(MarchVariant variant) {
+std::unique_ptr<frame::VolumeMethod> create_march_method(MarchVariant variant) {
     return std::make_unique<MarchMethod>(variant);
 }
 

@@ -18,12 +18,12 @@
 
 #include <memory>
 
-#include "gl/volume_method.h"
+#include "frame/volume_method.h"
 
 namespace sl::sampling {
 
 enum class MarchVariant { march, hybrid3 };
 
-std::unique_ptr<gl::VolumeMethod> create_march_method(MarchVariant variant);
+std::unique_ptr<frame::VolumeMethod> create_march_method(MarchVariant variant);
 
 }  // namespace sl::sampling

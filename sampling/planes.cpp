@@ -22,8 +22,8 @@ namespace sl::sampling {
 
 namespace {
 
+using frame::Parameter;
 using gl::GL;
-using gl::Parameter;
 
 // Uniform locations of sampling/shaders/planes.frag.
 constexpr GLint kDzLocation = 0;
@@ -50,7 +50,7 @@ void append_fan(const bt::Polygon& polygon, double depth, std::vector<PlaneVerte
     }
 }
 
-class PlanesMethod final : public gl::VolumeMethod {
+class PlanesMethod final : public frame::VolumeMethod {
 public:
     explicit PlanesMethod(PlanesVariant variant) : variant_(variant) {
         declare({.name = "dz",
@@ -113,8 +113,8 @@ public:
         }
     }
 
-    std::unique_ptr<gl::FrameWork> cpu_update(const Scene& scene,
-                                              const SceneChange& change) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
+                                                 const SceneChange& change) const override {
         if (variant_ == PlanesVariant::planes) {
             return nullptr;  // everything it draws is made from the frame's scene in render()
         }
@@ -125,7 +125,7 @@ public:
             scene, change, {.lit = true, .uncertain = true, .gpu_tree = true}, tree_ != nullptr);
     }
     void apply_update(const Scene& scene, const SceneChange&,
-                      std::unique_ptr<gl::FrameWork> work) override {
+                      std::unique_ptr<frame::FrameWork> work) override {
         if (auto* regions = dynamic_cast<analytic::RegionFrameWork*>(work.get())) {
             const bt::FrameRegions& r = regions->regions;
             tree_ = r.tree;
@@ -141,7 +141,7 @@ public:
         }
     }
 
-    void render(const gl::VolumeInputs& inputs) override {
+    void render(const frame::VolumeInputs& inputs) override {
         const double dz = parameter("dz");
         // CPU: the planes clipped to the influence pyramid, then (hybrids) partitioned by the
         // beam tree (Nilsson appendix B `partition`, §5.2.1).
@@ -272,16 +272,16 @@ public:
 
     gl::TextureViews textures() const override { return analytic_.textures(name()); }
 
-    gl::MethodStatistics statistics() const override {
+    frame::MethodStatistics statistics() const override {
         GLuint64 fragments = 0;
         GL.GetQueryObjectui64v(fragments_.id(), GL_QUERY_RESULT, &fragments);
         // cpu_ms_frame: the CPU work every frame (the volume cost's CPU part).
-        gl::MethodStatistics stats = {{"cpu_ms_slicing", slicing_ms_},
-                                      {"cpu_ms_frame", slicing_ms_ + partition_ms_},
-                                      {"slices", double(slice_count_)},
-                                      {"fragments", double(fragments)}};
+        frame::MethodStatistics stats = {{"cpu_ms_slicing", slicing_ms_},
+                                         {"cpu_ms_frame", slicing_ms_ + partition_ms_},
+                                         {"slices", double(slice_count_)},
+                                         {"fragments", double(fragments)}};
         if (tree_) {
-            const gl::MethodStatistics regions = analytic::region_statistics(stages_);
+            const frame::MethodStatistics regions = analytic::region_statistics(stages_);
             stats.insert(stats.end(), regions.begin(), regions.end());
             stats.insert(stats.end(),
                          {{"cpu_ms_partition", partition_ms_},
@@ -321,7 +321,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<gl::VolumeMethod> create_planes_method(PlanesVariant variant) {
+std::unique_ptr<frame::VolumeMethod> create_planes_method(PlanesVariant variant) {
     return std::make_unique<PlanesMethod>(variant);
 }
 

@@ -16,12 +16,12 @@
 
 #include <memory>
 
-#include "gl/volume_method.h"
+#include "frame/volume_method.h"
 
 namespace sl::sampling {
 
 enum class PlanesVariant { planes, hybrid1, hybrid2 };
 
-std::unique_ptr<gl::VolumeMethod> create_planes_method(PlanesVariant variant);
+std::unique_ptr<frame::VolumeMethod> create_planes_method(PlanesVariant variant);
 
 }  // namespace sl::sampling

@@ -36,7 +36,7 @@ void RegionLists::upload(const bt::RegionMesh& lit, const bt::RegionMesh& uncert
     meshes_[1] = gl::create_triangle_mesh(uncertain.positions, uncertain.triangles);
 }
 
-void RegionLists::build(const gl::VolumeInputs& inputs, bool mark_stencil) {
+void RegionLists::build(const frame::VolumeInputs& inputs, bool mark_stencil) {
     if (inputs.width != width_ || inputs.height != height_) {
         width_ = inputs.width;
         height_ = inputs.height;

@@ -11,8 +11,8 @@
 
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
+#include "frame/volume_method.h"
 #include "gl/objects.h"
-#include "gl/volume_method.h"
 
 namespace sl::sampling {
 
@@ -38,7 +38,7 @@ public:
     // where it crosses the uncertain one, so that a later pass can skip the pixels that have
     // neither before shading them (MarkedPixelsOnly).
     static constexpr GLuint kLitStencilBit = 1, kUncertainStencilBit = 2;
-    void build(const gl::VolumeInputs& inputs, bool mark_stencil = false);
+    void build(const frame::VolumeInputs& inputs, bool mark_stencil = false);
 
     // A stencil for the marks, `width` × `height`, attached to `framebuffer`.
     static gl::Texture attach_marks(GLuint framebuffer, int width, int height);

@@ -13,10 +13,9 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "ibl/settings.h"
+#include "materials/ibl_settings.h"
+#include "materials/scattering_material.h"
 #include "scenes/mesh.h"
-#include "sss/layers.h"
-#include "sss/material.h"
 
 namespace sl {
 

@@ -197,7 +197,8 @@ Material read_material(TableReader r, std::string name) {
     }
     m.roughness = float(r.number_in("roughness", m.roughness, 0.0, 1.0));
     m.f0 = r.non_negative_vec3("f0", m.f0);
-    // Translucent: a preset's name (sss/material.h) with optional overrides, or coefficients.
+    // Translucent: a preset's name (materials/scattering_material.h) with optional overrides, or
+    // coefficients.
     if (r.has("translucent")) {
         Translucency t;
         const std::string preset = r.string("translucent", "");

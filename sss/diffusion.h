@@ -9,7 +9,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "sss/material.h"
+#include "materials/scattering_material.h"
 
 namespace sl::sss {
 

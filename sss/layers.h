@@ -32,12 +32,7 @@ struct CombinedLayers {
 CombinedLayers combine_layers(const std::vector<LayerFunctions>& layers, double extent_mm,
                               int grid = 256);
 
-// A stack of translucent slabs, top first; the last may be semi-infinite (thickness 0 = dipole,
-// no transmittance).
-struct Layer {
-    ScatteringMaterial material;
-    double thickness_mm = 0.0;
-};
+// The stack (sss::Layer, materials/scattering_material.h) as one profile:
 // The stack's combined reflectance as a radial profile for the renderer, per channel, and the
 // totals. The profile's r_max is `extent_mm`.
 struct LayeredProfile {

@@ -18,10 +18,10 @@
 #include "analytic/region_pass.h"
 #include "core/error.h"
 #include "core/metrics.h"
+#include "frame/renderer.h"
+#include "frame/volume_method.h"
 #include "gl/debug.h"
-#include "gl/renderer.h"
 #include "gl/shaders.h"
-#include "gl/volume_method.h"
 #include "methods/registry.h"
 #include "reference/reference.h"
 #include "scenes/mesh.h"
@@ -33,8 +33,8 @@ namespace {
 
 using GpuMethod = GlTest;
 
-gl::Frame render(const Scene& scene, const std::string& method_name, int width, int height) {
-    gl::SceneRenderer renderer(scene, {.width = width, .height = height});
+frame::Frame render(const Scene& scene, const std::string& method_name, int width, int height) {
+    frame::SceneRenderer renderer(scene, {.width = width, .height = height});
     const auto method = methods::create_volume_method(method_name);
     method->prepare(scene);
     return renderer.render(*method);
@@ -55,8 +55,8 @@ struct TwinError {
 
 TwinError glsl_against_cpp(const Scene& scene, int table_size = analytic::kMediumTableSize) {
     const int width = 96, height = 54;
-    const gl::RenderOptions options{.width = width, .height = height};
-    const gl::shared::FrameUniforms uniforms = gl::make_frame_uniforms(scene, options);
+    const frame::RenderOptions options{.width = width, .height = height};
+    const gl::shared::FrameUniforms uniforms = frame::make_frame_uniforms(scene, options);
     const gl::Texture table = analytic::create_medium_table(scene.medium, table_size);
     gl::GL.BindTextureUnit(analytic::kMediumTableUnit, table.id());
     const std::vector<float> rgba =
@@ -232,7 +232,7 @@ NearLightError glsl_near_the_light(const Medium& medium) {
     const gl::Texture table = analytic::create_medium_table(medium);
     gl::GL.BindTextureUnit(analytic::kMediumTableUnit, table.id());
     const std::vector<float> rgba =
-        render_test_pattern(gl::make_frame_uniforms(scene, {.width = width, .height = height}),
+        render_test_pattern(frame::make_frame_uniforms(scene, {.width = width, .height = height}),
                             "tests/shaders/in_scattering_rays.frag", width, height,
                             analytic::closed_form_defines(scene));
     NearLightError error;
@@ -317,7 +317,7 @@ TEST_F(GpuMethod, DISABLED_MediumTableResolution) {
 TEST_F(GpuMethod, BeamtreeMatchesTheReferenceOnBoxes) {
     for (const MediumModel model : {MediumModel::simplified, MediumModel::physical}) {
         const Scene scene = boxes_scene(model);
-        const gl::Frame frame = render(scene, "beamtree", 256, 256);
+        const frame::Frame frame = render(scene, "beamtree", 256, 256);
         const reference::ReferenceRenderer reference(scene);
         const Image exact = reference.render(256, 256, {});
         const ErrorMetrics error = compare_images(frame.in_scattering, exact);
@@ -340,7 +340,7 @@ TEST_F(GpuMethod, AnalyticMethodsMatchTheReferenceOnAnisotropicMedia) {
         const reference::ReferenceRenderer reference(scene);
         const Image exact = reference.render(160, 90, {});
         for (const char* method : {"beamtree", "hybrid2", "hybrid3", "lightvolume"}) {
-            const gl::Frame frame = render(scene, method, 160, 90);
+            const frame::Frame frame = render(scene, method, 160, 90);
             const ErrorMetrics error = compare_images(frame.in_scattering, exact);
             EXPECT_LE(error.rel_rmse, 0.01) << method << " variant " << variant;
         }
@@ -401,7 +401,7 @@ TEST_F(GpuMethod, BeamtreeMatchesTheReferenceOnRandomBoxScenes) {
     for (int seed = 0; seed < kSeeds; ++seed) {
         const std::string name = fmt::format("boxes:{}", seed);
         const Scene scene = load_scene(name, SceneSearchPaths::defaults());
-        const gl::Frame frame = render(scene, "beamtree", kWidth, kHeight);
+        const frame::Frame frame = render(scene, "beamtree", kWidth, kHeight);
         const Image exact = reference::ReferenceRenderer(scene).render(kWidth, kHeight, {});
         const ErrorMetrics error = compare_images(frame.in_scattering, exact);
         double peak = 0.0;
@@ -457,7 +457,7 @@ TEST_F(GpuMethod, BeamtreeStaysBetweenZeroAndTheReference) {
     const int w = 640, h = 360;
     for (const char* name : {"toplight", "parallel", "multiple"}) {
         const Scene scene = load_canonical(name);
-        const gl::Frame frame = render(scene, "beamtree", w, h);
+        const frame::Frame frame = render(scene, "beamtree", w, h);
         const Image exact = reference::ReferenceRenderer(scene).render(w, h, {});
         double total = 0.0, outside = 0.0;
         for (size_t i = 0; i < exact.rgb.size(); ++i) {
@@ -476,7 +476,7 @@ TEST_F(GpuMethod, CameraInsideTheBeamLookingAtTheLightIsFinite) {
     scene.camera.position = glm::vec3(0.6f, 3.5f, -0.3f);
     scene.camera.target = scene.light.position;
     scene.camera.up = glm::vec3(0.0f, 0.0f, 1.0f);
-    const gl::Frame frame = render(scene, "beamtree", 64, 64);
+    const frame::Frame frame = render(scene, "beamtree", 64, 64);
     double sum = 0.0;
     for (const float v : frame.in_scattering.rgb) {
         ASSERT_TRUE(std::isfinite(v));
@@ -536,7 +536,7 @@ TEST_F(GpuMethod, EyeInsideTheLitRegionsMatchesTheReference) {
         scene.camera.near = 0.05f;
         const Image exact = reference::ReferenceRenderer(scene).render(96, 54, {});
         for (const char* method : {"beamtree", "hybrid2", "hybrid3"}) {
-            const gl::Frame frame = render(scene, method, 96, 54);
+            const frame::Frame frame = render(scene, method, 96, 54);
             const ErrorMetrics error = compare_images(frame.in_scattering, exact);
             EXPECT_LE(error.rel_rmse, 0.01)
                 << method << " looking at " << target.x << " " << target.y << " " << target.z;

@@ -11,8 +11,8 @@
 
 #include "beamtree/beam_tree.h"
 #include "beamtree/bounding_volumes.h"
+#include "frame/renderer.h"
 #include "gl/objects.h"
-#include "gl/renderer.h"
 #include "tests/support.h"
 
 namespace sl::test {
@@ -60,7 +60,7 @@ TEST_F(BeamTreeGpu, GlslClassifyMatchesCpp) {
                                  points.data());
         gl::GL.BindTextureUnit(0, texture.id());
         const gl::shared::FrameUniforms uniforms =
-            gl::make_frame_uniforms(scene, {.width = kWidth, .height = kHeight});
+            frame::make_frame_uniforms(scene, {.width = kWidth, .height = kHeight});
         const std::vector<float> rgba =
             render_test_pattern(uniforms, "tests/shaders/classify.frag", kWidth, kHeight);
         size_t compared = 0, differ = 0;

@@ -20,7 +20,7 @@
 #include "beamtree/regions.h"
 #include "core/error.h"
 #include "core/metrics.h"
-#include "gl/renderer.h"
+#include "frame/renderer.h"
 #include "scenes/scene_file.h"
 #include "tests/embree_oracle.h"
 #include "tests/support.h"
@@ -1101,7 +1101,7 @@ TEST(Boundary, IsClosedOutwardAndIntegratesLikeTheCells) {
 
 // beamtree's image on the CPU: per pixel, the closed form of ∫e over the lit intervals of the
 // tree's own walk along the eye ray (trace()), up to the frame's surface.
-Image lit_integral(const Scene& scene, const gl::Frame& frame, int width, int height) {
+Image lit_integral(const Scene& scene, const frame::Frame& frame, int width, int height) {
     const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
     const PixelUnprojector unproject(scene.camera, width, height);
     Image image(width, height);
@@ -1167,7 +1167,7 @@ TEST_F(BoundaryOnTheGpu, IntegratesLikeTheTreePixelByPixel) {
     for (const BoundaryCase& c : cases) {
         const bool canonical = !c.name.starts_with("seed");
         const int w = canonical ? 160 : 96, h = canonical ? 90 : 96;
-        const gl::Frame boundary = render_method(c.scene, "beamtree", w, h);
+        const frame::Frame boundary = render_method(c.scene, "beamtree", w, h);
         const Image oracle = lit_integral(c.scene, boundary, w, h);
         double peak = 0.0;
         for (const float v : oracle.rgb) {
@@ -1176,7 +1176,7 @@ TEST_F(BoundaryOnTheGpu, IntegratesLikeTheTreePixelByPixel) {
         if (!(peak > 1e-5)) {
             continue;  // the beam is not in view
         }
-        const gl::Frame fragments =
+        const frame::Frame fragments =
             render_method(c.scene, "beamtree", w, h, {{"surfaces", "fragments"}});
         const ErrorMetrics merged = compare_images(boundary.in_scattering, fragments.in_scattering);
         worst_merged = std::max(worst_merged, merged.rel_rmse);
@@ -1186,7 +1186,7 @@ TEST_F(BoundaryOnTheGpu, IntegratesLikeTheTreePixelByPixel) {
             worst_canonical = std::max(worst_canonical, exact.rel_rmse);
             EXPECT_LT(exact.rel_rmse, 1e-4) << c.name << ": max_abs " << exact.max_abs;
             if (c.name != "parallel") {
-                const gl::Frame cells =
+                const frame::Frame cells =
                     render_method(c.scene, "beamtree", w, h, {{"surfaces", "cells"}});
                 EXPECT_LT(compare_images(boundary.in_scattering, cells.in_scattering).rel_rmse,
                           1e-4)

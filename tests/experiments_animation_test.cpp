@@ -16,9 +16,9 @@
 #include <glm/glm.hpp>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "experiments/bench.h"
 #include "experiments/experiment.h"
-#include "experiments/measure.h"
 #include "experiments/report.h"
 #include "experiments/sequence.h"
 #include "experiments/statistics.h"
@@ -137,7 +137,7 @@ sizes = ["32x16"]
         }
         rows.push_back({cell,
                         0,
-                        {{"frame_ms_median", experiments::median(samples)},
+                        {{"frame_ms_median", sl::median(samples)},
                          {"frame_ms_samples", samples},
                          {"rel_rmse", 0.01}}});
     }

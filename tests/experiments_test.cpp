@@ -13,10 +13,10 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "experiments/bench.h"
 #include "experiments/equal_error.h"
 #include "experiments/experiment.h"
-#include "experiments/measure.h"
 #include "experiments/report.h"
 
 #include "tests/support.h"
@@ -197,10 +197,10 @@ TEST(Experiment, BadFilesGiveOneErrorNamingTheFileAndKey) {
 }
 
 TEST(Experiment, PercentilesInterpolateBetweenOrderStatistics) {
-    EXPECT_DOUBLE_EQ(experiments::median({3.0, 1.0, 2.0}), 2.0);
-    EXPECT_DOUBLE_EQ(experiments::median({4.0, 1.0, 2.0, 3.0}), 2.5);
-    EXPECT_DOUBLE_EQ(experiments::percentile({0.0, 10.0}, 5.0), 0.5);
-    EXPECT_DOUBLE_EQ(experiments::percentile({0.0, 10.0, 20.0}, 95.0), 19.0);
+    EXPECT_DOUBLE_EQ(sl::median({3.0, 1.0, 2.0}), 2.0);
+    EXPECT_DOUBLE_EQ(sl::median({4.0, 1.0, 2.0, 3.0}), 2.5);
+    EXPECT_DOUBLE_EQ(sl::percentile({0.0, 10.0}, 5.0), 0.5);
+    EXPECT_DOUBLE_EQ(sl::percentile({0.0, 10.0, 20.0}, 95.0), 19.0);
 }
 
 // The bisection against synthetic monotone error models: the value it returns reaches the

@@ -10,8 +10,8 @@
 
 #include "core/error.h"
 #include "core/metrics.h"
+#include "frame/renderer.h"
 #include "froxel/froxel.h"
-#include "gl/renderer.h"
 #include "methods/registry.h"
 #include "reference/reference.h"
 #include "tests/support.h"
@@ -32,7 +32,7 @@ TEST_F(Froxel, ConvergesToTheClosedFormOfAnUnoccludedLight) {
     const Image exact = unoccluded_in_scattering(scene, size, size);
     std::vector<double> scales, errors;
     for (const double scale : {1.0, 2.0, 4.0, 8.0}) {
-        const gl::Frame frame =
+        const frame::Frame frame =
             render_method(scene, "froxel", size, size, {{"grid_scale", std::to_string(scale)}});
         scales.push_back(scale);
         errors.push_back(compare_images(frame.in_scattering, exact).rel_rmse);
@@ -53,8 +53,8 @@ TEST_F(Froxel, IntegrationOfAConstantSlabIsItsClosedForm) {
         Scene scene = boxes_scene(model);
         scene.medium.sigma_s = glm::vec3(0.2f, 0.4f, 0.8f);
         scene.medium.sigma_a = glm::vec3(0.05f);
-        const gl::RenderOptions options{.width = 64, .height = 48};
-        const gl::shared::FrameUniforms uniforms = gl::make_frame_uniforms(scene, options);
+        const frame::RenderOptions options{.width = 64, .height = 48};
+        const gl::shared::FrameUniforms uniforms = frame::make_frame_uniforms(scene, options);
         const gl::Buffer ubo = gl::create_buffer(&uniforms, sizeof(uniforms));
         gl::GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, ubo.id());
         const froxel::FroxelGrid grid{
@@ -103,7 +103,7 @@ TEST_F(Froxel, HistoryAveragesTheJitterOfAStillView) {
     const Scene scene = boxes_scene(MediumModel::physical);
     const Image mean = render_method(scene, "froxel", 96, 54, {{"samples", "64"}}).in_scattering;
     const auto error_after = [&](int frames, bool temporal) {
-        gl::SceneRenderer renderer(scene, {.width = 96, .height = 54});
+        frame::SceneRenderer renderer(scene, {.width = 96, .height = 54});
         const auto method = methods::create_volume_method("froxel");
         method->set("jitter", "1");
         method->set("temporal", temporal ? "1" : "0");
@@ -123,7 +123,7 @@ TEST_F(Froxel, HistoryAveragesTheJitterOfAStillView) {
 TEST_F(Froxel, EyeInsideTheLightAndTheLightBehindTheEyeMatchTheReference) {
     for (const auto& [view, scene] : eye_and_light_views()) {
         const Image exact = reference::ReferenceRenderer(scene).render(96, 54, {});
-        const gl::Frame frame = render_method(scene, "froxel", 96, 54);
+        const frame::Frame frame = render_method(scene, "froxel", 96, 54);
         for (const float v : frame.in_scattering.rgb)
             ASSERT_TRUE(std::isfinite(v)) << view;
         EXPECT_LE(compare_images(frame.in_scattering, exact).rel_rmse, 0.10) << view;
@@ -141,7 +141,7 @@ TEST_F(Froxel, BadParametersAreRefusedByName) {
 // volume's slices side by side, the integral growing from slice to slice along a lit column.
 TEST_F(Froxel, ShowsItsSlicesToThePreviewerOnceAsked) {
     const Scene scene = boxes_scene(MediumModel::physical);
-    gl::SceneRenderer renderer(scene, {.width = 96, .height = 54});
+    frame::SceneRenderer renderer(scene, {.width = 96, .height = 54});
     const auto method = methods::create_volume_method("froxel");
     method->prepare(scene);
     renderer.draw(*method);

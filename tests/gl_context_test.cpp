@@ -63,7 +63,7 @@ TEST_F(GlContext, ObjectsAreMoveOnlyAndDeleteTheirName) {
 
 // Embedded shaders expand their includes; unknown files are a clear error, not a GL failure.
 TEST_F(GlContext, ShaderSourcesAreEmbeddedWithIncludesExpanded) {
-    const std::string source = gl::shader_source("gl/shaders/surface.frag", {"EXTRA 1"});
+    const std::string source = gl::shader_source("frame/shaders/surface.frag", {"EXTRA 1"});
     EXPECT_TRUE(source.starts_with("#version 450 core\n#define EXTRA 1\n"));
     EXPECT_NE(source.find("SL_UNIFORM_BLOCK(FrameUniforms"), std::string::npos);
     EXPECT_NE(source.find("float cone_factor"), std::string::npos);
@@ -74,8 +74,8 @@ TEST_F(GlContext, ShaderSourcesAreEmbeddedWithIncludesExpanded) {
 // The uniform block has the same size and member offsets in GLSL (std140) as in C++.
 TEST_F(GlContext, FrameUniformsLayoutMatchesBetweenCppAndGlsl) {
     const gl::Program program =
-        gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/surface.vert"},
-                            {GL_FRAGMENT_SHADER, "gl/shaders/surface.frag"}});
+        gl::create_program({{GL_VERTEX_SHADER, "frame/shaders/surface.vert"},
+                            {GL_FRAGMENT_SHADER, "frame/shaders/surface.frag"}});
     const GLuint block = gl::GL.GetUniformBlockIndex(program.id(), "FrameUniforms");
     ASSERT_NE(block, GL_INVALID_INDEX);
     GLint size = 0;

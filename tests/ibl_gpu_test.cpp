@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
-#include "gl/renderer.h"
+#include "frame/renderer.h"
 #include "ibl/shading.h"
 #include "methods/registry.h"
 #include "scenes/scene_file.h"
@@ -63,10 +63,10 @@ struct Comparison {
 
 Comparison compare_with_cpu(const Scene& scene) {
     const int w = 96, h = 72;
-    gl::SceneRenderer renderer(scene, {.width = w, .height = h});
+    frame::SceneRenderer renderer(scene, {.width = w, .height = h});
     const auto method = methods::create_volume_method("none");
     method->prepare(scene);
-    const gl::Frame frame = renderer.render(*method);
+    const frame::Frame frame = renderer.render(*method);
     const ibl::LoadedEnvironment& environment = *renderer.environment().loaded();
     const PixelUnprojector unproject(scene.camera, w, h);
     const Material& material = scene.materials.back();
@@ -135,13 +135,13 @@ TEST_F(IblRender, NoEnvironmentLeavesTheSurfacePassAlone) {
     Scene with = sphere_scene("split-sum", "importance");
     Scene without = with;
     without.environment = Environment{};
-    gl::SceneRenderer renderer(without, {.width = 48, .height = 36});
+    frame::SceneRenderer renderer(without, {.width = 48, .height = 36});
     const auto method = methods::create_volume_method("none");
     method->prepare(without);
-    const gl::Frame frame = renderer.render(*method);
+    const frame::Frame frame = renderer.render(*method);
     EXPECT_EQ(frame.surface.at(0, 0), glm::vec3(0.0f));  // sky
-    gl::SceneRenderer lit(with, {.width = 48, .height = 36});
-    const gl::Frame lit_frame = lit.render(*method);
+    frame::SceneRenderer lit(with, {.width = 48, .height = 36});
+    const frame::Frame lit_frame = lit.render(*method);
     EXPECT_GT(lit_frame.surface.at(0, 0).x, 0.0f);
     ::unsetenv("SHAFTLAB_CACHE");
 }

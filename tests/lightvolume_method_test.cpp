@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 #include "core/metrics.h"
-#include "gl/renderer.h"
+#include "frame/renderer.h"
 #include "lightvolume/light_volume.h"
 #include "methods/registry.h"
 #include "reference/reference.h"
@@ -30,7 +30,7 @@ TEST_F(LightVolume, IsExactUnoccludedAndConvergesWithTheShadowMap) {
     open.objects.clear();
     const Image exact_open = unoccluded_in_scattering(open, 64, 64);
     for (const char* resolution : {"2", "16"}) {
-        const gl::Frame frame =
+        const frame::Frame frame =
             render_method(open, "lightvolume", 64, 64, {{"resolution", resolution}});
         EXPECT_LT(compare_images(frame.in_scattering, exact_open).rel_rmse, 1e-4) << resolution;
     }
@@ -38,7 +38,7 @@ TEST_F(LightVolume, IsExactUnoccludedAndConvergesWithTheShadowMap) {
     const Image exact = reference::ReferenceRenderer(boxes).render(96, 54, {});
     std::vector<double> sizes, errors;
     for (const int n : {32, 64, 128, 256}) {
-        const gl::Frame frame =
+        const frame::Frame frame =
             render_method(boxes, "lightvolume", 96, 54,
                           {{"resolution", "0"}, {"shadow_size", std::to_string(n)}});
         sizes.push_back(double(n));
@@ -81,13 +81,13 @@ TEST_F(LightVolume, EqualsItsCpuOracle) {
             scene.camera.near = 0.05f;
         }
         const int width = 96, height = 54, map = 128, resolution = 48;
-        const gl::RenderOptions options{.width = width, .height = height};
-        gl::SceneRenderer renderer(scene, options);
+        const frame::RenderOptions options{.width = width, .height = height};
+        frame::SceneRenderer renderer(scene, options);
         const auto method = methods::create_volume_method("lightvolume");
         method->set("resolution", std::to_string(resolution));
         method->set("shadow_size", std::to_string(map));
         method->prepare(scene);
-        const gl::Frame frame = renderer.render(*method);
+        const frame::Frame frame = renderer.render(*method);
         GLuint shadow_map = 0;
         for (const gl::TextureView& view : renderer.textures())
             if (view.name == "frame/shadow map")
@@ -100,7 +100,7 @@ TEST_F(LightVolume, EqualsItsCpuOracle) {
         const std::vector<glm::dvec3> positions = lightvolume::light_volume_positions(
             depths, map, lightvolume::light_clip_to_world(scene.light), resolution);
         const std::vector<glm::uvec3> triangles = lightvolume::light_volume_triangles(resolution);
-        const gl::shared::FrameUniforms uniforms = gl::make_frame_uniforms(scene, options);
+        const gl::shared::FrameUniforms uniforms = frame::make_frame_uniforms(scene, options);
         const glm::dmat4 inverse(uniforms.inverse_view_projection);
         Image cpu(width, height);
         double peak = 0.0;
@@ -146,7 +146,7 @@ TEST_F(LightVolume, EqualsItsCpuOracle) {
 TEST_F(LightVolume, EyeInsideTheLightAndTheLightBehindTheEyeMatchTheReference) {
     for (const auto& [view, scene] : eye_and_light_views()) {
         const Image exact = reference::ReferenceRenderer(scene).render(96, 54, {});
-        const gl::Frame frame = render_method(scene, "lightvolume", 96, 54);
+        const frame::Frame frame = render_method(scene, "lightvolume", 96, 54);
         for (const float v : frame.in_scattering.rgb)
             ASSERT_TRUE(std::isfinite(v)) << view;
         EXPECT_LE(compare_images(frame.in_scattering, exact).rel_rmse, 0.01) << view;
@@ -163,7 +163,7 @@ TEST_F(LightVolume, BadParametersAreRefusedByName) {
 // the grid's edges drawn (front faces green, back orange) over black.
 TEST_F(LightVolume, DrawsItsWireframeForThePreviewerOnceAsked) {
     const Scene scene = boxes_scene(MediumModel::physical);
-    gl::SceneRenderer renderer(scene, {.width = 96, .height = 54});
+    frame::SceneRenderer renderer(scene, {.width = 96, .height = 54});
     const auto method = methods::create_volume_method("lightvolume");
     method->set("resolution", "16");
     method->prepare(scene);

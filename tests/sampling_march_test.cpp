@@ -13,8 +13,8 @@
 #include "analytic/in_scattering.h"
 #include "beamtree/beam_tree.h"
 #include "core/metrics.h"
-#include "gl/renderer.h"
-#include "gl/volume_method.h"
+#include "frame/renderer.h"
+#include "frame/volume_method.h"
 #include "reference/reference.h"
 #include "sampling/ray_clip.h"
 #include "scenes/mesh.h"
@@ -27,8 +27,8 @@ using March = GlTest;
 using glm::dvec3;
 using sampling::ClipCase;
 
-gl::Frame render(const Scene& scene, const std::string& method, int width, int height,
-                 const std::vector<std::pair<std::string, std::string>>& settings = {}) {
+frame::Frame render(const Scene& scene, const std::string& method, int width, int height,
+                    const std::vector<std::pair<std::string, std::string>>& settings = {}) {
     return render_method(scene, method, width, height, settings);
 }
 
@@ -100,7 +100,7 @@ TEST_F(March, GlslClipMatchesCpp) {
     const Scene scene = load_canonical("parallel");
     const int width = 96, height = 54;
     const gl::shared::FrameUniforms uniforms =
-        gl::make_frame_uniforms(scene, {.width = width, .height = height});
+        frame::make_frame_uniforms(scene, {.width = width, .height = height});
     const std::vector<float> rgba =
         render_test_pattern(uniforms, "tests/shaders/ray_clip.frag", width, height);
     const std::vector<bt::Plane> pyramid = bt::influence_planes(scene.light);
@@ -140,7 +140,7 @@ TEST_F(March, ConvergesAtLeastLikeOneOverNWithoutOccluders) {
     const Image exact = unoccluded_in_scattering(scene, size, size);
     std::vector<double> ns, errors;
     for (const int n : {2, 4, 8, 16}) {
-        const gl::Frame frame =
+        const frame::Frame frame =
             render(scene, "march", size, size, {{"samples", std::to_string(n)}});
         ns.push_back(double(n));
         errors.push_back(compare_images(frame.in_scattering, exact).rel_rmse);
@@ -174,7 +174,7 @@ TEST_F(March, DepthAwareFilteringDoesNotBleedAcrossADepthEdge) {
     scene.objects.push_back(std::move(wall));
 
     const int width = 96, height = 64;
-    const gl::Frame sharp = render(scene, "march", width, height, {{"samples", "64"}});
+    const frame::Frame sharp = render(scene, "march", width, height, {{"samples", "64"}});
     double peak = 0.0;
     for (const float v : sharp.in_scattering.rgb)
         peak = std::max(peak, double(v));
@@ -192,7 +192,7 @@ TEST_F(March, DepthAwareFilteringDoesNotBleedAcrossADepthEdge) {
         }
     }
     ASSERT_GT(wall_pixels.size(), size_t(width * 4));
-    auto wall_peak = [&](const gl::Frame& frame) {
+    auto wall_peak = [&](const frame::Frame& frame) {
         double largest = 0.0;
         for (const size_t i : wall_pixels)
             largest = std::max(largest, double(frame.in_scattering.rgb[i * 3]));
@@ -200,13 +200,13 @@ TEST_F(March, DepthAwareFilteringDoesNotBleedAcrossADepthEdge) {
     };
     for (const char* scale : {"1", "0.5", "0.25"}) {
         for (const char* blur : {"none", "depth_aware"}) {
-            const gl::Frame frame = render(
+            const frame::Frame frame = render(
                 scene, "march", width, height,
                 {{"samples", "64"}, {"resolution_scale", scale}, {"blur", blur}, {"jitter", "1"}});
             EXPECT_LT(wall_peak(frame), 1e-3) << "scale " << scale << ", blur " << blur;
         }
     }
-    const gl::Frame bleeding =
+    const frame::Frame bleeding =
         render(scene, "march", width, height, {{"samples", "64"}, {"blur", "gauss5"}});
     EXPECT_GT(wall_peak(bleeding), 1e-2);
 }
@@ -251,8 +251,8 @@ TEST_F(March, Hybrid3BeatsMarchAndCountsNothingTwice) {
 // eye ray from the tree's own walk (trace(), up to the surface and inside the cone), N =
 // clamp(ceil(density x length), min_samples, samples) samples at the middles of N equal steps
 // along the intervals laid end to end, each e(t) times the exact visibility (a ray cast).
-Image hybrid3_marched_oracle(const Scene& scene, const gl::Frame& frame, int size, double density,
-                             int min_samples, int max_samples) {
+Image hybrid3_marched_oracle(const Scene& scene, const frame::Frame& frame, int size,
+                             double density, int min_samples, int max_samples) {
     const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
     const CpuRayCaster caster(scene);
     const PixelUnprojector unproject(scene.camera, size, size);
@@ -320,8 +320,8 @@ TEST_F(March, Hybrid3MarchesOnlyItsUncertainIntervals) {
     const int size = 64;
     for (const char* name : {"toplight", "multiple"}) {
         const Scene scene = load_canonical(name);
-        const gl::Frame lit = render(scene, "beamtree", size, size);
-        const gl::Frame hybrid3 = render(
+        const frame::Frame lit = render(scene, "beamtree", size, size);
+        const frame::Frame hybrid3 = render(
             scene, "hybrid3", size, size,
             {{"density", "64"}, {"min_samples", "2"}, {"samples", "256"}, {"shadow", "hard"}});
         const Image marched = difference(hybrid3.in_scattering, lit.in_scattering);
@@ -343,7 +343,7 @@ TEST_F(March, Hybrid3ConvergesAsItsDensityGrows) {
     const Image exact = reference::ReferenceRenderer(scene).render(size, size, {});
     std::vector<double> densities, errors;
     for (const double density : {2.0, 4.0, 8.0, 16.0, 32.0}) {
-        const gl::Frame frame = render(
+        const frame::Frame frame = render(
             scene, "hybrid3", size, size,
             {{"density", std::to_string(density)}, {"min_samples", "1"}, {"samples", "4096"}});
         densities.push_back(density);

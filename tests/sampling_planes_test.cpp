@@ -12,8 +12,8 @@
 #include "beamtree/beam_tree.h"
 #include "core/error.h"
 #include "core/metrics.h"
-#include "gl/renderer.h"
-#include "gl/volume_method.h"
+#include "frame/renderer.h"
+#include "frame/volume_method.h"
 #include "reference/reference.h"
 #include "sampling/slices.h"
 #include "tests/support.h"
@@ -23,8 +23,8 @@ namespace {
 
 using Sampling = GlTest;
 
-gl::Frame render(const Scene& scene, const std::string& method, int size,
-                 const std::vector<std::pair<std::string, std::string>>& settings = {}) {
+frame::Frame render(const Scene& scene, const std::string& method, int size,
+                    const std::vector<std::pair<std::string, std::string>>& settings = {}) {
     return render_method(scene, method, size, size, settings);
 }
 
@@ -43,7 +43,7 @@ TEST_F(Sampling, GlslIntegrandMatchesCppForEveryPhaseFunction) {
             // directions of the GPU side: a looser bound there.
             const double tolerance = scene.light.falloff_degrees > 0.0f ? 3e-3 : 1e-4;
             const gl::shared::FrameUniforms uniforms =
-                gl::make_frame_uniforms(scene, {.width = width, .height = height});
+                frame::make_frame_uniforms(scene, {.width = width, .height = height});
             const std::vector<float> rgba =
                 render_test_pattern(uniforms, "tests/shaders/scattering.frag", width, height);
             const double peak = red_peak(rgba);
@@ -128,7 +128,7 @@ TEST_F(Sampling, PlanesConvergeAtLeastLinearlyWithoutOccluders) {
     const Image exact = unoccluded_in_scattering(scene, size, size);
     std::vector<double> dzs, errors;
     for (const double dz : {0.4, 0.2, 0.1, 0.05}) {
-        const gl::Frame frame = render(scene, "planes", size, {{"dz", std::to_string(dz)}});
+        const frame::Frame frame = render(scene, "planes", size, {{"dz", std::to_string(dz)}});
         dzs.push_back(dz);
         errors.push_back(compare_images(frame.in_scattering, exact).rel_rmse);
     }
@@ -148,12 +148,14 @@ TEST_F(Sampling, Hybrid1RemovesOnlyShadowMapError) {
     const Scene scene = boxes_scene(MediumModel::simplified);
     const int size = 80;
     const double dz = 0.1;
-    const gl::Frame planes = render(scene, "planes", size, {{"dz", "0.1"}, {"shadow", "hard"}});
-    const gl::Frame hybrid1 = render(scene, "hybrid1", size, {{"dz", "0.1"}, {"shadow", "hard"}});
-    const gl::Frame hybrid1_cpu =
+    const frame::Frame planes = render(scene, "planes", size, {{"dz", "0.1"}, {"shadow", "hard"}});
+    const frame::Frame hybrid1 =
+        render(scene, "hybrid1", size, {{"dz", "0.1"}, {"shadow", "hard"}});
+    const frame::Frame hybrid1_cpu =
         render(scene, "hybrid1", size, {{"dz", "0.1"}, {"shadow", "hard"}, {"partition", "cpu"}});
-    const gl::Frame hybrid2 = render(scene, "hybrid2", size, {{"dz", "0.1"}, {"shadow", "hard"}});
-    const gl::Frame hybrid2_cpu =
+    const frame::Frame hybrid2 =
+        render(scene, "hybrid2", size, {{"dz", "0.1"}, {"shadow", "hard"}});
+    const frame::Frame hybrid2_cpu =
         render(scene, "hybrid2", size, {{"dz", "0.1"}, {"shadow", "hard"}, {"partition", "cpu"}});
 
     const CpuRayCaster caster(scene);
@@ -210,10 +212,10 @@ TEST_F(Sampling, Hybrid2BeatsPlanesOnToplight) {
     const int size = 256;
     const reference::ReferenceRenderer reference(scene);
     const Image exact = reference.render(size, size, {});
-    const gl::Frame lit_only = render(scene, "beamtree", size);
+    const frame::Frame lit_only = render(scene, "beamtree", size);
     for (const char* dz : {"0.5", "0.1"}) {
-        const gl::Frame planes = render(scene, "planes", size, {{"dz", dz}});
-        const gl::Frame hybrid2 = render(scene, "hybrid2", size, {{"dz", dz}});
+        const frame::Frame planes = render(scene, "planes", size, {{"dz", dz}});
+        const frame::Frame hybrid2 = render(scene, "hybrid2", size, {{"dz", dz}});
         const double planes_error = compare_images(planes.in_scattering, exact).rel_rmse;
         const double hybrid2_error = compare_images(hybrid2.in_scattering, exact).rel_rmse;
         EXPECT_LE(hybrid2_error, planes_error) << "dz " << dz;

@@ -10,7 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/metrics.h"
-#include "gl/renderer.h"
+#include "frame/renderer.h"
 #include "methods/registry.h"
 #include "scenes/scene_file.h"
 #include "sss/diffusion.h"
@@ -154,7 +154,7 @@ TEST_F(SssRender, SlabSplatsMatchTheCpuSumOfEquation46) {
          {std::pair{"dipole", "jacobian"}, std::pair{"multipole", "jacobian"},
           std::pair{"dipole", "seed"}}) {
         const Scene scene = slab_scene(model, weighting);
-        gl::SceneRenderer renderer(scene, {.width = w, .height = h});
+        frame::SceneRenderer renderer(scene, {.width = w, .height = h});
         const auto method = methods::create_volume_method("none");
         method->prepare(scene);
         renderer.render(*method);
@@ -210,7 +210,7 @@ TEST_F(SssRender, FootprintFilterKeepsTheEnergyAndRemovesTheDots) {
     const int w = 96, h = 96;
     auto render = [&](bool footprint) {
         const Scene scene = slab_scene("dipole", "jacobian", footprint, 24);
-        gl::SceneRenderer renderer(scene, {.width = w, .height = h});
+        frame::SceneRenderer renderer(scene, {.width = w, .height = h});
         const auto method = methods::create_volume_method("none");
         method->prepare(scene);
         renderer.render(*method);
@@ -250,7 +250,7 @@ TEST_F(SssRender, VolumeMethodsAfterTheSubsurfacePassStillSeeTheShadowMap) {
     // ~0.1% between runs on llvmpipe, too much for this check).
     for (const char* name : {"march", "planes"}) {
         auto in_scattering = [&](const Scene& scene) {
-            gl::SceneRenderer renderer(scene, {.width = w, .height = h});
+            frame::SceneRenderer renderer(scene, {.width = w, .height = h});
             const auto method = methods::create_volume_method(name);
             method->prepare(scene);
             return renderer.render(*method).in_scattering;

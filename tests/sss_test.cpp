@@ -7,10 +7,10 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "materials/scattering_material.h"
 #include "scenes/scene_file.h"
 #include "sss/diffusion.h"
 #include "sss/layers.h"
-#include "sss/material.h"
 #include "sss/surface_samples.h"
 
 namespace sl::test {

@@ -16,11 +16,11 @@
 
 #include "analytic/in_scattering.h"
 #include "core/error.h"
+#include "frame/volume_method.h"
 #include "gl/debug.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
-#include "gl/volume_method.h"
 #include "methods/registry.h"
 #include "scenes/mesh.h"
 #include "scenes/scene_file.h"
@@ -335,7 +335,7 @@ double red_peak(const std::vector<float>& rgba) {
     return peak;
 }
 
-PixelRay pixel_ray(const Scene& scene, const PixelUnprojector& unproject, const gl::Frame& frame,
+PixelRay pixel_ray(const Scene& scene, const PixelUnprojector& unproject, const frame::Frame& frame,
                    int x, int y) {
     const glm::dvec3 eye(scene.camera.position);
     const glm::dvec3 far = unproject.point(x, y, 1.0);
@@ -346,9 +346,9 @@ PixelRay pixel_ray(const Scene& scene, const PixelUnprojector& unproject, const 
             surface};
 }
 
-gl::Frame render_method(const Scene& scene, const std::string& method, int width, int height,
-                        const std::vector<std::pair<std::string, std::string>>& settings) {
-    gl::SceneRenderer renderer(scene, {.width = width, .height = height});
+frame::Frame render_method(const Scene& scene, const std::string& method, int width, int height,
+                           const std::vector<std::pair<std::string, std::string>>& settings) {
+    frame::SceneRenderer renderer(scene, {.width = width, .height = height});
     const auto volume_method = methods::create_volume_method(method);
     for (const auto& [name, value] : settings)
         volume_method->set(name, value);

@@ -14,8 +14,8 @@
 
 #include "analytic/in_scattering.h"
 #include "core/image.h"
+#include "frame/renderer.h"
 #include "gl/platform.h"
-#include "gl/renderer.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "scenes/scene.h"
 
@@ -109,12 +109,12 @@ struct PixelRay {
     double distance;
     bool surface;
 };
-PixelRay pixel_ray(const Scene& scene, const PixelUnprojector& unproject, const gl::Frame& frame,
+PixelRay pixel_ray(const Scene& scene, const PixelUnprojector& unproject, const frame::Frame& frame,
                    int x, int y);
 
 // One frame of `scene` with the named method and its parameter settings (NAME, VALUE).
-gl::Frame render_method(const Scene& scene, const std::string& method, int width, int height,
-                        const std::vector<std::pair<std::string, std::string>>& settings = {});
+frame::Frame render_method(const Scene& scene, const std::string& method, int width, int height,
+                           const std::vector<std::pair<std::string, std::string>>& settings = {});
 
 // I_s of every pixel's eye ray with nothing in the way, in closed form (analytic/): the oracle
 // of the convergence tests.

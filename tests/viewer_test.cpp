@@ -105,7 +105,8 @@ TEST(SavedView, HarnessReadsTheViewBack) {
     method->set("samples", "37");
     method->set("clip", "pyramid");
     TempDir dir;
-    const gl::ShadowSettings shadow{.filter = gl::ShadowFilter::vsm, .map_size = 512, .radius = 2};
+    const frame::ShadowSettings shadow{
+        .filter = frame::ShadowFilter::vsm, .map_size = 512, .radius = 2};
     const viewer::SavedView saved = viewer::save_view_as_experiment(
         dir / "views" / "mine.toml", scene, "parallel", *method, 320, 200, shadow);
     EXPECT_EQ(saved.scene.filename(), "mine.scene.toml");
@@ -147,7 +148,7 @@ TEST_F(RegionOverlayTest, AccumulatedLengthsMatchCpuClassification) {
     constexpr int kWidth = 64, kHeight = 40;
     const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
     const bt::Regions regions = bt::extract_regions(tree);
-    gl::SceneRenderer renderer(scene, {.width = kWidth, .height = kHeight});
+    frame::SceneRenderer renderer(scene, {.width = kWidth, .height = kHeight});
     const auto none = methods::create_volume_method("none");
     renderer.draw(*none);
     GLuint depth = 0;

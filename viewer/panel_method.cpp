@@ -18,12 +18,12 @@ void Viewer::ui_method() {
         }
         ImGui::EndCombo();
     }
-    const std::vector<gl::Parameter> parameters = method_->parameters();
-    for (const gl::Parameter& p : parameters) {
+    const std::vector<frame::Parameter> parameters = method_->parameters();
+    for (const frame::Parameter& p : parameters) {
         std::optional<std::string> text;
         bool commit = false;
         switch (p.type) {
-            case gl::Parameter::Type::integer: {
+            case frame::Parameter::Type::integer: {
                 int v = int(p.value);
                 const float speed = float(std::max(1.0, (p.max - p.min) / 400.0));
                 if (ImGui::DragInt(p.name.c_str(), &v, speed, int(p.min), int(p.max), "%d",
@@ -32,7 +32,7 @@ void Viewer::ui_method() {
                 }
                 break;
             }
-            case gl::Parameter::Type::real: {
+            case frame::Parameter::Type::real: {
                 double v = p.value;
                 const bool logarithmic = p.min > 0.0 && p.max / p.min > 100.0;
                 ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp;
@@ -44,7 +44,7 @@ void Viewer::ui_method() {
                 }
                 break;
             }
-            case gl::Parameter::Type::choice: {
+            case frame::Parameter::Type::choice: {
                 if (ImGui::BeginCombo(p.name.c_str(), p.text().c_str())) {
                     for (const std::string& choice : p.choices) {
                         if (ImGui::Selectable(choice.c_str(), choice == p.text())) {
@@ -71,8 +71,8 @@ void Viewer::ui_method() {
         }
     }
     if (!parameters.empty() && ImGui::Button("defaults")) {
-        for (const gl::Parameter& p : parameters) {
-            gl::Parameter d = p;
+        for (const frame::Parameter& p : parameters) {
+            frame::Parameter d = p;
             d.value = p.default_value;
             method_->set(p.name, d.text());
         }

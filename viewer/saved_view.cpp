@@ -14,8 +14,8 @@ namespace sl::viewer {
 namespace fs = std::filesystem;
 
 SavedView save_view_as_experiment(const fs::path& experiment, const Scene& scene,
-                                  const std::string& opened, const gl::VolumeMethod& method,
-                                  int width, int height, const gl::ShadowSettings& shadow) {
+                                  const std::string& opened, const frame::VolumeMethod& method,
+                                  int width, int height, const frame::ShadowSettings& shadow) {
     if (experiment.extension() != ".toml") {
         fail("{}: an experiment file must end in .toml", experiment.string());
     }
@@ -52,15 +52,16 @@ SavedView save_view_as_experiment(const fs::path& experiment, const Scene& scene
                                                 opened, method.name())));
     text += "out = \"out/{name}\"\n\n";
     text += "[protocol]\nwarmup = 2\nframes = 10\n\n";
-    text += fmt::format("[render]\nshadow = {}\nshadow_map_size = {}\npcf_radius = {}\n\n",
-                        toml_quoted(gl::to_string(shadow.filter)), shadow.map_size, shadow.radius);
+    text +=
+        fmt::format("[render]\nshadow = {}\nshadow_map_size = {}\npcf_radius = {}\n\n",
+                    toml_quoted(frame::to_string(shadow.filter)), shadow.map_size, shadow.radius);
     text += fmt::format("[sweep]\nscenes = [{}]\nmethods = [{}]\nsizes = [\"{}x{}\"]\n",
                         toml_quoted(scene_file), toml_quoted(method.name()), width, height);
     if (!method.parameters().empty()) {
         text += fmt::format("\n[sweep.params.{}]\n", method.name());
-        for (const gl::Parameter& p : method.parameters()) {
+        for (const frame::Parameter& p : method.parameters()) {
             const std::string value =
-                p.type == gl::Parameter::Type::choice ? toml_quoted(p.text()) : p.text();
+                p.type == frame::Parameter::Type::choice ? toml_quoted(p.text()) : p.text();
             text += fmt::format("{} = {}\n", p.name, value);
         }
     }

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "gl/volume_method.h"
+#include "frame/volume_method.h"
 #include "scenes/scene.h"
 
 namespace sl::viewer {
@@ -21,7 +21,7 @@ struct SavedView {
 
 // `opened` is the scene as named on the command line (a canonical name, multiple:N or a file).
 SavedView save_view_as_experiment(const std::filesystem::path& experiment, const Scene& scene,
-                                  const std::string& opened, const gl::VolumeMethod& method,
-                                  int width, int height, const gl::ShadowSettings& shadow);
+                                  const std::string& opened, const frame::VolumeMethod& method,
+                                  int width, int height, const frame::ShadowSettings& shadow);
 
 }  // namespace sl::viewer

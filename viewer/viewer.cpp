@@ -17,17 +17,18 @@
 #include "beamtree/frame_regions.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
-#include "experiments/measure.h"
+#include "core/statistics.h"
 #include "gl/debug.h"
 #include "gl/shaders.h"
 #include "ibl/environment.h"
+#include "methods/configured_method.h"
 #include "scenes/scene_file.h"
 #include "viewer/saved_view.h"
 
 namespace sl::viewer {
 
-using experiments::ms_since;
 using gl::GL;
+using sl::ms_since;
 
 const std::vector<std::string>& layer_names() {
     static const std::vector<std::string> names = {"volumes", "outlines",  "light-view",
@@ -54,8 +55,8 @@ Viewer::Viewer(const ViewerOptions& options)
     overlay_settings_.volumes = layers_["volumes"];
     overlay_settings_.outlines = layers_["outlines"];
     // Fail on an unknown method, setting or path before opening a window.
-    method_ = experiments::create_configured_method(options.method, options.shadow,
-                                                    experiments::parse_settings(options.settings));
+    method_ = methods::create_configured_method(options.method, options.shadow,
+                                                methods::parse_settings(options.settings));
     if (!options.path.empty()) {
         path_ = load_animation_file(options.path, scene_);
     } else if (scene_.animation && scripted() && options.orbit_degrees == 0.0f) {
@@ -115,7 +116,7 @@ bool Viewer::layer(const char* name) const {
 
 void Viewer::switch_method(const std::string& name) {
     try {
-        auto method = experiments::create_configured_method(name, options_.shadow, {});
+        auto method = methods::create_configured_method(name, options_.shadow, {});
         const auto start = Clock::now();
         method->prepare(scene_);
         prepare_ms_ = ms_since(start);
@@ -191,8 +192,8 @@ void Viewer::draw_frame() {
         renderer_ && !ibl::same_bake(renderer_->environment().source(), scene_.environment);
     if (!renderer_ || rebake || w != width_ || h != height_) {
         renderer_.reset();
-        renderer_ = std::make_unique<gl::SceneRenderer>(
-            scene_, gl::RenderOptions{.width = w, .height = h, .shadow = options_.shadow});
+        renderer_ = std::make_unique<frame::SceneRenderer>(
+            scene_, frame::RenderOptions{.width = w, .height = h, .shadow = options_.shadow});
         width_ = w;
         height_ = h;
     }
@@ -310,7 +311,7 @@ int Viewer::run() {
                     "shaftlab view: %zu scene changes; from a change to the end of the first "
                     "frame that shows it: median %.2f ms, max %.2f ms (method update %.2f ms, "
                     "regions overlay %.2f ms of the last)\n",
-                    change_latency_ms_.size(), experiments::median(change_latency_ms_),
+                    change_latency_ms_.size(), sl::median(change_latency_ms_),
                     *std::max_element(change_latency_ms_.begin(), change_latency_ms_.end()),
                     update_ms_, tree_ms_ + extract_ms_);
             }

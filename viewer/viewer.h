@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "gl/volume_method.h"
+#include "frame/volume_method.h"
 
 namespace sl::viewer {
 
@@ -19,7 +19,7 @@ struct ViewerOptions {
     std::vector<std::string> settings;  // "name=value" for the method
     int width = 1280;
     int height = 720;
-    gl::ShadowSettings shadow{};
+    frame::ShadowSettings shadow{};
     std::vector<std::string> layers;  // shown at start: volumes, outlines, light-view, error,
                                       // previewer, timings
     std::string preview;              // the previewer's texture at start (by name)

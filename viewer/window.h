@@ -28,10 +28,10 @@
 
 #include "core/image.h"
 #include "core/metrics.h"
+#include "frame/renderer.h"
+#include "frame/volume_method.h"
 #include "gl/objects.h"
 #include "gl/platform.h"
-#include "gl/renderer.h"
-#include "gl/volume_method.h"
 #include "reference/reference.h"
 #include "scenes/animation.h"
 #include "scenes/scene.h"
@@ -115,8 +115,8 @@ private:
     std::optional<Animation> path_;  // scripted mode: --path, or the scene's own animation
     int selected_object_ = -1;       // alt + drag moves it (panel "objects")
     float fly_speed_ = 2.0f;         // metres per second
-    std::unique_ptr<gl::VolumeMethod> method_;
-    std::unique_ptr<gl::SceneRenderer> renderer_;
+    std::unique_ptr<frame::VolumeMethod> method_;
+    std::unique_ptr<frame::SceneRenderer> renderer_;
     int width_ = 0, height_ = 0;
     RegionOverlay overlay_;
     OverlaySettings overlay_settings_;
@@ -142,8 +142,8 @@ private:
     double tree_ms_ = 0.0, extract_ms_ = 0.0, prepare_ms_ = 0.0, update_ms_ = 0.0;
     // Scripted mode: per scene change, from the change to the end of the first frame showing it.
     std::vector<double> change_latency_ms_;
-    gl::FrameTimings timings_;
-    gl::MethodStatistics statistics_;
+    frame::FrameTimings timings_;
+    frame::MethodStatistics statistics_;
     History frame_history_, cpu_history_, shadow_history_, surface_history_, volume_history_,
         composite_history_;
     Clock::time_point last_frame_ = Clock::now();

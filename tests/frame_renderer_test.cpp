@@ -12,7 +12,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/metrics.h"
-#include "gl/renderer.h"
+#include "frame/renderer.h"
 #include "methods/registry.h"
 #include "reference/reference.h"
 #include "scenes/mesh.h"
@@ -23,8 +23,8 @@ namespace {
 
 using Render = GlTest;
 
-gl::Frame render(const Scene& scene, const gl::RenderOptions& options) {
-    gl::SceneRenderer renderer(scene, options);
+frame::Frame render(const Scene& scene, const frame::RenderOptions& options) {
+    frame::SceneRenderer renderer(scene, options);
     const auto method = methods::create_volume_method("none");
     method->prepare(scene);
     return renderer.render(*method);
@@ -33,9 +33,9 @@ gl::Frame render(const Scene& scene, const gl::RenderOptions& options) {
 // The same scene renders bit-identically twice, with two separate renderers.
 TEST_F(Render, SameSceneRendersBitIdenticallyTwice) {
     const Scene scene = load_canonical("toplight");
-    const gl::RenderOptions options{.width = 96, .height = 54};
-    const gl::Frame a = render(scene, options);
-    const gl::Frame b = render(scene, options);
+    const frame::RenderOptions options{.width = 96, .height = 54};
+    const frame::Frame a = render(scene, options);
+    const frame::Frame b = render(scene, options);
     EXPECT_EQ(a.radiance.rgb, b.radiance.rgb);
     EXPECT_EQ(a.display_srgb8, b.display_srgb8);
 }
@@ -46,9 +46,9 @@ TEST_F(Render, SameSceneRendersBitIdenticallyTwice) {
 // its light volume collapsed to nothing.)
 TEST_F(Render, AFrameAbortedByItsMethodLeavesTheNextFrameIntact) {
     const Scene scene = load_canonical("toplight");
-    const gl::Frame before = render_method(scene, "lightvolume", 96, 54);
+    const frame::Frame before = render_method(scene, "lightvolume", 96, 54);
     EXPECT_THROW(render_method(scene, "lightvolume", 96, 54, {{"resolution", "1"}}), sl::Error);
-    const gl::Frame after = render_method(scene, "lightvolume", 96, 54);
+    const frame::Frame after = render_method(scene, "lightvolume", 96, 54);
     EXPECT_EQ(before.in_scattering.rgb, after.in_scattering.rgb);
     EXPECT_EQ(before.radiance.rgb, after.radiance.rgb);
 }
@@ -57,7 +57,7 @@ TEST_F(Render, AFrameAbortedByItsMethodLeavesTheNextFrameIntact) {
 // map agrees with the CPU one (core/image.cpp) to one 8-bit step.
 TEST_F(Render, CompositeIsSurfacePlusInScatteringAndToneMapsLikeTheCpu) {
     const Scene scene = load_canonical("multiple");
-    const gl::Frame frame = render(scene, {.width = 80, .height = 45});
+    const frame::Frame frame = render(scene, {.width = 80, .height = 45});
     EXPECT_EQ(frame.radiance.rgb, frame.surface.rgb);
     for (const float v : frame.in_scattering.rgb) {
         ASSERT_EQ(v, 0.0f);
@@ -88,8 +88,9 @@ struct FloorCheck {
 // 2.9, the falloff of eq. 2.8 / 2.13, visibility by ray casting, ambient, and T(Z). Pixels that
 // see an object rather than the floor, lie within `edge` metres of a shadow boundary or within
 // 0.75° of the cone's edge are skipped: there the shadow map's resolution decides.
-FloorCheck check_floor(const Scene& scene, const gl::RenderOptions& options, int step, float edge) {
-    const gl::Frame frame = render(scene, options);
+FloorCheck check_floor(const Scene& scene, const frame::RenderOptions& options, int step,
+                       float edge) {
+    const frame::Frame frame = render(scene, options);
     const CpuRayCaster caster(scene);
     const PixelUnprojector pixels(scene.camera, options.width, options.height);
     const Object& floor = scene.objects.front();
@@ -188,8 +189,8 @@ TEST_F(Render, ParallelFloorMatchesCpuWithHardShadowsAndPhysicalMedium) {
     Scene scene = load_canonical("parallel");
     scene.medium.model = MediumModel::physical;
     scene.medium.sigma_a = glm::vec3(0.02f, 0.03f, 0.05f);
-    gl::RenderOptions options{.width = 160, .height = 90};
-    options.shadow.filter = gl::ShadowFilter::hard;
+    frame::RenderOptions options{.width = 160, .height = 90};
+    options.shadow.filter = frame::ShadowFilter::hard;
     const FloorCheck check = check_floor(scene, options, 1, 0.08f);
     EXPECT_GE(check.lit.size(), 100u);
     EXPECT_GE(check.shadowed.size(), 20u);
@@ -233,9 +234,9 @@ Scene near_occluder_scene(float distance) {
 // shadow filter.
 TEST_F(Render, AnOccluderInFrontOfTheNearPlaneShadowsTheFloor) {
     const Scene scene = near_occluder_scene(0.5f);
-    for (const gl::ShadowFilter filter :
-         {gl::ShadowFilter::hard, gl::ShadowFilter::pcf, gl::ShadowFilter::vsm}) {
-        gl::RenderOptions options{.width = 160, .height = 90};
+    for (const frame::ShadowFilter filter :
+         {frame::ShadowFilter::hard, frame::ShadowFilter::pcf, frame::ShadowFilter::vsm}) {
+        frame::RenderOptions options{.width = 160, .height = 90};
         options.shadow.filter = filter;
         const FloorCheck check = check_floor(scene, options, 1, 0.08f);
         EXPECT_GE(check.shadowed.size(), 20u) << int(filter);

@@ -12,14 +12,14 @@
 #include <vector>
 
 #include "core/image.h"
+#include "frame/volume_method.h"
 #include "gl/objects.h"
 #include "gl/shaders/frame_uniforms.h"
-#include "gl/volume_method.h"
 #include "ibl/environment_textures.h"
 #include "scenes/scene.h"
 #include "sss/subsurface_pass.h"
 
-namespace sl::gl {
+namespace sl::frame {
 
 struct RenderOptions {
     int width = 640;
@@ -78,12 +78,12 @@ public:
 
     // The frame's buffers: shadow map (and VSM moments), surface colour and depth, I_s, the
     // composited HDR radiance and the tone-mapped display image.
-    TextureViews textures() const;
+    gl::TextureViews textures() const;
 
     const RenderOptions& options() const { return options_; }
     // The shadow map settings of the last frame drawn (the method's, or the options').
     const ShadowSettings& shadow() const { return shadow_; }
-    const shared::FrameUniforms& uniforms() const { return uniforms_; }
+    const gl::shared::FrameUniforms& uniforms() const { return uniforms_; }
     // The scene's image-based lighting (1x1 stand-ins when it has no environment).
     const ibl::EnvironmentTextures& environment() const { return *environment_; }
     // The translucent objects' pass; null when the scene has none.
@@ -91,9 +91,9 @@ public:
 
 private:
     struct GpuMesh {
-        Buffer vertices;
-        Buffer indices;
-        VertexArray vertex_array;
+        gl::Buffer vertices;
+        gl::Buffer indices;
+        gl::VertexArray vertex_array;
         GLsizei index_count = 0;
     };
     class PassTimer;
@@ -105,41 +105,41 @@ private:
 
     const Scene& scene_;
     RenderOptions options_;
-    shared::FrameUniforms uniforms_{};
-    Buffer uniform_buffer_;
+    gl::shared::FrameUniforms uniforms_{};
+    gl::Buffer uniform_buffer_;
     std::map<const Mesh*, GpuMesh> meshes_;
 
-    Program shadow_program_;
-    Program shadow_moments_program_;
-    Program shadow_blur_program_;
-    Program surface_program_;
-    Program composite_program_;
+    gl::Program shadow_program_;
+    gl::Program shadow_moments_program_;
+    gl::Program shadow_blur_program_;
+    gl::Program surface_program_;
+    gl::Program composite_program_;
     std::unique_ptr<ibl::EnvironmentTextures> environment_;
-    VertexArray empty_vertex_array_;
+    gl::VertexArray empty_vertex_array_;
 
     ShadowSettings shadow_;
-    Texture shadow_map_;
-    Texture shadow_moments_;  // VSM: RG32F; 1x1 when unused (its sampler still needs one)
-    Texture shadow_scratch_;  // VSM blur
-    Framebuffer shadow_framebuffer_;
-    Framebuffer shadow_blur_framebuffer_[2];
-    Texture surface_color_;
-    Texture surface_depth_;
-    Framebuffer surface_framebuffer_;
-    Texture in_scattering_;
-    Framebuffer volume_framebuffer_;
-    Texture hdr_;
-    Texture display_;
-    Framebuffer composite_framebuffer_;
+    gl::Texture shadow_map_;
+    gl::Texture shadow_moments_;  // VSM: RG32F; 1x1 when unused (its sampler still needs one)
+    gl::Texture shadow_scratch_;  // VSM blur
+    gl::Framebuffer shadow_framebuffer_;
+    gl::Framebuffer shadow_blur_framebuffer_[2];
+    gl::Texture surface_color_;
+    gl::Texture surface_depth_;
+    gl::Framebuffer surface_framebuffer_;
+    gl::Texture in_scattering_;
+    gl::Framebuffer volume_framebuffer_;
+    gl::Texture hdr_;
+    gl::Texture display_;
+    gl::Framebuffer composite_framebuffer_;
     std::unique_ptr<sss::SubsurfacePass> subsurface_;
     uint32_t frame_index_ = 0;
-    Query timers_[5];
+    gl::Query timers_[5];
     std::unique_ptr<Timeline> timeline_;
 };
 
 // The uniform block for `scene` seen at the given size (exposed for tests and CPU oracles).
-shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOptions& options);
+gl::shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOptions& options);
 // Its `shadow` member for the given shadow map.
 glm::vec4 shadow_uniform(const ShadowSettings& settings);
 
-}  // namespace sl::gl
+}  // namespace sl::frame

@@ -1,4 +1,4 @@
-#include "gl/volume_method.h"
+#include "frame/volume_method.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 
-namespace sl::gl {
+namespace sl::frame {
 
 namespace {
 
@@ -134,4 +134,4 @@ void VolumeMethod::set(const std::string& name, const std::string& text) {
          known.empty() ? "it has none" : "it has: " + known);
 }
 
-}  // namespace sl::gl
+}  // namespace sl::frame

@@ -13,10 +13,11 @@
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders/frame_uniforms.h"
+#include "gl/texture_view.h"
 #include "scenes/animation.h"
 #include "scenes/scene.h"
 
-namespace sl::gl {
+namespace sl::frame {
 
 // How the frame's shadow map is made and filtered (surfaces and mid-air lookups alike):
 //   hard  one depth comparison per lookup;
@@ -45,22 +46,14 @@ public:
 
 struct VolumeInputs {
     const Scene& scene;
-    const shared::FrameUniforms& uniforms;  // also bound as the uniform block at its binding
-    GLuint surface_depth;                   // camera depth buffer (depth texture)
+    const gl::shared::FrameUniforms& uniforms;  // also bound as the uniform block at its binding
+    GLuint surface_depth;                       // camera depth buffer (depth texture)
     GLuint shadow_map;  // light depth buffer (depth texture, compare mode), also bound at
                         // SL_SHADOW_MAP_UNIT with the VSM moments at SL_SHADOW_MOMENTS_UNIT
     int width;
     int height;
     PassTimeline& timeline;
 };
-
-// A texture a pass declares for inspection (the viewer's buffer previewer): 2D, float or depth
-// (depth textures are read with comparison off). Valid until the next frame or prepare().
-struct TextureView {
-    std::string name;  // "<owner>/<what>", e.g. "frame/shadow map", "march/intervals 0"
-    GLuint texture = 0;
-};
-using TextureViews = std::vector<TextureView>;
 
 // A named per-frame counter a method reports (slices, pieces, fragments, CPU time of a stage).
 using MethodStatistics = std::vector<std::pair<std::string, double>>;
@@ -129,7 +122,7 @@ public:
     // Counters of the last frame rendered (empty by default); may wait for the GPU.
     virtual MethodStatistics statistics() const { return {}; }
     // The method's own textures of the last frame (render targets, lookup tables).
-    virtual TextureViews textures() const { return {}; }
+    virtual gl::TextureViews textures() const { return {}; }
     // The shadow map the method asks for: `frame` with the filter and the size replaced by the
     // method's `shadow` and `shadow_size` parameters, each where it declared it.
     ShadowSettings shadow_settings(ShadowSettings frame) const;
@@ -148,4 +141,4 @@ private:
 // (I_obj·T(Z)). The baseline every method's cost is measured against.
 std::unique_ptr<VolumeMethod> create_no_volume();
 
-}  // namespace sl::gl
+}  // namespace sl::frame

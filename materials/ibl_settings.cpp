@@ -1,4 +1,4 @@
-#include "ibl/settings.h"
+#include "materials/ibl_settings.h"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "sss/material.h"
+#include "materials/scattering_material.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,6 +1,7 @@
 #pragma once
-// The IBL choices a scene file makes (plain data, shared by scenes/ and ibl/): which lobe, which
-// prefilter, which shading path.
+// The IBL choices a scene file makes: which lobe, which prefilter, which shading path. Plain data
+// the scene format names, so it lies below scenes/; ibl/ computes with it. The types keep their
+// concept's namespace.
 
 #include <cstdint>
 #include <string>

@@ -1,126 +1,18 @@
-#include "experiments/measure.h"
+#include "methods/region_statistics.h"
 
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 
 #include "analytic/in_scattering.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
-#include "core/error.h"
-#include "methods/registry.h"
+#include "core/statistics.h"
 #include "reference/reference.h"
 
-namespace sl::experiments {
-
-void collect(NamedSeries& series, const std::vector<std::pair<std::string, double>>& values) {
-    for (const auto& [name, value] : values) {
-        auto same = std::find_if(series.begin(), series.end(),
-                                 [&](const auto& s) { return s.first == name; });
-        if (same == series.end()) {
-            series.emplace_back(name, std::vector<double>{value});
-        } else {
-            same->second.push_back(value);
-        }
-    }
-}
-
-std::vector<std::pair<std::string, double>> medians(const NamedSeries& series) {
-    std::vector<std::pair<std::string, double>> out;
-    for (const auto& [name, values] : series) {
-        out.emplace_back(name, median(values));
-    }
-    return out;
-}
-
-std::vector<std::pair<std::string, std::string>> parse_settings(
-    const std::vector<std::string>& name_value) {
-    std::vector<std::pair<std::string, std::string>> settings;
-    for (const std::string& setting : name_value) {
-        const size_t equals = setting.find('=');
-        if (equals == std::string::npos || equals == 0) {
-            fail("--set {}: expected NAME=VALUE", quote(setting));
-        }
-        settings.emplace_back(setting.substr(0, equals), setting.substr(equals + 1));
-    }
-    return settings;
-}
-
-std::unique_ptr<gl::VolumeMethod> create_configured_method(
-    const std::string& name, const gl::ShadowSettings& run,
-    const std::vector<std::pair<std::string, std::string>>& settings) {
-    std::unique_ptr<gl::VolumeMethod> method = methods::create_volume_method(name);
-    if (method->has_parameter("shadow")) {
-        method->set("shadow", gl::to_string(run.filter));
-        method->set("shadow_size", std::to_string(run.map_size));
-    }
-    for (const auto& [parameter, value] : settings) {
-        method->set(parameter, value);
-    }
-    return method;
-}
-
-double median(std::vector<double> values) {
-    return percentile(std::move(values), 50.0);
-}
-
-double percentile(std::vector<double> values, double p) {
-    if (values.empty()) {
-        return 0.0;
-    }
-    std::sort(values.begin(), values.end());
-    const double position = std::clamp(p, 0.0, 100.0) / 100.0 * double(values.size() - 1);
-    const size_t below = size_t(std::floor(position));
-    const size_t above = std::min(below + 1, values.size() - 1);
-    return values[below] + (position - double(below)) * (values[above] - values[below]);
-}
-
-void PassSeries::add(const gl::PassTimings& gpu) {
-    passes_[0].push_back(gpu.shadow_ms);
-    passes_[1].push_back(gpu.surface_ms);
-    passes_[2].push_back(gpu.volume_ms);
-    passes_[3].push_back(gpu.composite_ms);
-    passes_[4].push_back(gpu.subsurface_ms);
-    totals_.push_back(gpu.total_ms());
-    collect(sections_, gpu.volume_sections);
-}
-
-gl::PassTimings PassSeries::medians() const {
-    return {median(passes_[0]),
-            median(passes_[1]),
-            median(passes_[2]),
-            median(passes_[3]),
-            experiments::medians(sections_),
-            median(passes_[4])};
-}
-
-double PassSeries::total_median() const {
-    return median(totals_);
-}
-
-FrameMeasurement measure_frames(gl::SceneRenderer& renderer, gl::VolumeMethod& method, int warmup,
-                                int frames) {
-    for (int i = 0; i < warmup; ++i) {
-        renderer.draw(method);
-    }
-    FrameMeasurement m;
-    PassSeries passes;
-    NamedSeries statistics;
-    for (int i = 0; i < frames; ++i) {
-        const gl::FrameTimings timings = renderer.draw(method);
-        m.frame_ms.push_back(timings.cpu_ms);
-        passes.add(timings.gpu);
-        collect(statistics, method.statistics());
-    }
-    m.gpu = passes.medians();
-    m.gpu_total_ms = passes.total_median();
-    m.statistics = medians(statistics);
-    return m;
-}
+namespace sl::methods {
 
 // Far enough along an eye ray to leave any influence volume (scenes are metres to a kilometre).
 constexpr double kWholeRay = 1e7;
@@ -213,4 +105,4 @@ RegionStatistics region_statistics(const Scene& scene, int width, int height) {
     return stats;
 }
 
-}  // namespace sl::experiments
+}  // namespace sl::methods

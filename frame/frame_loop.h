@@ -13,11 +13,11 @@
 #include <functional>
 #include <vector>
 
-#include "gl/renderer.h"
-#include "gl/volume_method.h"
+#include "frame/renderer.h"
+#include "frame/volume_method.h"
 #include "scenes/animation.h"
 
-namespace sl::gl {
+namespace sl::frame {
 
 enum class FrameMode { serial, pipelined };
 const char* to_string(FrameMode mode);
@@ -60,4 +60,4 @@ private:
     FrameMode mode_;
 };
 
-}  // namespace sl::gl
+}  // namespace sl::frame

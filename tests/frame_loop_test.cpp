@@ -9,14 +9,14 @@
 
 #include "core/error.h"
 #include "core/metrics.h"
-#include "gl/frame_loop.h"
-#include "gl/renderer.h"
+#include "frame/frame_loop.h"
+#include "frame/renderer.h"
 #include "methods/registry.h"
 #include "scenes/animation.h"
 #include "scenes/scene_file.h"
 #include "support.h"
 
-namespace sl::gl {
+namespace sl::frame {
 namespace {
 
 using test::GlTest;
@@ -149,4 +149,4 @@ TEST_F(FrameLoopTest, AnUpdateThatFailsStopsTheLoopWithItsError) {
 }
 
 }  // namespace
-}  // namespace sl::gl
+}  // namespace sl::frame

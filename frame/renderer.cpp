@@ -1,4 +1,4 @@
-#include "gl/renderer.h"
+#include "frame/renderer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,7 +12,9 @@
 #include "gl/debug.h"
 #include "gl/shaders.h"
 
-namespace sl::gl {
+namespace sl::frame {
+
+using gl::GL;
 
 namespace {
 
@@ -63,12 +65,12 @@ void require_valid(const ShadowSettings& settings) {
 
 }  // namespace
 
-shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOptions& options) {
+gl::shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOptions& options) {
     const float aspect = float(options.width) / float(options.height);
     const glm::mat4 view_projection = scene.camera.projection(aspect) * scene.camera.view();
     const SpotLight& light = scene.light;
     const Medium& medium = scene.medium;
-    shared::FrameUniforms u{};
+    gl::shared::FrameUniforms u{};
     u.view_projection = view_projection;
     u.inverse_view_projection = glm::inverse(view_projection);
     u.light_view_projection = light.projection() * light.view();
@@ -107,7 +109,7 @@ public:
     void section(const char* name) override {
         end();
         if (used_ == queries_.size())
-            queries_.push_back(create_query(GL_TIME_ELAPSED));
+            queries_.push_back(gl::create_query(GL_TIME_ELAPSED));
         names_.emplace_back(name);
         GL.BeginQuery(GL_TIME_ELAPSED, queries_[used_++].id());
         open_ = true;
@@ -134,7 +136,7 @@ public:
     }
 
 private:
-    std::vector<Query> queries_;
+    std::vector<gl::Query> queries_;
     std::vector<std::string> names_;
     size_t used_ = 0;
     bool open_ = false;
@@ -143,7 +145,7 @@ private:
 // Times one pass with a GL_TIME_ELAPSED query; the result is read after the frame.
 class SceneRenderer::PassTimer {
 public:
-    PassTimer(const Query& query, const char* name) {
+    PassTimer(const gl::Query& query, const char* name) {
         GL.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name);
         GL.BeginQuery(GL_TIME_ELAPSED, query.id());
     }
@@ -167,7 +169,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     }
     require_valid(options.shadow);  // before any GL work
     uniforms_ = make_frame_uniforms(scene, options);
-    uniform_buffer_ = create_buffer(&uniforms_, sizeof(uniforms_), GL_DYNAMIC_STORAGE_BIT);
+    uniform_buffer_ = gl::create_buffer(&uniforms_, sizeof(uniforms_), GL_DYNAMIC_STORAGE_BIT);
     uniform_buffer_.label("frame uniforms");
 
     for (const Object& object : scene.objects) {
@@ -182,11 +184,11 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
             interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
         }
         GpuMesh gpu;
-        gpu.vertices = create_buffer(interleaved.data(), interleaved.size() * sizeof(float));
+        gpu.vertices = gl::create_buffer(interleaved.data(), interleaved.size() * sizeof(float));
         gpu.indices =
-            create_buffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
+            gl::create_buffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
         gpu.index_count = GLsizei(mesh.triangles.size() * 3);
-        gpu.vertex_array = create_vertex_array();
+        gpu.vertex_array = gl::create_vertex_array();
         const GLuint vao = gpu.vertex_array.id();
         GL.VertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, 6 * sizeof(float));
         GL.VertexArrayElementBuffer(vao, gpu.indices.id());
@@ -200,18 +202,19 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
         meshes_.emplace(&mesh, std::move(gpu));
     }
 
-    shadow_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/shadow.vert"},
-                                      {GL_FRAGMENT_SHADER, "gl/shaders/shadow.frag"}});
+    shadow_program_ = gl::create_program({{GL_VERTEX_SHADER, "frame/shaders/shadow.vert"},
+                                          {GL_FRAGMENT_SHADER, "frame/shaders/shadow.frag"}});
     shadow_moments_program_ =
-        create_program({{GL_VERTEX_SHADER, "gl/shaders/shadow.vert"},
-                        {GL_FRAGMENT_SHADER, "gl/shaders/shadow_moments.frag"}});
-    shadow_blur_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                                           {GL_FRAGMENT_SHADER, "gl/shaders/shadow_blur.frag"}});
-    surface_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/surface.vert"},
-                                       {GL_FRAGMENT_SHADER, "gl/shaders/surface.frag"}});
-    composite_program_ = create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                                         {GL_FRAGMENT_SHADER, "gl/shaders/composite.frag"}});
-    empty_vertex_array_ = create_vertex_array();
+        gl::create_program({{GL_VERTEX_SHADER, "frame/shaders/shadow.vert"},
+                            {GL_FRAGMENT_SHADER, "frame/shaders/shadow_moments.frag"}});
+    shadow_blur_program_ =
+        gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                            {GL_FRAGMENT_SHADER, "frame/shaders/shadow_blur.frag"}});
+    surface_program_ = gl::create_program({{GL_VERTEX_SHADER, "frame/shaders/surface.vert"},
+                                           {GL_FRAGMENT_SHADER, "frame/shaders/surface.frag"}});
+    composite_program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                             {GL_FRAGMENT_SHADER, "frame/shaders/composite.frag"}});
+    empty_vertex_array_ = gl::create_vertex_array();
     environment_ = std::make_unique<ibl::EnvironmentTextures>(scene);
     environment_->set_uniforms(uniforms_, scene.environment);
     if (scene.has_translucent_objects()) {
@@ -221,38 +224,38 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     allocate_shadow(options.shadow);
 
     const int w = options.width, h = options.height;
-    surface_color_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
-    surface_depth_ = create_texture_2d(GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
-    surface_framebuffer_ = create_framebuffer();
+    surface_color_ = gl::create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
+    surface_depth_ = gl::create_texture_2d(GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
+    surface_framebuffer_ = gl::create_framebuffer();
     GL.NamedFramebufferTexture(surface_framebuffer_.id(), GL_COLOR_ATTACHMENT0, surface_color_.id(),
                                0);
     GL.NamedFramebufferTexture(surface_framebuffer_.id(), GL_DEPTH_ATTACHMENT, surface_depth_.id(),
                                0);
     require_complete(surface_framebuffer_.id(), "surface", w, h);
 
-    in_scattering_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
-    volume_framebuffer_ = create_framebuffer();
+    in_scattering_ = gl::create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
+    volume_framebuffer_ = gl::create_framebuffer();
     GL.NamedFramebufferTexture(volume_framebuffer_.id(), GL_COLOR_ATTACHMENT0, in_scattering_.id(),
                                0);
     require_complete(volume_framebuffer_.id(), "in-scattering", w, h);
 
-    hdr_ = create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
-    display_ = create_texture_2d(GL_RGBA8, w, h, GL_NEAREST);
-    composite_framebuffer_ = create_framebuffer();
+    hdr_ = gl::create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
+    display_ = gl::create_texture_2d(GL_RGBA8, w, h, GL_NEAREST);
+    composite_framebuffer_ = gl::create_framebuffer();
     GL.NamedFramebufferTexture(composite_framebuffer_.id(), GL_COLOR_ATTACHMENT0, hdr_.id(), 0);
     GL.NamedFramebufferTexture(composite_framebuffer_.id(), GL_COLOR_ATTACHMENT1, display_.id(), 0);
     const GLenum attachments[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     GL.NamedFramebufferDrawBuffers(composite_framebuffer_.id(), 2, attachments);
     require_complete(composite_framebuffer_.id(), "composite", w, h);
 
-    for (Query& timer : timers_) {
-        timer = create_query(GL_TIME_ELAPSED);
+    for (gl::Query& timer : timers_) {
+        timer = gl::create_query(GL_TIME_ELAPSED);
     }
     timeline_ = std::make_unique<Timeline>();
     // llvmpipe reports its first GL_TIME_ELAPSED query of a context from time zero (since boot):
     // spend that first query here, on a clear, so that every frame's timings are real.
     {
-        const Query priming = create_query(GL_TIME_ELAPSED);
+        const gl::Query priming = gl::create_query(GL_TIME_ELAPSED);
         GL.BeginQuery(GL_TIME_ELAPSED, priming.id());
         const float one = 1.0f;
         GL.DepthMask(GL_TRUE);  // depth clears obey the mask
@@ -261,7 +264,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
         GLuint64 ns = 0;
         GL.GetQueryObjectui64v(priming.id(), GL_QUERY_RESULT, &ns);
     }
-    check_errors("creating the scene renderer");
+    gl::check_errors("creating the scene renderer");
 }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -276,31 +279,32 @@ void SceneRenderer::allocate_shadow(const ShadowSettings& settings) {
     shadow_ = settings;
     // Depth compared in the sampler; linear filtering adds 2x2 PCF per tap, nearest keeps the
     // hard variant hard.
-    shadow_map_ = create_texture_2d(GL_DEPTH_COMPONENT32F, size, size,
-                                    settings.filter == ShadowFilter::pcf ? GL_LINEAR : GL_NEAREST);
+    shadow_map_ =
+        gl::create_texture_2d(GL_DEPTH_COMPONENT32F, size, size,
+                              settings.filter == ShadowFilter::pcf ? GL_LINEAR : GL_NEAREST);
     GL.TextureParameteri(shadow_map_.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     GL.TextureParameteri(shadow_map_.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     shadow_map_.label("shadow map");
     const bool vsm = settings.filter == ShadowFilter::vsm;
-    shadow_moments_ = create_texture_2d(GL_RG32F, vsm ? size : 1, vsm ? size : 1, GL_LINEAR);
+    shadow_moments_ = gl::create_texture_2d(GL_RG32F, vsm ? size : 1, vsm ? size : 1, GL_LINEAR);
     shadow_moments_.label("shadow moments");
-    shadow_framebuffer_ = create_framebuffer();
+    shadow_framebuffer_ = gl::create_framebuffer();
     GL.NamedFramebufferTexture(shadow_framebuffer_.id(), GL_DEPTH_ATTACHMENT, shadow_map_.id(), 0);
     if (vsm) {
         GL.NamedFramebufferTexture(shadow_framebuffer_.id(), GL_COLOR_ATTACHMENT0,
                                    shadow_moments_.id(), 0);
         GL.NamedFramebufferDrawBuffer(shadow_framebuffer_.id(), GL_COLOR_ATTACHMENT0);
-        shadow_scratch_ = create_texture_2d(GL_RG32F, size, size, GL_NEAREST);
+        shadow_scratch_ = gl::create_texture_2d(GL_RG32F, size, size, GL_NEAREST);
         const GLuint targets[2] = {shadow_scratch_.id(), shadow_moments_.id()};
         for (int i = 0; i < 2; ++i) {
-            shadow_blur_framebuffer_[i] = create_framebuffer();
+            shadow_blur_framebuffer_[i] = gl::create_framebuffer();
             GL.NamedFramebufferTexture(shadow_blur_framebuffer_[i].id(), GL_COLOR_ATTACHMENT0,
                                        targets[i], 0);
             require_complete(shadow_blur_framebuffer_[i].id(), "shadow blur", size, size);
         }
     } else {
         GL.NamedFramebufferDrawBuffer(shadow_framebuffer_.id(), GL_NONE);
-        shadow_scratch_ = Texture();
+        shadow_scratch_ = gl::Texture();
     }
     require_complete(shadow_framebuffer_.id(), "shadow map", size, size);
     uniforms_.shadow = shadow_uniform(settings);
@@ -486,23 +490,23 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     for (const auto& [name, ms] : timings.gpu.volume_sections) {
         timings.gpu.volume_ms += ms;
     }
-    check_errors(("rendering with method " + method.name()).c_str());
+    gl::check_errors(("rendering with method " + method.name()).c_str());
     timings.cpu_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return timings;
 }
 
-TextureViews SceneRenderer::textures() const {
-    TextureViews views = {{"frame/shadow map", shadow_map_.id()},
-                          {"frame/surface depth", surface_depth_.id()},
-                          {"frame/surface radiance", surface_color_.id()},
-                          {"frame/in-scattering I_s", in_scattering_.id()},
-                          {"frame/radiance (HDR)", hdr_.id()},
-                          {"frame/display", display_.id()}};
+gl::TextureViews SceneRenderer::textures() const {
+    gl::TextureViews views = {{"frame/shadow map", shadow_map_.id()},
+                              {"frame/surface depth", surface_depth_.id()},
+                              {"frame/surface radiance", surface_color_.id()},
+                              {"frame/in-scattering I_s", in_scattering_.id()},
+                              {"frame/radiance (HDR)", hdr_.id()},
+                              {"frame/display", display_.id()}};
     if (shadow_.filter == ShadowFilter::vsm) {
         views.insert(views.begin() + 1, {"frame/shadow moments", shadow_moments_.id()});
     }
-    for (const TextureView& view : environment_->textures()) {
+    for (const gl::TextureView& view : environment_->textures()) {
         views.push_back(view);
     }
     return views;
@@ -532,7 +536,7 @@ Frame SceneRenderer::read_back() const {
     for (int y = 0; y < h; ++y) {
         std::copy_n(&depth[size_t(h - 1 - y) * w], w, &frame.depth[size_t(y) * w]);
     }
-    check_errors("reading the frame back");
+    gl::check_errors("reading the frame back");
     // Before anything is written from it: a NaN or an infinity in any buffer is a failure of the
     // method or the input, never an output.
     require_finite(frame.in_scattering, "I_s (in-scattering)");
@@ -564,4 +568,4 @@ Image SceneRenderer::read_rgb(GLuint texture) const {
     return image;
 }
 
-}  // namespace sl::gl
+}  // namespace sl::frame

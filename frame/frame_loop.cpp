@@ -1,4 +1,4 @@
-#include "gl/frame_loop.h"
+#include "frame/frame_loop.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,7 +9,7 @@
 
 #include "core/error.h"
 
-namespace sl::gl {
+namespace sl::frame {
 
 namespace {
 
@@ -105,4 +105,4 @@ void FrameLoop::play(int frames, const std::function<Scene(int)>& state,
     }
 }
 
-}  // namespace sl::gl
+}  // namespace sl::frame

@@ -1,6 +1,8 @@
 #pragma once
 // Optical properties of translucent materials (Rohat §4.2): reduced scattering and absorption
-// coefficients per RGB channel in 1/mm, and the relative index of refraction.
+// coefficients per RGB channel in 1/mm, and the relative index of refraction; and the stacks of
+// layers a scene file coats an object with. The scene format names these, so they lie below
+// scenes/; sss/ computes what they scatter. The types keep their concept's namespace.
 
 #include <string>
 #include <string_view>
@@ -31,6 +33,13 @@ const ScatteringMaterial& material_preset(std::string_view name);
 dvec3 reduced_scattering(const dvec3& sigma_s, double g);
 // σa(λ) = 4π Im(η) / λ (§4.2.1), per metre for λ in metres.
 double absorption_from_complex_ior(double imaginary_ior, double wavelength_m);
+
+// A stack of translucent slabs, top first; the last may be semi-infinite (thickness 0 = dipole,
+// no transmittance).
+struct Layer {
+    ScatteringMaterial material;
+    double thickness_mm = 0.0;
+};
 
 // Checks a material for rendering: finite, σs' > 0, σa ≥ 0, η > 0; throws sl::Error otherwise.
 void validate(const ScatteringMaterial& material);
