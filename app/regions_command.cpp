@@ -1,10 +1,6 @@
 // `shaftlab regions`: the beam tree's lit / uncertain / unlit regions of a scene, as a PLY mesh,
 // a JSON summary with timings, and a picture (Nilsson figure 5.4) seen from the scene camera.
 
-#include <tbb/parallel_for.h>
-
-#include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,11 +8,11 @@
 #include <sstream>
 
 #include <fmt/format.h>
-#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
 #include "beamtree/beam_tree.h"
+#include "beamtree/region_picture.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
 #include "core/output_files.h"
@@ -66,131 +62,6 @@ std::vector<dvec3> read_points(const std::string& path) {
     return points;
 }
 
-// A pixel's eye ray from the near plane to its first surface, clipped to the influence pyramid,
-// with the regions along it (t in metres from the near-plane point).
-struct PixelRegions {
-    bool inside = false;  // the ray meets the influence pyramid
-    double end = 0.0;     // the clipped segment's far end
-    std::vector<bt::RegionInterval> intervals;
-};
-
-PixelRegions trace_pixel(const bt::BeamTree& tree, const PixelUnprojector& pixels,
-                         const frame::Frame& frame, int width, int x, int y) {
-    PixelRegions result;
-    const double depth = 2.0 * double(frame.depth[size_t(y) * width + x]) - 1.0;
-    const dvec3 origin = pixels.point(x, y, -1.0);
-    const dvec3 end = pixels.point(x, y, std::min(depth, 1.0));
-    double t0 = 0.0, t1 = 1.0;
-    for (const bt::Plane& plane : tree.influence_planes()) {
-        const double d0 = plane.distance(origin), d1 = plane.distance(end);
-        if (d0 > 0.0 && d1 > 0.0) {
-            return result;
-        }
-        if (d0 > 0.0)
-            t0 = std::max(t0, d0 / (d0 - d1));
-        if (d1 > 0.0)
-            t1 = std::min(t1, d0 / (d0 - d1));
-    }
-    const double length = glm::length(end - origin);
-    if (t1 <= t0 || !(length > 0.0)) {
-        return result;
-    }
-    result.inside = true;
-    result.end = t1 * length;
-    tree.trace(origin, (end - origin) / length, t0 * length, t1 * length, result.intervals);
-    return result;
-}
-
-// The regions seen from the camera (Nilsson figure 5.4's colours): every pixel's ray, up to the
-// first surface, composited front to back through the influence volume with lit yellow,
-// uncertain grey and unlit black, over the rendered scene. Rays are traced through the tree
-// (BeamTree::trace) at every other pixel in x and y; a pixel between traced ones whose
-// neighbours cross the same sequence of regions and reach nearly the same depth takes the mean
-// of their interval ends (they are smooth in the pixel there; the difference is below the 8-bit
-// output), any other pixel is traced itself.
-std::vector<unsigned char> draw_regions(const Scene& scene, const bt::BeamTree& tree,
-                                        const frame::Frame& frame, int width, int height) {
-    const PixelUnprojector pixels(scene.camera, width, height);
-    const double far = double(scene.light.far);
-    const glm::dvec3 colors[3] = {{1.0, 0.82, 0.1}, {0.55, 0.55, 0.55}, {0.0, 0.0, 0.0}};
-    // Uncertain and unlit absorb 8x more than lit so that thin shadow volumes show through the
-    // lit air in front of them.
-    const double extinction[3] = {1.5 / far, 12.0 / far, 12.0 / far};
-    const int coarse_width = (width + 1) / 2, coarse_height = (height + 1) / 2;
-    std::vector<PixelRegions> coarse(size_t(coarse_width) * coarse_height);
-    tbb::parallel_for(0, coarse_height, [&](int j) {
-        for (int i = 0; i < coarse_width; ++i) {
-            coarse[size_t(j) * coarse_width + i] =
-                trace_pixel(tree, pixels, frame, width, 2 * i, 2 * j);
-        }
-    });
-    std::vector<unsigned char> image = frame.display_srgb8;
-    tbb::parallel_for(0, height, [&](int y) {
-        std::vector<const PixelRegions*> neighbours;
-        PixelRegions mean, own;
-        for (int x = 0; x < width; ++x) {
-            neighbours.clear();
-            for (const int cy : {y / 2, (y + 1) / 2}) {
-                for (const int cx : {x / 2, (x + 1) / 2}) {
-                    if (cx < coarse_width && cy < coarse_height) {
-                        const PixelRegions* n = &coarse[size_t(cy) * coarse_width + cx];
-                        if (std::find(neighbours.begin(), neighbours.end(), n) == neighbours.end())
-                            neighbours.push_back(n);
-                    }
-                }
-            }
-            const bool traced = x % 2 == 0 && y % 2 == 0;
-            bool alike = !traced && neighbours.size() == size_t((x % 2 + 1) * (y % 2 + 1));
-            for (const PixelRegions* n : neighbours) {
-                const PixelRegions& first = *neighbours.front();
-                alike = alike && n->inside == first.inside &&
-                        n->intervals.size() == first.intervals.size() &&
-                        std::abs(n->end - first.end) <= 0.01 * first.end;
-                for (size_t k = 0; alike && k < n->intervals.size(); ++k) {
-                    alike = n->intervals[k].region == first.intervals[k].region;
-                }
-            }
-            const PixelRegions* regions = nullptr;
-            if (traced) {
-                regions = neighbours.front();
-            } else if (alike) {
-                mean = *neighbours.front();
-                for (size_t k = 0; k < mean.intervals.size(); ++k) {
-                    double begin = 0.0, end = 0.0;
-                    for (const PixelRegions* n : neighbours) {
-                        begin += n->intervals[k].begin;
-                        end += n->intervals[k].end;
-                    }
-                    mean.intervals[k].begin = begin / double(neighbours.size());
-                    mean.intervals[k].end = end / double(neighbours.size());
-                }
-                regions = &mean;
-            } else {
-                own = trace_pixel(tree, pixels, frame, width, x, y);
-                regions = &own;
-            }
-            if (!regions->inside) {
-                continue;
-            }
-            dvec3 color(0.0);
-            double transparency = 1.0;
-            for (const bt::RegionInterval& interval : regions->intervals) {
-                const auto region = size_t(interval.region);
-                const double alpha =
-                    1.0 - std::exp(-extinction[region] * (interval.end - interval.begin));
-                color += transparency * alpha * colors[region];
-                transparency *= 1.0 - alpha;
-            }
-            for (int c = 0; c < 3; ++c) {
-                unsigned char& pixel = image[(size_t(y) * width + x) * 3 + c];
-                pixel = static_cast<unsigned char>(
-                    std::lround(transparency * pixel + 255.0 * std::min(1.0, color[c])));
-            }
-        }
-    });
-    return image;
-}
-
 int run_regions(const RegionsArguments& args) {
     int width = 0, height = 0;
     parse_size(args.size, width, height);
@@ -234,7 +105,8 @@ int run_regions(const RegionsArguments& args) {
     const frame::Frame frame = renderer.render(*method);
     const double render_ms = ms_since(start);
     start = Clock::now();
-    const std::vector<unsigned char> picture = draw_regions(scene, tree, frame, width, height);
+    const std::vector<uint8_t> picture =
+        bt::draw_regions(scene, tree, frame.depth, frame.display_srgb8, width, height);
     const double picture_ms = ms_since(start);
 
     const bt::BeamTreeStats stats = tree.stats();

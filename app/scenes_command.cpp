@@ -8,13 +8,16 @@
 #include "frame/volume_method.h"
 #include "gl/platform.h"
 #include "methods/registry.h"
+#include "scenes/animation.h"
 #include "scenes/scene_file.h"
 
 namespace sl::app {
 
 Command add_scenes_command(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
-        "scenes", "List the canonical scenes (objects, triangles, light) or generate multiple:N");
+        "scenes",
+        "List every scene that loads by name (objects, triangles, light, animation), or generate "
+        "multiple:N or boxes:SEED");
     auto names_only = std::make_shared<bool>(false);
     auto generate = std::make_shared<std::string>();
     command->add_flag("--names", *names_only, "Print only the names, one per line");
@@ -32,20 +35,22 @@ Command add_scenes_command(CLI::App& app) {
             return 0;
         }
         const SceneSearchPaths paths = SceneSearchPaths::defaults();
-        std::vector<std::string> names = canonical_scene_names();
-        for (const std::string& effect : effect_scene_names())
-            names.push_back(effect);
-        for (const std::string& name : names) {
+        for (const std::string& name : named_scene_names()) {
             if (*names_only) {
                 fmt::print("{}\n", name);
                 continue;
             }
             const Scene scene = load_scene(name, paths);
+            const std::string motion =
+                scene.animation
+                    ? fmt::format("  animated {:g}-{:g} s at {:g} fps", scene.animation->start,
+                                  scene.animation->end, scene.animation->fps)
+                    : "";
             fmt::print(
-                "{:<12} {:>3} objects {:>8} triangles  light cone {:.0f} deg  medium {}  "
+                "{:<16} {:>3} objects {:>8} triangles  light cone {:.0f} deg  medium {}{}  "
                 "{}\n",
                 name, scene.objects.size(), scene.triangle_count(),
-                scene.light.cone_half_angle_degrees, to_string(scene.medium.model),
+                scene.light.cone_half_angle_degrees, to_string(scene.medium.model), motion,
                 scene.source.string());
         }
         if (!*names_only) {

@@ -435,11 +435,7 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
     if (is_generated_scene_name(name)) {
         return {generated_scene_text(name), name, paths.scenes};
     }
-    auto names = canonical_scene_names();
-    const auto effects = effect_scene_names();
-    const auto animated = animated_scene_names();
-    names.insert(names.end(), effects.begin(), effects.end());
-    names.insert(names.end(), animated.begin(), animated.end());
+    const auto names = named_scene_names();
     if (std::find(names.begin(), names.end(), name) != names.end()) {
         const fs::path path = paths.scenes / (name + ".toml");
         return {read_text_file(path, "scene file"), path.string(), paths.scenes};
@@ -452,15 +448,18 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
         }
         return {read_text_file(path, "scene file"), path.string(), path.parent_path()};
     }
-    std::string effect_list;
-    for (const std::string& effect : effects) {
-        effect_list += (effect_list.empty() ? "" : ", ") + effect;
-    }
+    const auto listed = [](const std::vector<std::string>& group) {
+        std::string list;
+        for (const std::string& member : group) {
+            list += (list.empty() ? "" : ", ") + member;
+        }
+        return list;
+    };
     fail(
-        "unknown scene {} (canonical: toplight, parallel, multiple, multiple:N; random: "
-        "boxes:SEED; animated: "
-        "toplight-orbit, parallel-walk, multiple-moving; effects: {}; or a .toml file)",
-        quote(name), effect_list);
+        "unknown scene {} (canonical: {}, multiple:N; random: boxes:SEED; animated: {}; effects: "
+        "{}; or a .toml file)",
+        quote(name), listed(canonical_scene_names()), listed(animated_scene_names()),
+        listed(effect_scene_names()));
 }
 
 }  // namespace
@@ -744,6 +743,14 @@ std::vector<std::string> animated_scene_names() {
 
 std::vector<std::string> effect_scene_names() {
     return {"ibl-spheres", "sss-bunny", "sss-dragon", "sss-shaft"};
+}
+
+std::vector<std::string> named_scene_names() {
+    std::vector<std::string> names = canonical_scene_names();
+    for (const auto& group : {animated_scene_names(), effect_scene_names()}) {
+        names.insert(names.end(), group.begin(), group.end());
+    }
+    return names;
 }
 
 Scene load_scene(const std::string& name, const SceneSearchPaths& paths) {

@@ -70,6 +70,9 @@ std::vector<std::string> canonical_scene_names();
 std::vector<std::string> animated_scene_names();
 // The effect scenes (IBL, SSS), loadable by name like the canonical ones.
 std::vector<std::string> effect_scene_names();
+// Every scene that loads by name from scenes/: the canonical, the animated and the effect scenes,
+// in that order (`shaftlab scenes` lists them; the generated families are not among them).
+std::vector<std::string> named_scene_names();
 // A scene of N objects on a jittered grid under one spot light (DESIGN.md §5), as TOML text,
 // deterministic in N. `multiple` is multiple:kMultipleDefaultCount.
 constexpr int kMultipleDefaultCount = 32;

@@ -13,6 +13,7 @@
 
 #include "core/image.h"
 #include "core/metrics.h"
+#include "scenes/scene_file.h"
 
 #include "tests/support.h"
 
@@ -202,12 +203,21 @@ TEST(Cli, SssToolsWriteTheirFilesAndRejectBadInputs) {
     }
 }
 
-// `scenes` lists the canonical scenes; `--generate` prints a scene that renders.
-TEST(Cli, ScenesListsCanonicalScenes) {
+// `scenes` lists every scene that loads by name, the animated ones included, and each name it
+// lists loads; `--generate` prints a scene that renders.
+TEST(Cli, ScenesListsEverySceneThatLoadsByName) {
     const CommandResult run = run_shaftlab("scenes --names");
     ASSERT_EQ(run.exit_code, 0) << run.output;
     EXPECT_EQ(run.output,
-              "toplight\nparallel\nmultiple\nibl-spheres\nsss-bunny\nsss-dragon\nsss-shaft\n");
+              "toplight\nparallel\nmultiple\ntoplight-orbit\nparallel-walk\nmultiple-moving\n"
+              "ibl-spheres\nsss-bunny\nsss-dragon\nsss-shaft\n");
+    const CommandResult listing = run_shaftlab("scenes");
+    ASSERT_EQ(listing.exit_code, 0) << listing.output;
+    for (const std::string& name : named_scene_names()) {
+        EXPECT_NE(listing.output.find(name + " "), std::string::npos) << name;
+    }
+    EXPECT_NE(listing.output.find("multiple-moving"), std::string::npos);
+    EXPECT_NE(listing.output.find("animated 0-"), std::string::npos) << listing.output;
     EXPECT_EQ(run_shaftlab("scenes --help").exit_code, 0);
     EXPECT_EQ(run_shaftlab("render --help").exit_code, 0);
 }
