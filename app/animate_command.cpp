@@ -23,20 +23,15 @@ namespace sl::app {
 
 namespace {
 
-struct AnimateArguments {
-    std::string scene;
-    std::string method = "beamtree";
-    std::string size = "640x360";
-    std::string out = "out";
+struct AnimateArguments : CommonOptions {
     std::string mode = "pipelined";
     int frames = 0;  // 0: the whole animation
-    int warmup = 2;
-    std::vector<std::string> settings;
 };
 
 int run_animate(const AnimateArguments& args) {
     frame::RenderOptions options;
     parse_size(args.size, options.width, options.height);
+    options.shadow = args.shadow_settings();
     std::vector<frame::FrameMode> modes;
     if (args.mode == "both") {
         modes = {frame::FrameMode::serial, frame::FrameMode::pipelined};
@@ -125,21 +120,16 @@ Command add_animate_command(CLI::App& app) {
         "Play a scene's [animation] with one method, serial or pipelined (the CPU update of frame "
         "k+1 beside the GPU's frame k): DIR/<scene>.<method>.<mode>.frames.csv");
     auto args = std::make_shared<AnimateArguments>();
-    command->add_option("--scene", args->scene, "An animated scene (toplight-orbit, ...) or file")
-        ->required();
-    command->add_option("--method", args->method, "Volumetric method")->capture_default_str();
-    command->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
-    command->add_option("--out", args->out, "Output directory")->capture_default_str();
+    args->method = "beamtree";
+    add_common_options(*command, *args,
+                       Common::scene | Common::method | Common::size | Common::out |
+                           Common::shadow | Common::warmup);
     command->add_option("--mode", args->mode, "serial, pipelined or both")
         ->check(CLI::IsMember({"serial", "pipelined", "both"}))
         ->capture_default_str();
     command->add_option("--frames", args->frames, "Frames to play (0: the whole animation)")
         ->check(CLI::Range(0, 1000000))
         ->capture_default_str();
-    command->add_option("--warmup", args->warmup, "Frames of the first state drawn before playing")
-        ->check(CLI::Range(0, 1000))
-        ->capture_default_str();
-    command->add_option("--set", args->settings, "Set a parameter of the method, NAME=VALUE");
     return [args] { return run_animate(*args); };
 }
 

@@ -9,8 +9,8 @@
 #include <optional>
 #include <string>
 
+#include "app/options.h"
 #include "core/statistics.h"
-#include "scenes/scene.h"
 
 namespace sl::app {
 
@@ -33,16 +33,5 @@ using Clock = std::chrono::steady_clock;
 
 // Milliseconds of wall time since `start`, for the stage timings the commands report.
 using sl::ms_since;
-
-// The scene by name or file, at `time` of its [animation] when one is given (--time): the still
-// frame of a moving scene. Throws sl::Error when the scene has no animation or the time is out of
-// its range.
-Scene load_scene_at(const std::string& name, const std::optional<double>& time);
-// Adds --time to a command that loads a scene.
-void add_time_option(CLI::App& command, std::optional<double>& time);
-
-// "WxH" with both positive; throws sl::Error otherwise.
-// Parses WIDTHxHEIGHT; errors name `option`.
-void parse_size(const std::string& text, int& width, int& height, const char* option = "--size");
 
 }  // namespace sl::app

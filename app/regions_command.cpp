@@ -27,14 +27,10 @@ namespace {
 
 using glm::dvec3;
 
-struct RegionsArguments {
-    std::string scene;
-    std::string out = "out";
-    std::string size = "960x540";
+struct RegionsArguments : CommonOptions {
     std::string classify;
     int max_planes = -1;  // -1: the scene's setting
     bool no_automatic_inner = false;
-    std::optional<double> time;  // seconds into the scene's [animation]
 };
 
 std::vector<dvec3> read_points(const std::string& path) {
@@ -178,10 +174,8 @@ Command add_regions_command(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "regions", "Beam-tree regions of a scene: DIR/regions.{ply,json,png}, or classify points");
     auto args = std::make_shared<RegionsArguments>();
-    command->add_option("--scene", args->scene, "Canonical name, multiple:N, or a .toml file")
-        ->required();
-    command->add_option("--out", args->out, "Output directory")->capture_default_str();
-    command->add_option("--size", args->size, "Picture size WIDTHxHEIGHT")->capture_default_str();
+    args->size = "960x540";
+    add_common_options(*command, *args, Common::scene | Common::time | Common::size | Common::out);
     command->add_option(
         "--classify", args->classify,
         "File of points 'x y z', one per line: print lit, uncertain or unlit for each");
@@ -192,7 +186,6 @@ Command add_regions_command(CLI::App& app) {
         ->check(CLI::Range(0, 100000) & !CLI::Range(1, 7));
     command->add_flag("--no-auto-inner", args->no_automatic_inner,
                       "Use only explicit inner boxes from the scene file");
-    add_time_option(*command, args->time);
     return [args] { return run_regions(*args); };
 }
 

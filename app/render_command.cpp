@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
-#include <regex>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -25,27 +24,15 @@ namespace sl::app {
 
 namespace {
 
-struct RenderArguments {
-    std::string scene;
-    std::string method = "none";
-    std::string size = "640x360";
-    std::string out = "out";
-    std::string shadow = "pcf";
-    int pcf_radius = 1;
-    int shadow_map_size = 2048;
-    int warmup = 2;
+struct RenderArguments : CommonOptions {
     int frames = 5;
-    std::string compare;                // "reference": score I_s against it
-    std::vector<std::string> settings;  // NAME=VALUE for the method's parameters
-    std::optional<double> time;         // seconds into the scene's [animation]
+    std::string compare;  // "reference": score I_s against it
 };
 
 int run_render(const RenderArguments& args) {
     frame::RenderOptions options;
     parse_size(args.size, options.width, options.height);
-    options.shadow = {.filter = frame::parse_shadow_filter(args.shadow),
-                      .map_size = args.shadow_map_size,
-                      .radius = args.pcf_radius};
+    options.shadow = args.shadow_settings();
     // Fail on an unknown method or setting before any expensive work. The run's shadow
     // options are the defaults of a method's own `shadow` parameters.
     const std::unique_ptr<frame::VolumeMethod> method = methods::create_configured_method(
@@ -195,73 +182,20 @@ int run_render(const RenderArguments& args) {
 
 }  // namespace
 
-Scene load_scene_at(const std::string& name, const std::optional<double>& time) {
-    const Scene scene = load_scene(name, SceneSearchPaths::defaults());
-    if (!time) {
-        return scene;
-    }
-    if (!scene.animation) {
-        fail("--time {}: scene {} has no [animation]", *time, quote(name));
-    }
-    return scene_at(scene, *time);
-}
-
-void add_time_option(CLI::App& command, std::optional<double>& time) {
-    command.add_option("--time", time,
-                       "Seconds into the scene's [animation]: the still frame of a moving scene");
-}
-
-void parse_size(const std::string& text, int& width, int& height, const char* option) {
-    static const std::regex pattern(R"((\d+)x(\d+))");
-    std::smatch match;
-    if (!std::regex_match(text, match, pattern)) {
-        fail("{} {}: expected WIDTHxHEIGHT with positive integers, e.g. 640x360", option,
-             quote(text));
-    }
-    // Past five digits a side is out of range whatever it is (and would overflow an int).
-    auto side = [](const std::string& digits) {
-        return digits.size() > 5 ? 100000 : std::stoi(digits);
-    };
-    width = side(match[1]);
-    height = side(match[2]);
-    if (width < 1 || height < 1 || width > 16384 || height > 16384) {
-        fail("{} {}: width and height must be in 1..16384", option, quote(text));
-    }
-}
-
 Command add_render_command(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "render",
         "Render one frame of a scene with one method: DIR/<scene>.<method>.{png,exr,json}");
     auto args = std::make_shared<RenderArguments>();
-    command->add_option("--scene", args->scene, "Canonical name, multiple:N, or a .toml file")
-        ->required();
-    command->add_option("--method", args->method, "Volumetric method (none)")
-        ->capture_default_str();
-    command->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
-    command->add_option("--out", args->out, "Output directory")->capture_default_str();
-    command->add_option("--shadow", args->shadow, "Shadow map filter")
-        ->check(CLI::IsMember({"hard", "pcf", "vsm"}))
-        ->capture_default_str();
-    command->add_option("--pcf-radius", args->pcf_radius, "PCF taps or VSM blur radius r: (2r+1)^2")
-        ->check(CLI::Range(0, 8))
-        ->capture_default_str();
-    command->add_option("--shadow-map-size", args->shadow_map_size, "Shadow map resolution")
-        ->check(CLI::Range(16, 16384))
-        ->capture_default_str();
-    command->add_option("--warmup", args->warmup, "Frames rendered before measuring")
-        ->check(CLI::Range(0, 1000))
-        ->capture_default_str();
+    add_common_options(*command, *args,
+                       Common::scene | Common::time | Common::method | Common::size | Common::out |
+                           Common::shadow | Common::warmup);
     command->add_option("--frames", args->frames, "Measured frames (timings are medians)")
         ->check(CLI::Range(1, 10000))
         ->capture_default_str();
-    command->add_option("--set", args->settings,
-                        "Set a parameter of the method, NAME=VALUE (repeatable; `shaftlab methods` "
-                        "lists them)");
     command->add_option("--compare", args->compare,
                         "Score I_s against this method (reference): rel_rmse, max_abs, psnr in the "
                         "JSON");
-    add_time_option(*command, args->time);
     return [args] { return run_render(*args); };
 }
 

@@ -10,21 +10,18 @@ namespace sl::app {
 
 namespace {
 
-struct ViewArguments {
+struct ViewArguments : CommonOptions {
     viewer::ViewerOptions options;
-    std::string size = "1280x720";
-    std::string shadow = "pcf";
-    int pcf_radius = 1;
-    int shadow_map_size = 2048;
     bool no_ui = false;
 };
 
 int run_view(ViewArguments& args) {
     viewer::ViewerOptions& options = args.options;
     parse_size(args.size, options.width, options.height);
-    options.shadow = {.filter = frame::parse_shadow_filter(args.shadow),
-                      .map_size = args.shadow_map_size,
-                      .radius = args.pcf_radius};
+    options.scene = args.scene;
+    options.method = args.method;
+    options.settings = args.settings;
+    options.shadow = args.shadow_settings();
     options.ui = !args.no_ui;
     const bool scripted_output = !options.screenshot.empty() || !options.in_scattering.empty() ||
                                  !options.path.empty() || options.orbit_degrees != 0.0f;
@@ -42,20 +39,10 @@ Command add_view_command(CLI::App& app) {
         "Interactive viewer: regions, methods and parameters live, buffers, timings, error view");
     auto args = std::make_shared<ViewArguments>();
     viewer::ViewerOptions& o = args->options;
-    command->add_option("--scene", o.scene, "Canonical name, multiple:N, or a .toml file")
-        ->required();
-    command->add_option("--method", o.method, "Volumetric method at start")->capture_default_str();
-    command->add_option("--set", o.settings, "Set a parameter of the method, NAME=VALUE");
-    command->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
-    command->add_option("--shadow", args->shadow, "Shadow map filter")
-        ->check(CLI::IsMember({"hard", "pcf", "vsm"}))
-        ->capture_default_str();
-    command->add_option("--pcf-radius", args->pcf_radius, "PCF taps or VSM blur radius r")
-        ->check(CLI::Range(0, 8))
-        ->capture_default_str();
-    command->add_option("--shadow-map-size", args->shadow_map_size, "Shadow map resolution")
-        ->check(CLI::Range(16, 16384))
-        ->capture_default_str();
+    args->size = "1280x720";
+    args->method = o.method;
+    add_common_options(*command, *args,
+                       Common::scene | Common::method | Common::size | Common::shadow);
     std::string layers;
     for (const std::string& name : viewer::layer_names())
         layers += (layers.empty() ? "" : ", ") + name;
