@@ -9,16 +9,20 @@ namespace sl::analytic {
 
 namespace {
 
+// The `surfaces` choices, in declaration order.
+enum class Surfaces { boundary, cells, fragments };
+
 class BeamTreeMethod final : public frame::VolumeMethod {
 public:
     BeamTreeMethod() {
         declare({.name = "surfaces",
                  .type = frame::Parameter::Type::choice,
                  .default_value = 0,
-                 .description = "boundary: the lit union's boundary, each plane's faces merged "
-                                "into maximal polygons (DESIGN.md §9); cells: every lit cell's "
-                                "faces (the first round's mesh); fragments: the boundary's faces "
-                                "fanned one by one (same integral in all three)",
+                 .description =
+                     "boundary: the lit union's boundary, each plane's faces merged "
+                     "into maximal polygons (docs/design.md §9); cells: every lit cell's "
+                     "faces (the first round's mesh); fragments: the boundary's faces "
+                     "fanned one by one (same integral in all three)",
                  .choices = {"boundary", "cells", "fragments"}});
     }
     std::string name() const override { return "beamtree"; }
@@ -30,12 +34,13 @@ public:
     std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
                                                  const SceneChange& change) const override {
         AnalyticRegionPass::require_closed_form(scene, name());
-        const auto surfaces = int(parameter("surfaces"));
+        const auto surfaces = choice<Surfaces>("surfaces");
         return region_frame_work(
             scene, change,
             {.lit = true,
-             .cells = surfaces == 1,
-             .shape = surfaces == 2 ? bt::BoundaryShape::fragments : bt::BoundaryShape::maximal},
+             .cells = surfaces == Surfaces::cells,
+             .shape = surfaces == Surfaces::fragments ? bt::BoundaryShape::fragments
+                                                      : bt::BoundaryShape::maximal},
             built_);
     }
     void apply_update(const Scene& scene, const SceneChange&,

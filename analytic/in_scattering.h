@@ -1,5 +1,5 @@
 #pragma once
-// The in-scattered radiance I_s along an eye ray (Nilsson eq. 2.7, DESIGN.md §1), in C++: the
+// The in-scattered radiance I_s along an eye ray (Nilsson eq. 2.7, docs/design.md §1), in C++: the
 // integrand e(z), the part of a ray inside the spot light's exact cone and range, and the integral
 // of e over a lit interval in closed form (in_scattering.cpp derives each):
 //   simplified, isotropic       Nilsson eq. 2.17

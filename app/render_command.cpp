@@ -84,6 +84,8 @@ int run_render(const RenderArguments& args) {
              for (const frame::Parameter& p : method->parameters())
                  parameters[p.name] = p.type == frame::Parameter::Type::choice
                                           ? nlohmann::ordered_json(p.text())
+                                      : p.type == frame::Parameter::Type::boolean
+                                          ? nlohmann::ordered_json(p.value != 0.0)
                                           : nlohmann::ordered_json(p.value);
              return parameters;
          }()},

@@ -1,5 +1,5 @@
 #pragma once
-// Regions as surfaces (DESIGN.md §9): the closed, outward surface of the union of one region
+// Regions as surfaces (docs/design.md §9): the closed, outward surface of the union of one region
 // type's pieces. A face of a lit piece that another lit piece lies beyond contributes +G(z) on
 // one side and -G(z) on the other at the same points: only the faces where the region meets
 // another type, or the outside, are kept, so an eye ray crosses the surface twice per maximal

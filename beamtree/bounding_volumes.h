@@ -1,5 +1,5 @@
 #pragma once
-// Outer and inner bounding volumes of the scene's objects (Nilsson §5.1, DESIGN.md §4).
+// Outer and inner bounding volumes of the scene's objects (Nilsson §5.1, docs/design.md §4).
 // Outer: the convex hull of the mesh (CGAL), optionally reduced to at most K planes while still
 // enclosing it. Inner: convex boxes strictly inside the mesh, explicit from the scene file or
 // found automatically, and in both cases verified (winding number and triangle/box overlap).
@@ -76,7 +76,7 @@ struct VolumeLibraryStats {
     bool operator==(const VolumeLibraryStats&) const = default;
 };
 
-// The static half of the beam tree's per-frame work (DESIGN.md §10): LocalVolumes are computed
+// The static half of the beam tree's per-frame work (docs/design.md §10): LocalVolumes are computed
 // once per mesh, keyed by the mesh's content and the options, and kept in this process and on
 // disk (core/cache.h, folder `volumes`), so that every later frame, scene or run that shows the
 // mesh only transforms them. The verification of explicit inner boxes is cached the same way.

@@ -1,6 +1,6 @@
 #pragma once
-// The per-frame CPU work of the region methods (DESIGN.md §10): from the scene as it stands this
-// frame, the beam tree and what the GPU draws from it. The static half (each mesh's hulls,
+// The per-frame CPU work of the region methods (docs/design.md §10): from the scene as it stands
+// this frame, the beam tree and what the GPU draws from it. The static half (each mesh's hulls,
 // reduced hulls and inner boxes) comes from VolumeLibrary::shared, computed once per mesh and
 // cached on disk; what is left per frame is to transform the volumes, build the tree, extract
 // the regions and build the surfaces asked for. No GL: it runs on the pipelined frame loop's

@@ -1,7 +1,7 @@
 #pragma once
-// Maximal polygons (DESIGN.md §9): the pieces of a region's boundary that lie on one plane, on one
-// side of it, merged into the maximal polygons of their union and triangulated anew, so that the
-// GPU draws a few large triangles where it drew a fan per cell face. A rasterizer pays per
+// Maximal polygons (docs/design.md §9): the pieces of a region's boundary that lie on one plane, on
+// one side of it, merged into the maximal polygons of their union and triangulated anew, so that
+// the GPU draws a few large triangles where it drew a fan per cell face. A rasterizer pays per
 // triangle and per block of pixels a triangle touches (llvmpipe shades 4×4 blocks), so a
 // fragmented boundary costs far more than the pixels it covers.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Error of an image against a reference (DESIGN.md §6), on the I_s buffer:
+// Error of an image against a reference (docs/design.md §6), on the I_s buffer:
 //   rel_rmse = sqrt(Σ (a - r)² / Σ r²)          (0 when equal, 1 for an all-black image)
 //   max_abs  = max |a - r| over pixels and channels
 //   psnr     = 20 log10(max r / rmse) in dB, rmse = sqrt(mean (a - r)²); +inf when equal

@@ -220,7 +220,7 @@ void add_tail(Json& row, const Experiment& x, const frame::VolumeMethod& method,
         }
     }
     if (samples_or_slices.is_null() && method.has_parameter("samples")) {
-        samples_or_slices = method.parameter("samples");
+        samples_or_slices = method.number("samples");
     }
     row["samples_or_slices"] = samples_or_slices;
     row["image"] = image;
@@ -270,8 +270,8 @@ Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs
 
     Json row = row_head(x, cell, rep, x.protocol.frames, m.frame_ms);
     add_gpu(row, m.gpu, m.gpu_total_ms);
-    // The volume cost (DESIGN.md §11): the volume pass's GPU time plus the method's CPU work per
-    // frame (slicing and partitioning sampling planes); what the regions must make cheaper.
+    // The volume cost (docs/design.md §11): the volume pass's GPU time plus the method's CPU work
+    // per frame (slicing and partitioning sampling planes); what the regions must make cheaper.
     row["volume_cost_ms"] = m.gpu.volume_ms + statistic(m.statistics, "cpu_ms_frame");
     row["cpu_ms_scene_load"] = s.load_ms;
     row["cpu_ms_gl_setup"] = setup_ms;
@@ -359,7 +359,7 @@ Json per_frame_series(const std::vector<frame::FrameRecord>& records, const Sequ
     return series;
 }
 
-// Plays one animation cell and repetition (DESIGN.md §11) in a fresh GL context: every frame's
+// Plays one animation cell and repetition (docs/design.md §11) in a fresh GL context: every frame's
 // CPU update, apply, draw and GPU passes through frame::FrameLoop, and every stride-th frame scored
 // against the reference of that frame (computed first, multithreaded, cached on disk, so that
 // the measured frames run undisturbed and a second repetition or an interrupted run pays for

@@ -1,5 +1,5 @@
 #pragma once
-// The harness (DESIGN.md §6): runs an experiment's cells and writes, into one directory,
+// The harness (docs/design.md §6): runs an experiment's cells and writes, into one directory,
 //   cells/<cell>.rep<r>.json   one result row per cell and repetition, each written atomically
 //                              (an animation cell's row holds its per-frame series); a run
 //                              started again skips the rows that exist (resume);

@@ -1,5 +1,5 @@
 #pragma once
-// Equal-error comparison (DESIGN.md §6): per method, the cheapest value of its cost parameter
+// Equal-error comparison (docs/design.md §6): per method, the cheapest value of its cost parameter
 // (dz, samples, ...) whose relative RMSE of I_s reaches a target, found by bisection in log space
 // between the search's cheap and expensive ends (the error is taken as monotone in the parameter;
 // every probe is a cell of the experiment, so probes are resumable and land in results.csv).

@@ -691,9 +691,10 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
                 if (p.name != search.parameter) {
                     continue;
                 }
-                if (p.type == frame::Parameter::Type::choice) {
-                    fail("{}: [equal_error.search.{}]: '{}' is a choice, not a number", origin,
-                         method, p.name);
+                if (p.type == frame::Parameter::Type::choice ||
+                    p.type == frame::Parameter::Type::boolean) {
+                    fail("{}: [equal_error.search.{}]: '{}' is {}, not a number", origin, method,
+                         p.name, p.type == frame::Parameter::Type::choice ? "a choice" : "a flag");
                 }
                 search.integer = p.type == frame::Parameter::Type::integer;
                 auto inside = [&](double v) { return v >= p.min && v <= p.max; };

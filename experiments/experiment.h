@@ -1,7 +1,7 @@
 #pragma once
-// Experiment files (TOML, DESIGN.md §6): a cartesian sweep of scenes × methods × sizes × method
-// parameters with exclusions, a measuring protocol, the reference the images are scored against,
-// the outputs to write and, optionally, an equal-error search. Every key is read in
+// Experiment files (TOML, docs/design.md §6): a cartesian sweep of scenes × methods × sizes ×
+// method parameters with exclusions, a measuring protocol, the reference the images are scored
+// against, the outputs to write and, optionally, an equal-error search. Every key is read in
 // experiment.cpp next to its validation; an unknown key is an error naming the file and key.
 //
 //   name = "nilsson_table61"          out = "out/{name}"  (the default output directory; the
@@ -9,7 +9,7 @@
 //   description = "..."
 //   [protocol]    kind = "still" | "animation", warmup = 2, frames = 10, repetitions = 1,
 //                 isolation = "context" | "process", order = "sweep" | "shuffled", seed = 1 (of
-//                 the shuffle); for kind = "animation" (DESIGN.md §11): frames = 0 (the whole
+//                 the shuffle); for kind = "animation" (docs/design.md §11): frames = 0 (the whole
 //                 animation; 120 for an orbit), step = 0 (seconds per frame; 0: 1/fps of the
 //                 scene's [animation]), orbit_degrees = 90 (a scene without [animation]: the
 //                 camera circles its target this far over the frames), frame_mode = "serial" |

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Plots of a `shaftlab bench` directory (DESIGN.md §6), from its results.csv, into DIR/plots/:
+"""Plots of a `shaftlab bench` directory (docs/design.md §6), from its results.csv, into DIR/plots/:
 
   fps_vs_resolution_<scene>.png  frames per second against pixels, one line per method (and per
                                  value of its swept parameters), log-log;

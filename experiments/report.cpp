@@ -786,8 +786,8 @@ std::string frames_csv(const std::vector<StoredRow>& rows) {
 
 namespace {
 
-// Animation cells (DESIGN.md §11): per cell, over its repetitions, the frame time's median with
-// its interval, p95 and worst frame, the CPU update and what of it the frame waited for, the
+// Animation cells (docs/design.md §11): per cell, over its repetitions, the frame time's median
+// with its interval, p95 and worst frame, the CPU update and what of it the frame waited for, the
 // error per frame (median, p95, worst) and the temporal metrics (core/temporal_metrics.h).
 std::string animation_table(const Experiment& x, const std::vector<Entry>& entries) {
     // The fastest cell of each scene (and size), marked only when significant.

@@ -1,7 +1,7 @@
 #pragma once
-// The frames an animation cell plays (DESIGN.md §11): the scene's [animation] sampled at a fixed
-// time step from its start, or, for a scene without one, an orbit of the camera about its target
-// (around the camera's up axis, `orbit_degrees` over the frames) so that any scene can be
+// The frames an animation cell plays (docs/design.md §11): the scene's [animation] sampled at a
+// fixed time step from its start, or, for a scene without one, an orbit of the camera about its
+// target (around the camera's up axis, `orbit_degrees` over the frames) so that any scene can be
 // measured moving.
 
 #include <string>

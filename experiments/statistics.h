@@ -1,5 +1,5 @@
 #pragma once
-// Confidence intervals of the harness's medians (DESIGN.md §11). A cell's frame times come in
+// Confidence intervals of the harness's medians (docs/design.md §11). A cell's frame times come in
 // repetitions (fresh GL contexts) of frames; the frames of one repetition share its context,
 // driver state and machine load, so they are not independent of each other across repetitions.
 // The interval is a two-level percentile bootstrap (Davison & Hinkley 1997, §3.8): each resample

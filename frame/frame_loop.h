@@ -1,5 +1,5 @@
 #pragma once
-// Playing a moving scene (DESIGN.md §10): every frame brings the method to the frame's scene
+// Playing a moving scene (docs/design.md §10): every frame brings the method to the frame's scene
 // (VolumeMethod::cpu_update then apply_update) and draws it. Two modes:
 //   serial     frame k: CPU update for scene k, then its draw; the CPU and the GPU take turns.
 //   pipelined  while the GPU draws frame k, a worker thread runs the CPU update for frame k+1

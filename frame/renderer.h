@@ -1,6 +1,6 @@
 #pragma once
-// The GPU frame (DESIGN.md §2): shadow map from the spot light -> surfaces (I_obj·T(Z), with the
-// environment's light and skybox when the scene has one, ibl/environment_textures.h, and the
+// The GPU frame (docs/design.md §2): shadow map from the spot light -> surfaces (I_obj·T(Z), with
+// the environment's light and skybox when the scene has one, ibl/environment_textures.h, and the
 // translucent objects' subsurface pass, sss/subsurface_pass.h) ->
 // volumetric method (I_s) -> composite and tone map. Owns the scene's GPU meshes and the frame's
 // render targets; one renderer per scene and size.

@@ -1,5 +1,6 @@
 #include "frame/volume_method.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -45,17 +46,59 @@ ShadowFilter parse_shadow_filter(const std::string& text) {
 }
 
 std::string Parameter::text() const {
-    if (type == Type::choice)
-        return choices.at(size_t(value));
-    return fmt::format("{}", value);
+    switch (type) {
+        case Type::choice:
+            return choices.at(size_t(value));
+        case Type::boolean:
+            return value != 0.0 ? "true" : "false";
+        default:
+            return fmt::format("{}", value);
+    }
 }
 
-double VolumeMethod::parameter(const std::string& name) const {
+const char* Parameter::type_name() const {
+    constexpr const char* kNames[] = {"integer", "real", "bool", "enum"};
+    return kNames[size_t(type)];
+}
+
+const Parameter& VolumeMethod::find(const std::string& name) const {
     for (const Parameter& p : parameters_) {
         if (p.name == name)
-            return p.value;
+            return p;
     }
-    fail("method '{}' has no parameter {}", this->name(), quote(name));
+    std::string known;
+    for (const Parameter& p : parameters_)
+        known += (known.empty() ? "" : ", ") + p.name;
+    fail("method '{}' has no parameter {} ({})", this->name(), quote(name),
+         known.empty() ? "it has none" : "it has: " + known);
+}
+
+const Parameter& VolumeMethod::typed(const std::string& name,
+                                     std::initializer_list<Parameter::Type> types,
+                                     const char* reader) const {
+    const Parameter& p = find(name);
+    if (std::find(types.begin(), types.end(), p.type) == types.end()) {
+        fail("method '{}' parameter '{}' is {}, not read with {}()", this->name(), name,
+             p.type_name(), reader);
+    }
+    return p;
+}
+
+double VolumeMethod::number(const std::string& name) const {
+    return typed(name, {Parameter::Type::integer, Parameter::Type::real}, "number").value;
+}
+
+bool VolumeMethod::flag(const std::string& name) const {
+    return typed(name, {Parameter::Type::boolean}, "flag").value != 0.0;
+}
+
+size_t VolumeMethod::choice_index(const std::string& name) const {
+    return size_t(typed(name, {Parameter::Type::choice}, "choice").value);
+}
+
+const std::string& VolumeMethod::choice_name(const std::string& name) const {
+    const Parameter& p = typed(name, {Parameter::Type::choice}, "choice_name");
+    return p.choices.at(size_t(p.value));
 }
 
 bool VolumeMethod::has_parameter(const std::string& name) const {
@@ -71,8 +114,28 @@ void VolumeMethod::declare(Parameter parameter) {
         parameter.min = 0;
         parameter.max = double(parameter.choices.size()) - 1;
     }
+    if (parameter.type == Parameter::Type::boolean) {
+        parameter.min = 0;
+        parameter.max = 1;
+    }
     parameter.value = parameter.default_value;
     parameters_.push_back(std::move(parameter));
+}
+
+void VolumeMethod::declare_flag(std::string name, bool default_value, std::string description) {
+    declare({.name = std::move(name),
+             .type = Parameter::Type::boolean,
+             .default_value = default_value ? 1.0 : 0.0,
+             .description = std::move(description)});
+}
+
+void VolumeMethod::declare_choice(std::string name, std::vector<std::string> choices,
+                                  size_t default_index, std::string description) {
+    declare({.name = std::move(name),
+             .type = Parameter::Type::choice,
+             .default_value = double(default_index),
+             .description = std::move(description),
+             .choices = std::move(choices)});
 }
 
 void VolumeMethod::declare_shadow_parameters() {
@@ -91,10 +154,10 @@ void VolumeMethod::declare_shadow_parameters() {
 
 ShadowSettings VolumeMethod::shadow_settings(ShadowSettings frame) const {
     if (has_parameter("shadow")) {
-        frame.filter = ShadowFilter(int(parameter("shadow")));
+        frame.filter = choice<ShadowFilter>("shadow");
     }
     if (has_parameter("shadow_size")) {
-        frame.map_size = int(parameter("shadow_size"));
+        frame.map_size = int(number("shadow_size"));
     }
     return frame;
 }
@@ -113,6 +176,19 @@ void VolumeMethod::set(const std::string& name, const std::string& text) {
             fail("method '{}' parameter '{}': {} is not one of {}", this->name(), name, quote(text),
                  fmt::join(p.choices, ", "));
         }
+        if (p.type == Parameter::Type::boolean) {
+            // By name; 1 and 0 are the spellings of the numeric flags this type replaced.
+            if (text == "true" || text == "on" || text == "1") {
+                p.value = 1.0;
+                return;
+            }
+            if (text == "false" || text == "off" || text == "0") {
+                p.value = 0.0;
+                return;
+            }
+            fail("method '{}' parameter '{}': {} is not a flag (true or false)", this->name(), name,
+                 quote(text));
+        }
         char* end = nullptr;
         const double value = std::strtod(text.c_str(), &end);
         const bool integral = p.type != Parameter::Type::integer || value == std::floor(value);
@@ -127,11 +203,7 @@ void VolumeMethod::set(const std::string& name, const std::string& text) {
         p.value = value;
         return;
     }
-    std::string known;
-    for (const Parameter& p : parameters_)
-        known += (known.empty() ? "" : ", ") + p.name;
-    fail("method '{}' has no parameter {} ({})", this->name(), quote(name),
-         known.empty() ? "it has none" : "it has: " + known);
+    find(name);  // throws, naming the parameters the method has
 }
 
 }  // namespace sl::frame

@@ -1,5 +1,5 @@
 #pragma once
-// The interface every volumetric method implements (DESIGN.md §3): given the scene and the
+// The interface every volumetric method implements (docs/design.md §3): given the scene and the
 // frame's buffers, add the in-scattered radiance I_s of Nilsson eq. 2.7 into the bound target.
 // The renderer, the harness and the viewer talk to methods only through this interface; methods
 // live in their family's folders and are created by name from the registry (methods/registry.h).
@@ -59,10 +59,14 @@ struct VolumeInputs {
 using MethodStatistics = std::vector<std::pair<std::string, double>>;
 
 // A parameter a method declares (Mitsuba style: documented where it is read), settable from the
-// command line (`--set name=value`), configs and the viewer.
-// A `choice` holds the index of one of `choices` and is set by name.
+// command line (`--set name=value`), configs and the viewer, and written back by name:
+//   integer, real  a number in [min, max];
+//   boolean        true or false (also written on and off, or the old spellings 1 and 0);
+//   choice         an enumeration: the index of one of `choices`, set and written by its name.
+// Methods read them typed: number(), flag(), choice<Enum>() (the enum's values in the order of
+// `choices`) or choice_name().
 struct Parameter {
-    enum class Type { integer, real, choice };
+    enum class Type { integer, real, boolean, choice };
     std::string name;
     Type type = Type::real;
     double value = 0.0;
@@ -72,8 +76,10 @@ struct Parameter {
     std::string description{};
     std::vector<std::string> choices{};
 
-    // The value as text: a number, or the chosen name.
+    // The value as text: a number, true or false, or the chosen name.
     std::string text() const;
+    // The type's name as `shaftlab methods` prints it: integer, real, bool or enum.
+    const char* type_name() const;
 };
 
 // What a method's per-frame update computed on the CPU (a beam tree and its meshes), handed from
@@ -86,7 +92,18 @@ class VolumeMethod {
 public:
     virtual ~VolumeMethod() = default;
     const std::vector<Parameter>& parameters() const { return parameters_; }
-    double parameter(const std::string& name) const;
+    // The value of a number parameter (integer or real); throws sl::Error for a flag or a choice,
+    // which are read with flag() and choice().
+    double number(const std::string& name) const;
+    bool flag(const std::string& name) const;
+    // The chosen name, or the choice as the enum whose values follow `choices`.
+    const std::string& choice_name(const std::string& name) const;
+    template <class Enum>
+    Enum choice(const std::string& name) const {
+        return Enum(choice_index(name));
+    }
+    // The parameter as declared, with its current value; throws sl::Error naming the known ones.
+    const Parameter& find(const std::string& name) const;
     // Parses and sets one parameter; throws sl::Error naming the method and the parameter when
     // the name is unknown, the text is not a number of its type, or it is out of range.
     void set(const std::string& name, const std::string& text);
@@ -100,10 +117,10 @@ public:
     // update(scene, SceneChange::everything(scene)) would make it.
     virtual void prepare(const Scene& scene) = 0;
 
-    // The per-frame update (DESIGN.md §10): `scene` is the frame's scene, `change` what differs
-    // from the scene of the last prepare() or update(). In two halves, so that the pipelined
-    // frame loop (gl/frame_loop.h) can run the CPU half on a worker thread while the GPU draws
-    // the previous frame with this method:
+    // The per-frame update (docs/design.md §10): `scene` is the frame's scene, `change` what
+    // differs from the scene of the last prepare() or update(). In two halves, so that the
+    // pipelined frame loop (gl/frame_loop.h) can run the CPU half on a worker thread while the GPU
+    // draws the previous frame with this method:
     //   cpu_update    no GL and no state that render() reads (it may run during render());
     //                 returns what apply_update() installs, or null when nothing is needed;
     //   apply_update  on the GL thread between frames: uploads, tables, programs.
@@ -130,10 +147,18 @@ public:
 
 protected:
     void declare(Parameter parameter);
+    // Shorthands of declare() for the two typed kinds.
+    void declare_flag(std::string name, bool default_value, std::string description);
+    void declare_choice(std::string name, std::vector<std::string> choices, size_t default_index,
+                        std::string description);
     // Declares `shadow` (hard, pcf, vsm) and `shadow_size`, read by shadow_settings().
     void declare_shadow_parameters();
 
 private:
+    size_t choice_index(const std::string& name) const;
+    const Parameter& typed(const std::string& name, std::initializer_list<Parameter::Type> types,
+                           const char* reader) const;
+
     std::vector<Parameter> parameters_;
 };
 

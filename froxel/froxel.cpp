@@ -153,20 +153,12 @@ public:
                  .min = 1,
                  .max = 64,
                  .description = "points per froxel, stratified along its depth span"});
-        declare({.name = "jitter",
-                 .type = Parameter::Type::integer,
-                 .default_value = 0,
-                 .min = 0,
-                 .max = 1,
-                 .description = "1: the points move within their strata every frame (per-froxel "
-                                "noise plus a Halton step), for the temporal filter"});
-        declare({.name = "temporal",
-                 .type = Parameter::Type::integer,
-                 .default_value = 0,
-                 .min = 0,
-                 .max = 1,
-                 .description = "1: reprojection into the last frame's grid with an exponential "
-                                "history, clamped to the current neighbourhood"});
+        declare_flag("jitter", false,
+                     "on: the points move within their strata every frame (per-froxel "
+                     "noise plus a Halton step), for the temporal filter");
+        declare_flag("temporal", false,
+                     "on: reprojection into the last frame's grid with an exponential "
+                     "history, clamped to the current neighbourhood");
         declare({.name = "history",
                  .default_value = 0.9,
                  .min = 0.0,
@@ -199,11 +191,11 @@ public:
                       std::unique_ptr<frame::FrameWork>) override {}
 
     void render(const frame::VolumeInputs& inputs) override {
-        const FroxelGrid grid = make_grid(inputs.scene, inputs.width, inputs.height,
-                                          parameter("grid_scale"), int(parameter("slices")),
-                                          parameter("depth_extent"), parameter("linear_depth"));
+        const FroxelGrid grid =
+            make_grid(inputs.scene, inputs.width, inputs.height, number("grid_scale"),
+                      int(number("slices")), number("depth_extent"), number("linear_depth"));
         allocate(grid);
-        const bool temporal = parameter("temporal") != 0;
+        const bool temporal = flag("temporal");
         if (!temporal) {
             previous_.reset();  // a history resumes from scratch, not from a stale frame
         }
@@ -211,8 +203,8 @@ public:
         inputs.timeline.section("inject");
         GLuint program = inject_program_.id();
         set_grid_uniforms(program, grid);
-        GL.ProgramUniform1i(program, inject_uniform::samples, int(parameter("samples")));
-        GL.ProgramUniform1i(program, inject_uniform::jitter, int(parameter("jitter")));
+        GL.ProgramUniform1i(program, inject_uniform::samples, int(number("samples")));
+        GL.ProgramUniform1i(program, inject_uniform::jitter, int(flag("jitter")));
         GL.ProgramUniform1f(program, inject_uniform::frame_offset,
                             halton2(frame_index_ % kJitterPeriod + 1));
         GL.UseProgram(program);
@@ -228,7 +220,7 @@ public:
             set_grid_uniforms(program, grid);
             // Without a previous frame of this grid, the history's weight is 0.
             GL.ProgramUniform1f(program, temporal_uniform::history,
-                                previous_ ? float(parameter("history")) : 0.0f);
+                                previous_ ? float(number("history")) : 0.0f);
             const Previous p = previous_.value_or(Previous{});
             GL.ProgramUniformMatrix4fv(program, temporal_uniform::previous_view_projection, 1,
                                        GL_FALSE, &p.view_projection[0][0]);

@@ -1,6 +1,7 @@
 // Headless OpenGL 4.5 core through OSMesa (Mesa's gallium llvmpipe). Rendering goes to
 // framebuffer objects; the OSMesa colour buffer is a 1x1 placeholder that is never read.
-// OSMesa is gone from Mesa >= 25.1: EGL surfaceless is the natural next backend (DESIGN.md §8).
+// OSMesa is gone from Mesa >= 25.1: EGL surfaceless is the natural next backend (docs/design.md
+// §8).
 
 #include <GL/osmesa.h>
 

@@ -175,7 +175,7 @@ public:
     void render(const frame::VolumeInputs& inputs) override {
         int map_size = 0;
         GL.GetTextureLevelParameteriv(inputs.shadow_map, 0, GL_TEXTURE_WIDTH, &map_size);
-        const int wanted = int(parameter("resolution"));
+        const int wanted = int(number("resolution"));
         if (wanted == 1) {
             fail(
                 "lightvolume: resolution 1 makes no grid: give at least 2 vertices per side, or 0 "

@@ -10,8 +10,8 @@
 
 namespace sl::methods {
 
-// How the view's eye rays cross the beam-tree regions (DESIGN.md §6 "region statistics"), in two
-// quantities with one name each everywhere (CSV, tables, viewer):
+// How the view's eye rays cross the beam-tree regions (docs/design.md §6 "region statistics"), in
+// two quantities with one name each everywhere (CSV, tables, viewer):
 //   eye-ray fraction  of the eye-ray length inside the light's cone and range, in front of the
 //                     first surface, the share in lit, uncertain and unlit regions (exact, from
 //                     each ray's walk through the tree, on a grid of at most 160 rays across);

@@ -1,6 +1,6 @@
 #pragma once
-// The exact CPU reference for I_s (DESIGN.md §3 `reference`): for every pixel, the eye ray to its
-// first hit on the true meshes (Embree), the lit intervals along it from shadow rays at many
+// The exact CPU reference for I_s (docs/design.md §3 `reference`): for every pixel, the eye ray to
+// its first hit on the true meshes (Embree), the lit intervals along it from shadow rays at many
 // points with every light/shadow transition refined by bisection, and each interval integrated
 // by analytic::in_scattering (closed form where one exists). Multithreaded (TBB).
 

@@ -67,8 +67,8 @@ public:
 
 private:
     ReferenceOptions options() const {
-        return {.shadow_samples = int(parameter("shadow_samples")),
-                .transition_tolerance = parameter("transition_tolerance")};
+        return {.shadow_samples = int(number("shadow_samples")),
+                .transition_tolerance = number("transition_tolerance")};
     }
 
     Image compute(const Scene& scene, int width, int height) const {

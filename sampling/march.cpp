@@ -21,6 +21,12 @@ namespace {
 using frame::Parameter;
 using gl::GL;
 
+// The choices, in the order they are declared and numbered in the shaders (march.frag's
+// clip_mode and attenuation, march_resolve.frag's blur).
+enum class Blur { none, gauss5, depth_aware };
+enum class Clip { off, pyramid, cone };
+enum class Attenuation { model, moschos };
+
 // Uniform locations of sampling/shaders/march.frag and march_resolve.frag.
 namespace march_uniform {
 constexpr GLint samples = 0, jitter = 1, clip_mode = 2, buffer_scale = 3, attenuation = 4,
@@ -30,8 +36,6 @@ constexpr GLint samples = 0, jitter = 1, clip_mode = 2, buffer_scale = 3, attenu
 namespace resolve_uniform {
 constexpr GLint buffer_scale = 0, blur = 1;
 }
-
-constexpr double kScales[] = {1.0, 0.5, 0.25};
 
 class MarchMethod final : public frame::VolumeMethod {
 public:
@@ -69,12 +73,8 @@ public:
                  .default_value = 0,
                  .description = "none; gauss5 (Moschos alg. 3); depth_aware (no bleeding)",
                  .choices = {"none", "gauss5", "depth_aware"}});
-        declare({.name = "jitter",
-                 .type = Parameter::Type::integer,
-                 .default_value = 0,
-                 .min = 0,
-                 .max = 1,
-                 .description = "1: per-pixel offset of the samples (interleaved gradient noise)"});
+        declare_flag("jitter", false,
+                     "on: per-pixel offset of the samples (interleaved gradient noise)");
         declare_shadow_parameters();
         if (variant == MarchVariant::march) {
             declare({.name = "clip",
@@ -93,12 +93,8 @@ public:
                      .min = 1e-3,
                      .max = 1e6,
                      .description = "metres: l of Moschos eq. 3.1 (attenuation=moschos)"});
-            declare({.name = "animate_phase",
-                     .type = Parameter::Type::integer,
-                     .default_value = 0,
-                     .min = 0,
-                     .max = 1,
-                     .description = "1: the phase function's g drifts with time and place"});
+            declare_flag("animate_phase", false,
+                         "on: the phase function's g drifts with time and place");
         }
     }
 
@@ -158,7 +154,7 @@ public:
     void render(const frame::VolumeInputs& inputs) override {
         GLint target = 0;
         GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-        const double scale = kScales[int(parameter("resolution_scale"))];
+        const double scale = std::stod(choice_name("resolution_scale"));
         allocate(inputs.width, inputs.height, scale);
         const bool hybrid = variant_ == MarchVariant::hybrid3;
         // hybrid3 with a marching buffer of the frame's size: the region lists mark the pixels
@@ -181,7 +177,7 @@ public:
         // A marching buffer of the frame's size without blur needs no resolve (it would copy):
         // the march adds its I_s straight into the frame's target, attached beside the buffer.
         const GLuint direct_target =
-            scale == 1.0 && int(parameter("blur")) == 0 ? frame_texture(GLuint(target)) : 0;
+            scale == 1.0 && choice<Blur>("blur") == Blur::none ? frame_texture(GLuint(target)) : 0;
         if (direct_target) {
             attach_frame_target(direct_target);
         }
@@ -202,21 +198,23 @@ public:
         }
         const GLuint program = march_program_.id();
         GL.UseProgram(program);
-        GL.ProgramUniform1i(program, march_uniform::samples, int(parameter("samples")));
-        GL.ProgramUniform1i(program, march_uniform::jitter, int(parameter("jitter")));
-        GL.ProgramUniform1i(program, march_uniform::clip_mode, hybrid ? 2 : int(parameter("clip")));
+        GL.ProgramUniform1i(program, march_uniform::samples, int(number("samples")));
+        GL.ProgramUniform1i(program, march_uniform::jitter, int(flag("jitter")));
+        GL.ProgramUniform1i(program, march_uniform::clip_mode,
+                            hybrid ? int(Clip::cone) : int(choice<Clip>("clip")));
         GL.ProgramUniform1f(program, march_uniform::buffer_scale, float(scale));
-        GL.ProgramUniform1i(program, march_uniform::attenuation,
-                            hybrid ? 0 : int(parameter("attenuation")));
+        GL.ProgramUniform1i(
+            program, march_uniform::attenuation,
+            hybrid ? int(Attenuation::model) : int(choice<Attenuation>("attenuation")));
         GL.ProgramUniform1f(program, march_uniform::optical_thickness,
-                            hybrid ? 1.0f : float(parameter("optical_thickness")));
+                            hybrid ? 1.0f : float(number("optical_thickness")));
         GL.ProgramUniform1i(program, march_uniform::animate_phase,
-                            hybrid ? 0 : int(parameter("animate_phase")));
+                            hybrid ? 0 : int(flag("animate_phase")));
         GL.ProgramUniform1f(program, march_uniform::time, float(frame_index_++) / 60.0f);
         GL.ProgramUniform1i(program, march_uniform::interval_mode, hybrid ? 1 : 0);
         if (hybrid) {
-            GL.ProgramUniform2f(program, march_uniform::adaptive, float(parameter("density")),
-                                float(parameter("min_samples")));
+            GL.ProgramUniform2f(program, march_uniform::adaptive, float(number("density")),
+                                float(number("min_samples")));
         }
         GL.ProgramUniform4fv(program, march_uniform::clip_planes, 6, clip_planes_.data());
         GL.BindTextureUnit(0, inputs.surface_depth);
@@ -236,7 +234,8 @@ public:
         GL.Viewport(0, 0, inputs.width, inputs.height);
         GL.UseProgram(resolve_program_.id());
         GL.ProgramUniform1f(resolve_program_.id(), resolve_uniform::buffer_scale, float(scale));
-        GL.ProgramUniform1i(resolve_program_.id(), resolve_uniform::blur, int(parameter("blur")));
+        GL.ProgramUniform1i(resolve_program_.id(), resolve_uniform::blur,
+                            int(choice<Blur>("blur")));
         GL.BindTextureUnit(0, inputs.surface_depth);
         GL.BindTextureUnit(1, march_target_.id());
         GL.Enable(GL_BLEND);

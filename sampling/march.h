@@ -1,5 +1,5 @@
 #pragma once
-// The ray-marching methods (DESIGN.md §3):
+// The ray-marching methods (docs/design.md §3):
 //   march    Moschos' screen-space ray marcher (§3.2, algorithms 1-5): per pixel of a full, ½ or
 //            ¼ resolution buffer, N samples along the eye ray clipped to the light (algorithm 4 on
 //            the pyramid, or the exact cone), shadow-map visibility with dark-sample skipping,

@@ -25,6 +25,9 @@ namespace {
 using frame::Parameter;
 using gl::GL;
 
+// The `partition` choices, in declaration order.
+enum class Partition { gpu, cpu };
+
 // Uniform locations of sampling/shaders/planes.frag.
 constexpr GLint kDzLocation = 0;
 constexpr GLint kKnownLitLocation = 1;
@@ -58,12 +61,8 @@ public:
                  .min = 1e-3,
                  .max = 100.0,
                  .description = "metres of eye depth between sampling planes"});
-        declare({.name = "jitter",
-                 .type = Parameter::Type::integer,
-                 .default_value = 0,
-                 .min = 0,
-                 .max = 1,
-                 .description = "1: offset each pixel's sample within its slab (noise for bands)"});
+        declare_flag("jitter", false,
+                     "on: offset each pixel's sample within its slab (noise for bands)");
         declare_shadow_parameters();
         if (variant != PlanesVariant::planes) {
             declare({.name = "partition",
@@ -142,7 +141,7 @@ public:
     }
 
     void render(const frame::VolumeInputs& inputs) override {
-        const double dz = parameter("dz");
+        const double dz = number("dz");
         // CPU: the planes clipped to the influence pyramid, then (hybrids) partitioned by the
         // beam tree (Nilsson appendix B `partition`, §5.2.1).
         auto start = std::chrono::steady_clock::now();
@@ -153,7 +152,7 @@ public:
         // Pieces drawn with the shadow lookup, then (hybrid1) the lit ones drawn without it.
         std::vector<PlaneVertex> vertices, lit;
         pieces_ = {};
-        const bool classify_on_gpu = tree_ && parameter("partition") == 0;
+        const bool classify_on_gpu = tree_ && choice<Partition>("partition") == Partition::gpu;
         if (!tree_ || classify_on_gpu) {
             for (const Slice& slice : slices)
                 append_fan(slice.polygon, slice.depth, vertices);
@@ -220,7 +219,7 @@ public:
         GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
         GL.UseProgram(program_.id());
         GL.ProgramUniform1f(program_.id(), kDzLocation, float(dz));
-        GL.ProgramUniform1i(program_.id(), kJitterLocation, int(parameter("jitter")));
+        GL.ProgramUniform1i(program_.id(), kJitterLocation, int(flag("jitter")));
         GL.ProgramUniform1i(program_.id(), kClassifyLocation,
                             !classify_on_gpu                     ? 0
                             : variant_ == PlanesVariant::hybrid1 ? 1

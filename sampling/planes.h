@@ -1,5 +1,5 @@
 #pragma once
-// The sampling-plane methods (DESIGN.md §3):
+// The sampling-plane methods (docs/design.md §3):
 //   planes   Dobashi et al. 2000's view-aligned planes every dz of eye depth, clipped to the
 //            influence pyramid (Mitchell 2004), shadow-map visibility per sample (Nilsson §3.1);
 //   hybrid1  Nilsson's Method 1 (§5.3): every plane partitioned by the beam tree; lit pieces

@@ -1,5 +1,5 @@
 #pragma once
-// Keyframed animation of a scene (DESIGN.md §10): tracks for the light, the camera and each
+// Keyframed animation of a scene (docs/design.md §10): tracks for the light, the camera and each
 // object's placement, read from the `[animation]` table of a scene file (or of a path file given
 // to `shaftlab view --path`). The format:
 //

@@ -1,7 +1,7 @@
 // The generated scene families, emitted as TOML so that generated and hand-written scenes go
 // through the same reader:
 //   multiple:N  N objects on a jittered grid under one spot light pointing down, for beam-tree
-//               scaling studies (DESIGN.md §5);
+//               scaling studies (docs/design.md §5);
 //   boxes:SEED  a few rotated boxes under a randomly placed spot light in a random medium, the
 //               eye inside the cone on odd seeds: every object is its own bounding volume, so the
 //               region methods must equal the reference (issue 33's search for wrong images).

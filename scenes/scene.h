@@ -1,7 +1,7 @@
 #pragma once
 // The scene every method renders: meshes with materials and transforms, one spot light, a camera
-// and a homogeneous participating medium (DESIGN.md §1). Plain data plus the derived quantities
-// (matrices, cone factor) that the GPU and CPU paths must agree on.
+// and a homogeneous participating medium (docs/design.md §1). Plain data plus the derived
+// quantities (matrices, cone factor) that the GPU and CPU paths must agree on.
 
 #include <filesystem>
 #include <memory>

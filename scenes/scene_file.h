@@ -65,15 +65,15 @@ std::string scene_view_toml(const Scene& scene, const std::string& base, const s
 
 // The canonical scenes in display order, and the generated `multiple:N` family.
 std::vector<std::string> canonical_scene_names();
-// The canonical animated scenes (toplight-orbit, parallel-walk, multiple-moving: DESIGN.md §10),
-// loadable by name.
+// The canonical animated scenes (toplight-orbit, parallel-walk, multiple-moving: docs/design.md
+// §10), loadable by name.
 std::vector<std::string> animated_scene_names();
 // The effect scenes (IBL, SSS), loadable by name like the canonical ones.
 std::vector<std::string> effect_scene_names();
 // Every scene that loads by name from scenes/: the canonical, the animated and the effect scenes,
 // in that order (`shaftlab scenes` lists them; the generated families are not among them).
 std::vector<std::string> named_scene_names();
-// A scene of N objects on a jittered grid under one spot light (DESIGN.md §5), as TOML text,
+// A scene of N objects on a jittered grid under one spot light (docs/design.md §5), as TOML text,
 // deterministic in N. `multiple` is multiple:kMultipleDefaultCount.
 constexpr int kMultipleDefaultCount = 32;
 // The largest N: 10^4 objects (a beam tree of ~10^6 beams) is far past any scaling study here.

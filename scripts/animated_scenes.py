@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the canonical animated scenes (scenes/*-orbit.toml, -walk, -moving; DESIGN.md §10).
+"""Writes the canonical animated scenes (scenes/*-orbit.toml, -walk, -moving; docs/design.md §10).
 
 Deterministic: rerun after changing a base scene's placements. Each file derives from its still
 scene (`[scene] base`) and adds an [animation] table (format: scenes/animation.h).

@@ -13,6 +13,7 @@
 
 #include "core/image.h"
 #include "core/metrics.h"
+#include "core/text.h"
 #include "scenes/scene_file.h"
 
 #include "tests/support.h"
@@ -625,6 +626,40 @@ TEST(Cli, IblPrefilterRejectsBadInput) {
         EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
         EXPECT_EQ(out.file_count(), 0u) << arguments << " left files behind";
     }
+}
+
+// docs/methods.md is `shaftlab methods --markdown` (scripts/methods_doc.sh): the page cannot drift
+// from the registry, its parameters and what each method accepts.
+TEST(Docs, MethodsPageMatchesTheRegistry) {
+    const CommandResult run = run_shaftlab("methods --markdown");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const std::string page =
+        read_text_file(std::filesystem::path(SHAFTLAB_SOURCE_DIR) / "docs/methods.md", "page");
+    EXPECT_EQ(run.output, page) << "docs/methods.md is stale: run scripts/methods_doc.sh";
+}
+
+// Flags and choices are set by name on the command line and written back by name in the JSON.
+TEST(Cli, FlagsAndChoicesAreSetAndWrittenByName) {
+    TempDir out;
+    const CommandResult run = run_shaftlab(
+        "render --scene toplight --method march --size 32x18 --frames 1 --warmup 0 --set "
+        "jitter=true --set blur=gauss5 --set samples=8 --out " +
+        out.path().string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const auto json =
+        nlohmann::json::parse(read_text_file(out / "toplight.march.json", "render record"));
+    EXPECT_EQ(json["parameters"]["jitter"], true);
+    EXPECT_EQ(json["parameters"]["blur"], "gauss5");
+    const CommandResult wrong =
+        run_shaftlab("render --scene toplight --method march --size 32x18 --set blur=gaus5 --out " +
+                     out.path().string());
+    EXPECT_NE(wrong.exit_code, 0);
+    EXPECT_NE(wrong.output.find("none, gauss5, depth_aware"), std::string::npos) << wrong.output;
+    const CommandResult flag =
+        run_shaftlab("render --scene toplight --method march --size 32x18 --set jitter=2 --out " +
+                     out.path().string());
+    EXPECT_NE(flag.exit_code, 0);
+    EXPECT_NE(flag.output.find("true or false"), std::string::npos) << flag.output;
 }
 
 }  // namespace

@@ -44,6 +44,14 @@ void Viewer::ui_method() {
                 }
                 break;
             }
+            case frame::Parameter::Type::boolean: {
+                bool on = p.value != 0.0;
+                if (ImGui::Checkbox(p.name.c_str(), &on)) {
+                    text = on ? "true" : "false";
+                    commit = true;
+                }
+                break;
+            }
             case frame::Parameter::Type::choice: {
                 if (ImGui::BeginCombo(p.name.c_str(), p.text().c_str())) {
                     for (const std::string& choice : p.choices) {

@@ -60,6 +60,7 @@ SavedView save_view_as_experiment(const fs::path& experiment, const Scene& scene
     if (!method.parameters().empty()) {
         text += fmt::format("\n[sweep.params.{}]\n", method.name());
         for (const frame::Parameter& p : method.parameters()) {
+            // Numbers and flags as TOML numbers and booleans, choices as their names.
             const std::string value =
                 p.type == frame::Parameter::Type::choice ? toml_quoted(p.text()) : p.text();
             text += fmt::format("{} = {}\n", p.name, value);
