@@ -1,4 +1,5 @@
-// shaftlab: a testbed for real-time volumetric light shafts. See README.md for the subcommands.
+// shaftlab: a testbed for real-time volumetric light shafts. See docs/commands.md for the
+// subcommands.
 
 #include <cstdio>
 #include <exception>

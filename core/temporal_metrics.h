@@ -1,8 +1,8 @@
 #pragma once
 // Temporal stability of an image sequence against its reference sequence (docs/design.md §11,
-// README "Temporal metrics"). With e_t = I_t − R_t the error image of frame t (per pixel and
-// channel), mean_p the mean over pixels and channels, and RMS(R) = sqrt(mean_{t,p} R_t²) over the
-// sequence:
+// docs/harness.md "Temporal metrics"). With e_t = I_t − R_t the error image of frame t (per pixel
+// and channel), mean_p the mean over pixels and channels, and RMS(R) = sqrt(mean_{t,p} R_t²) over
+// the sequence:
 //
 //   temporal error  TE = sqrt( mean_{t≥1} mean_p (e_t − e_{t−1})² ) / RMS(R)
 //                   how much the error changes from frame to frame, whatever its cause; the

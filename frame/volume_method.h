@@ -108,8 +108,8 @@ public:
     // the name is unknown, the text is not a number of its type, or it is out of range.
     void set(const std::string& name, const std::string& text);
     virtual std::string name() const = 0;
-    // The media and lights the method integrates (`shaftlab methods`, README): every one the
-    // scene format allows unless it says otherwise; prepare() refuses the others by name.
+    // The media and lights the method integrates (`shaftlab methods`, docs/methods.md): every one
+    // the scene format allows unless it says otherwise; prepare() refuses the others by name.
     virtual std::string accepts() const {
         return "every medium and light (it samples e(z) itself)";
     }

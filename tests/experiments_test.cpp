@@ -491,7 +491,7 @@ TEST(Bench, ShardsMergeIntoTheWholeSweep) {
     EXPECT_TRUE(fs::exists(dir.path() / "m" / "table.md"));
 }
 
-// The README's GNU parallel one-liner and the Slurm array job (its scripts run as Slurm would
+// docs/harness.md's GNU parallel one-liner and the Slurm array job (its scripts run as Slurm would
 // run them, one task per shard, then the merge) each give every cell of the sweep exactly once.
 TEST(Bench, GnuParallelAndSlurmShardsMergeIntoTheWholeSweep) {
     TempDir dir;
@@ -508,7 +508,7 @@ TEST(Bench, GnuParallelAndSlurmShardsMergeIntoTheWholeSweep) {
         EXPECT_EQ(csv.size(), 1 + total) << "one row per cell";
         return cells.size();
     };
-    // The one-liner exactly as the README has it, with its folders under the test's own.
+    // The one-liner exactly as docs/harness.md has it, with its folders under the test's own.
     const std::string out = (dir.path() / "p").string();
     const CommandResult parallel =
         run_command("cd " + source + " && parallel " + build +
