@@ -105,8 +105,13 @@ Command add_methods_command(CLI::App& app) {
                     fmt::print("| `{}` | {} | {} | {} | {} |\n", p.name, p.type_name(),
                                defaults.text(), values, p.description);
                 } else {
+                    const std::string listed =
+                        p.type == frame::Parameter::Type::choice
+                            ? fmt::format("one of {}", fmt::join(p.choices, "|"))
+                        : p.type == frame::Parameter::Type::boolean ? "true|false"
+                                                                    : "range " + values;
                     fmt::print("  {:<22} {:<8} default {:<8} {}  {}\n", p.name, p.type_name(),
-                               defaults.text(), values, p.description);
+                               defaults.text(), listed, p.description);
                 }
             }
         }

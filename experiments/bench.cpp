@@ -19,8 +19,10 @@
 #include "core/statistics.h"
 #include "core/temporal_metrics.h"
 #include "experiments/equal_error.h"
+#include "experiments/process.h"
 #include "experiments/report.h"
 #include "experiments/sequence.h"
+#include "experiments/summary.h"
 #include "frame/frame_loop.h"
 #include "frame/renderer.h"
 #include "gl/platform.h"
@@ -507,25 +509,6 @@ std::optional<Json> read_row(const fs::path& path) {
 
 }  // namespace
 
-int spawn_and_wait(const std::vector<std::string>& arguments) {
-    std::vector<char*> argv;
-    for (const std::string& a : arguments) {
-        argv.push_back(const_cast<char*>(a.c_str()));
-    }
-    argv.push_back(nullptr);
-    pid_t pid = 0;
-    if (const int e = posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ)) {
-        fail("cannot start {}: {}", arguments[0], std::strerror(e));
-    }
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0) {
-        if (errno != EINTR) {
-            fail("waiting for {}: {}", arguments[0], std::strerror(errno));
-        }
-    }
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
 namespace {
 
 // The directory holds one experiment: its effective document is written on the first run and
@@ -571,34 +554,6 @@ std::string cell_label(const Cell& cell) {
 }
 
 }  // namespace
-
-nlohmann::json cell_to_json(const Cell& cell) {
-    nlohmann::json settings = nlohmann::json::array();
-    for (const Setting& s : cell.settings) {
-        settings.push_back({s.name, s.value});
-    }
-    return {{"scene", cell.scene},
-            {"method", cell.method},
-            {"width", cell.width},
-            {"height", cell.height},
-            {"settings", settings}};
-}
-
-Cell cell_from_json(const nlohmann::json& json) {
-    try {
-        Cell cell{json.at("scene").get<std::string>(),
-                  json.at("method").get<std::string>(),
-                  json.at("width").get<int>(),
-                  json.at("height").get<int>(),
-                  {}};
-        for (const auto& s : json.at("settings")) {
-            cell.settings.push_back({s.at(0).get<std::string>(), s.at(1).get<std::string>()});
-        }
-        return cell;
-    } catch (const nlohmann::json::exception& e) {
-        fail("not a cell description: {}", e.what());
-    }
-}
 
 Shard parse_shard(const std::string& text) {
     static const std::regex pattern(R"((\d{1,6})/(\d{1,6}))");

@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/experiment.h"
+#include "experiments/rows.h"
 
 namespace sl::experiments {
 
@@ -62,11 +63,5 @@ void run_cell(const Experiment& experiment, const std::filesystem::path& out,
 // summary outputs there.
 void merge_shards(const std::vector<std::filesystem::path>& shards,
                   const std::filesystem::path& out);
-
-// results.csv, table.md, equal_error.csv, env.json and plots of the rows in `out`.
-void write_summary(const Experiment& experiment, const std::filesystem::path& out);
-
-Cell cell_from_json(const nlohmann::json& json);
-nlohmann::json cell_to_json(const Cell& cell);
 
 }  // namespace sl::experiments

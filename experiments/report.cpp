@@ -25,7 +25,7 @@
 #include "core/error.h"
 #include "core/output_files.h"
 #include "core/statistics.h"
-#include "experiments/bench.h"
+#include "experiments/csv.h"
 #include "experiments/equal_error.h"
 #include "experiments/statistics.h"
 
@@ -40,12 +40,6 @@ using Json = nlohmann::ordered_json;
 
 namespace {
 
-// Values of one parameter ordered as numbers when they are numbers.
-bool value_less(const std::string& a, const std::string& b) {
-    const auto x = parse_number(a), y = parse_number(b);
-    return x && y ? *x < *y : a < b;
-}
-
 template <typename T>
 size_t rank(const std::vector<T>& list, const T& value) {
     return size_t(std::find(list.begin(), list.end(), value) - list.begin());
@@ -53,73 +47,7 @@ size_t rank(const std::vector<T>& list, const T& value) {
 
 }  // namespace
 
-std::string scene_label(const std::string& scene) {
-    if (!scene.ends_with(".toml")) {
-        return scene;
-    }
-    std::string stem = fs::path(scene).stem().string();
-    if (stem.ends_with(".scene")) {
-        stem.resize(stem.size() - 6);
-    }
-    return stem;
-}
-
 namespace {
-
-std::string csv_field(const Json& value) {
-    if (value.is_null()) {
-        return "";
-    }
-    if (value.is_number_float()) {
-        return fmt::format("{}", value.get<double>());
-    }
-    if (!value.is_string()) {
-        return value.dump();
-    }
-    std::string text = value.get<std::string>();
-    if (text.find_first_of(",\"\n") == std::string::npos) {
-        return text;
-    }
-    std::string quoted = "\"";
-    for (const char c : text) {
-        quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    }
-    return quoted + "\"";
-}
-
-// The output of a command, trimmed; empty when it fails.
-std::string command_output(const std::string& command) {
-    std::string output;
-    if (FILE* pipe = popen((command + " 2>/dev/null").c_str(), "r")) {
-        char buffer[256];
-        while (fgets(buffer, sizeof buffer, pipe)) {
-            output += buffer;
-        }
-        if (pclose(pipe) != 0) {
-            return {};
-        }
-    }
-    while (!output.empty() && (output.back() == '\n' || output.back() == ' ')) {
-        output.pop_back();
-    }
-    return output;
-}
-
-std::string proc_field(const char* file, const std::string& key) {
-    std::ifstream in(file);
-    for (std::string line; std::getline(in, line);) {
-        if (line.starts_with(key)) {
-            const size_t colon = line.find_first_of(":=");
-            std::string value = colon == std::string::npos ? "" : line.substr(colon + 1);
-            value.erase(0, value.find_first_not_of(" \t\""));
-            while (!value.empty() && (value.back() == '"' || value.back() == ' ')) {
-                value.pop_back();
-            }
-            return value;
-        }
-    }
-    return {};
-}
 
 // Per cell, over its repetitions: the median frame time with its confidence interval (the
 // bootstrap over repetitions and frames, statistics.h) and the mean error.
@@ -613,177 +541,6 @@ std::string baseline_comparison(const Experiment& x, const fs::path& out,
     return md;
 }
 
-std::vector<StoredRow> load_rows(const Experiment& x, const fs::path& out) {
-    std::vector<StoredRow> rows;
-    if (!fs::is_directory(out / "cells")) {
-        return rows;
-    }
-    for (const auto& entry : fs::directory_iterator(out / "cells")) {
-        const std::string name = entry.path().filename().string();
-        if (name.starts_with(".") || !name.ends_with(".json")) {
-            continue;
-        }
-        std::ifstream file(entry.path());
-        try {
-            const Json json = Json::parse(file);
-            rows.push_back(
-                {cell_from_json(json.at("cell")), json.at("rep").get<int>(), json.at("row")});
-        } catch (const std::exception& e) {
-            fail("{}: not a result row: {}", entry.path().string(), e.what());
-        }
-    }
-    // Sweep order (Experiment::cells(): scene, size, method, then each parameter in the order the
-    // file lists its values, Nilsson's dz 0.5 before 0.1), then repetition. Values the file does
-    // not list (equal-error probes) follow the listed ones, as numbers.
-    auto key = [&](const StoredRow& r) {
-        return std::tuple(rank(x.scenes, r.cell.scene),
-                          rank(x.sizes, std::pair(r.cell.width, r.cell.height)),
-                          rank(x.methods, r.cell.method));
-    };
-    std::map<std::string, std::vector<std::string>> listed;
-    auto value_rank = [&](const std::string& name, const std::string& value) {
-        auto found = listed.find(name);
-        if (found == listed.end()) {
-            found = listed.emplace(name, x.listed_values(name)).first;
-        }
-        const std::vector<std::string>& values = found->second;
-        for (size_t i = 0; i < values.size(); ++i) {
-            if (same_value(values[i], value)) {
-                return i;
-            }
-        }
-        return values.size();
-    };
-    std::map<std::string, size_t> swept;  // cell id → position in the sweep
-    for (const Cell& cell : x.cells()) {
-        swept.emplace(cell.id(), swept.size());
-    }
-    auto position = [&](const StoredRow& r) {
-        const auto found = swept.find(r.cell.id());
-        return found == swept.end() ? swept.size() : found->second;
-    };
-    std::sort(rows.begin(), rows.end(), [&](const StoredRow& a, const StoredRow& b) {
-        if (key(a) != key(b)) {
-            return key(a) < key(b);
-        }
-        if (position(a) != position(b)) {
-            return position(a) < position(b);
-        }
-        const auto& s = a.cell.settings;
-        const auto& t = b.cell.settings;
-        for (size_t i = 0; i < std::min(s.size(), t.size()); ++i) {
-            if (s[i].name != t[i].name) {
-                return s[i].name < t[i].name;
-            }
-            if (!same_value(s[i].value, t[i].value)) {
-                const size_t p = value_rank(s[i].name, s[i].value);
-                const size_t q = value_rank(t[i].name, t[i].value);
-                return p != q ? p < q : value_less(s[i].value, t[i].value);
-            }
-        }
-        if (s.size() != t.size()) {
-            return s.size() < t.size();
-        }
-        return a.rep < b.rep;
-    });
-    return rows;
-}
-
-std::string results_csv(const std::vector<StoredRow>& rows) {
-    // Columns: the fixed ones in this order, then per family in first-seen order.
-    static const std::vector<std::string> head = {
-        "experiment", "cell",   "scene", "method",          "width",       "height",      "params",
-        "rep",        "frames", "fps",   "frame_ms_median", "frame_ms_p5", "frame_ms_p95"};
-    static const std::vector<std::string> middle = {"rel_rmse",
-                                                    "max_abs",
-                                                    "psnr",
-                                                    "ray_frac_lit",
-                                                    "ray_frac_uncertain",
-                                                    "ray_frac_unlit",
-                                                    "volume_frac_lit",
-                                                    "volume_frac_uncertain",
-                                                    "volume_frac_unlit",
-                                                    "lit_crossings",
-                                                    "lit_crossings_visible",
-                                                    "uncertain_span_ratio",
-                                                    "beams",
-                                                    "region_faces",
-                                                    "samples_or_slices",
-                                                    "image"};
-    // Series (an animation's per_frame, the frame times) go to frames.csv, not here.
-    std::vector<std::string> seen;
-    for (const StoredRow& r : rows) {
-        for (const auto& [key, value] : r.row.items()) {
-            if (!value.is_structured() && std::find(seen.begin(), seen.end(), key) == seen.end()) {
-                seen.push_back(key);
-            }
-        }
-    }
-    std::vector<std::string> columns = head;
-    columns.insert(columns.begin() + 3, "scene_file");
-    auto family = [&](const std::string& prefix) {
-        for (const std::string& key : seen) {
-            if (key.starts_with(prefix) && rank(columns, key) == columns.size()) {
-                columns.push_back(key);
-            }
-        }
-    };
-    family("gpu_ms_");
-    family("cpu_ms_");
-    columns.insert(columns.end(), middle.begin(), middle.end());
-    family("stat_");
-    family("param_");
-    family("");
-    std::string csv = fmt::format("{}\n", fmt::join(columns, ","));
-    for (const StoredRow& r : rows) {
-        std::vector<std::string> fields;
-        for (const std::string& column : columns) {
-            // The scene by its name (a scene file by its stem), the file in scene_file.
-            if (column == "scene" || column == "scene_file") {
-                const std::string scene = r.cell.scene;
-                fields.push_back(csv_field(Json(column == "scene"          ? scene_label(scene)
-                                                : scene.ends_with(".toml") ? scene
-                                                                           : std::string())));
-                continue;
-            }
-            fields.push_back(r.row.contains(column) ? csv_field(r.row.at(column)) : "");
-        }
-        csv += fmt::format("{}\n", fmt::join(fields, ","));
-    }
-    return csv;
-}
-
-std::string frames_csv(const std::vector<StoredRow>& rows) {
-    static const std::vector<std::string> series = {"time_s",   "frame_ms",      "update_ms",
-                                                    "apply_ms", "wait_ms",       "draw_ms",
-                                                    "gpu_ms",   "gpu_ms_volume", "rel_rmse"};
-    std::string csv =
-        fmt::format("cell,scene,method,width,height,params,rep,frame,{}\n", fmt::join(series, ","));
-    for (const StoredRow& r : rows) {
-        if (!r.row.contains("per_frame")) {
-            continue;
-        }
-        const Json& f = r.row.at("per_frame");
-        const Json& frames = f.at("frame");
-        for (size_t i = 0; i < frames.size(); ++i) {
-            std::vector<std::string> fields = {csv_field(r.row.at("cell")),
-                                               csv_field(Json(scene_label(r.cell.scene))),
-                                               r.cell.method,
-                                               std::to_string(r.cell.width),
-                                               std::to_string(r.cell.height),
-                                               csv_field(Json(r.cell.settings_text())),
-                                               std::to_string(r.rep),
-                                               frames[i].dump()};
-            for (const std::string& name : series) {
-                fields.push_back(f.contains(name) && i < f[name].size() ? csv_field(f[name][i])
-                                                                        : "");
-            }
-            csv += fmt::format("{}\n", fmt::join(fields, ","));
-        }
-    }
-    return csv;
-}
-
 namespace {
 
 // Animation cells (docs/design.md §11): per cell, over its repetitions, the frame time's median
@@ -1097,62 +854,10 @@ std::string sweep_table(const Experiment& x, const std::vector<StoredRow>& rows)
     return md;
 }
 
-Json environment(const Experiment& x, const std::vector<StoredRow>& rows) {
-    const std::string source = SHAFTLAB_SOURCE_DIR;
-    const std::string sha = command_output("git -C '" + source + "' rev-parse HEAD");
-    const std::string status = command_output("git -C '" + source + "' status --porcelain");
-    char host[256] = {};
-    gethostname(host, sizeof host - 1);
-    const std::time_t now = std::time(nullptr);
-    char date[64];
-    std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-    Json gl = Json::object();
-    if (!rows.empty()) {
-        gl = {{"vendor", rows.front().row.value("gl_vendor", "")},
-              {"renderer", rows.front().row.value("gl_renderer", "")},
-              {"version", rows.front().row.value("gl_version", "")}};
-    }
-    return {
-        {"date", date},
-        {"host", host},
-        {"os", proc_field("/etc/os-release", "PRETTY_NAME")},
-        {"cpu",
-         {{"model", proc_field("/proc/cpuinfo", "model name")},
-          {"cores", std::thread::hardware_concurrency()},
-          {"memory", proc_field("/proc/meminfo", "MemTotal")}}},
-        {"gl", gl},
-        {"compiler",
-         {{"id", SHAFTLAB_CXX_COMPILER},
-          {"flags", SHAFTLAB_CXX_FLAGS},
-          {"build_type", SHAFTLAB_BUILD_TYPE}}},
-        {"libraries",
-         {{"embree", RTC_VERSION_STRING},
-          {"cgal", CGAL_VERSION_STR},
-          {"openexr", OPENEXR_VERSION_STRING},
-          {"tbb", fmt::format("{}.{}", TBB_VERSION_MAJOR, TBB_VERSION_MINOR)},
-          {"glm", GLM_VERSION},
-          {"tomlplusplus", fmt::format("{}.{}.{}", TOML_LIB_MAJOR, TOML_LIB_MINOR, TOML_LIB_PATCH)},
-          {"fmt", FMT_VERSION},
-          {"nlohmann_json",
-           fmt::format("{}.{}.{}", NLOHMANN_JSON_VERSION_MAJOR, NLOHMANN_JSON_VERSION_MINOR,
-                       NLOHMANN_JSON_VERSION_PATCH)}}},
-        {"git",
-         {{"sha", sha.empty() ? Json() : Json(sha)},
-          {"dirty", sha.empty() ? Json() : Json(!status.empty())}}},
-        {"experiment",
-         {{"name", x.name},
-          {"file", x.source.string()},
-          {"text", x.text},
-          {"overrides", x.overrides},
-          {"effective", x.effective}}},
-        {"rows", rows.size()},
-    };
-}
-
-void write_summary(const Experiment& x, const fs::path& out) {
-    const std::vector<StoredRow> rows = load_rows(x, out);
-    const Json env = environment(x, rows);
-    std::string md = fmt::format("# {}\n\n", x.name);
+Report make_report(const Experiment& x, const std::vector<StoredRow>& rows, const Json& env) {
+    Report report;
+    std::string& md = report.markdown;
+    md = fmt::format("# {}\n\n", x.name);
     if (!x.description.empty()) {
         md += x.description + "\n\n";
     }
@@ -1169,11 +874,10 @@ void write_summary(const Experiment& x, const fs::path& out) {
         x.table_metric.empty() ? std::string()
                                : fmt::format(", and in parentheses the {} of I_s against `{}`",
                                              x.table_metric, x.reference));
-    std::string equal_error_csv;
     if (x.equal_error) {
         auto [section, csv] = equal_error_report(x, rows);
         md += section + "\n## All probes\n\n" + probes_table(x, rows);
-        equal_error_csv = std::move(csv);
+        report.equal_error_csv = std::move(csv);
     } else {
         md += sweep_table(x, rows);
         md += animation_table(x, aggregate(rows, x.table_metric));
@@ -1183,30 +887,7 @@ void write_summary(const Experiment& x, const fs::path& out) {
         "inside the light's cone (in front of the first surface) that lie in its lit, uncertain "
         "and unlit regions.\n\n" +
         regions_table(rows) + fragments_table(rows);
-    OutputFiles files(out);
-    files.add_text("results.csv", results_csv(rows));
-    if (x.protocol.animated()) {
-        files.add_text("frames.csv", frames_csv(rows));
-    }
-    files.add_text("table.md", md);
-    files.add_text("env.json", env.dump(2) + "\n");
-    if (x.equal_error) {
-        files.add_text("equal_error.csv", equal_error_csv);
-    }
-    files.commit();
-    if (x.plots && !rows.empty()) {
-        // Debian's interpreter has Debian's matplotlib (python3-matplotlib), whatever is on PATH;
-        // SHAFTLAB_PYTHON names another (a machine whose matplotlib lives elsewhere).
-        const char* chosen = std::getenv("SHAFTLAB_PYTHON");
-        const std::string python = chosen && *chosen                ? chosen
-                                   : fs::exists("/usr/bin/python3") ? "/usr/bin/python3"
-                                                                    : "python3";
-        const int code = spawn_and_wait(
-            {python, std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/plots.py", out.string()});
-        if (code != 0) {
-            fail("experiments/plots.py failed (status {}); is python3-matplotlib installed?", code);
-        }
-    }
+    return report;
 }
 
 }  // namespace sl::experiments

@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/statistics.h"
 #include "experiments/bench.h"
+#include "experiments/csv.h"
 #include "experiments/experiment.h"
 #include "experiments/report.h"
 #include "experiments/sequence.h"

@@ -44,22 +44,6 @@ std::vector<Image> play(const Scene& animated, VolumeMethod& method, FrameMode m
     return images;
 }
 
-double max_abs_difference(const Image& a, const Image& b) {
-    double worst = 0.0;
-    for (size_t i = 0; i < a.rgb.size(); ++i) {
-        worst = std::max(worst, double(std::abs(a.rgb[i] - b.rgb[i])));
-    }
-    return worst;
-}
-
-double peak(const Image& image) {
-    double p = 0.0;
-    for (const float v : image.rgb) {
-        p = std::max(p, double(v));
-    }
-    return p;
-}
-
 // Every method but the reference (its per-frame cost is issue 23's), on each canonical animation:
 // updated to frame k, against prepared on the still scene at t_k by a fresh renderer.
 TEST_F(FrameLoopTest, FrameKOfAnAnimationEqualsTheStillSceneAtItsTime) {
@@ -93,7 +77,8 @@ TEST_F(FrameLoopTest, FrameKOfAnAnimationEqualsTheStillSceneAtItsTime) {
                 renderer.draw(*fresh);
                 const Image expected = renderer.read_in_scattering();
                 // Jitter is off by default, so the frame index leaves no trace.
-                EXPECT_LE(max_abs_difference(updated[i], expected), 1e-5 * (1.0 + peak(expected)))
+                EXPECT_LE(test::max_abs_difference(updated[i], expected),
+                          1e-5 * (1.0 + test::image_peak(expected)))
                     << scene_name << " " << name << " " << clip << " frame " << frames[i];
             }
         }
@@ -117,7 +102,7 @@ TEST_F(FrameLoopTest, PipelinedAndSerialModesGiveTheSameImages) {
                     << scene_name << " " << name << " frame " << frames[i];
             }
             // The frames differ from each other: the scene moves.
-            EXPECT_GT(max_abs_difference(serial.front(), serial.back()), 0.0) << scene_name;
+            EXPECT_GT(test::max_abs_difference(serial.front(), serial.back()), 0.0) << scene_name;
         }
     }
 }

@@ -46,22 +46,6 @@ std::string refusal(Action&& action) {
     return "";
 }
 
-double largest_difference(const Image& a, const Image& b) {
-    double d = 0.0;
-    for (size_t i = 0; i < a.rgb.size(); ++i) {
-        d = std::max(d, std::abs(double(a.rgb[i]) - double(b.rgb[i])));
-    }
-    return d;
-}
-
-double largest(const Image& image) {
-    double p = 0.0;
-    for (const float v : image.rgb) {
-        p = std::max(p, double(v));
-    }
-    return p;
-}
-
 // Each parameter's value written by name (Parameter::text) reads back to the same value; a value
 // outside the parameter's kind is refused with a message naming the method and the parameter
 // (and, for a choice, every choice); an unknown name is refused naming the ones the method has.
@@ -183,7 +167,7 @@ TEST_P(EveryMethod, UpdateToAChangedSceneEqualsAFreshPrepare) {
     fresh->prepare(after);
     renderer.draw(*fresh);
     const Image expected = renderer.read_in_scattering();
-    EXPECT_LE(largest_difference(moved, expected), 1e-5 * (1.0 + largest(expected)));
+    EXPECT_LE(max_abs_difference(moved, expected), 1e-5 * (1.0 + image_peak(expected)));
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, EveryMethod, ::testing::ValuesIn(methods::volume_method_names()),

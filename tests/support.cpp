@@ -366,6 +366,22 @@ void expect_refused(const std::string& method, const std::string& name, const st
     }
 }
 
+double max_abs_difference(const Image& a, const Image& b) {
+    double worst = 0.0;
+    for (size_t i = 0; i < a.rgb.size(); ++i) {
+        worst = std::max(worst, std::abs(double(a.rgb[i]) - double(b.rgb[i])));
+    }
+    return worst;
+}
+
+double image_peak(const Image& image) {
+    double p = 0.0;
+    for (const float v : image.rgb) {
+        p = std::max(p, double(v));
+    }
+    return p;
+}
+
 double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
     const double n = double(x.size());
     double sx = 0, sy = 0, sxx = 0, sxy = 0;

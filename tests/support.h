@@ -125,6 +125,11 @@ Image unoccluded_in_scattering(const Scene& scene, int width, int height);
 void expect_refused(const std::string& method, const std::string& name, const std::string& value,
                     const std::string& words);
 
+// The largest difference of two images of one size, channel by channel, and an image's largest
+// channel value: the two halves of "equal to float rounding" between two renders.
+double max_abs_difference(const Image& a, const Image& b);
+double image_peak(const Image& image);
+
 // Least-squares slope of log(y) over log(x): the order of convergence of an error.
 double log_log_slope(const std::vector<double>& x, const std::vector<double>& y);
 

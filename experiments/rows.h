@@ -1,0 +1,33 @@
+#pragma once
+// The row store of a bench directory: cells/<cell>.rep<r>.json, one result row per cell and
+// repetition, each with the cell it measured. The harness writes them (bench.h); the tables, the
+// CSV and env.json read them back here.
+
+#include <filesystem>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiments/experiment.h"
+
+namespace sl::experiments {
+
+// Every row of the directory, with its cell, in sweep order (scene, size, method, parameters,
+// repetition).
+struct StoredRow {
+    Cell cell;
+    int rep = 0;
+    nlohmann::ordered_json row;
+};
+std::vector<StoredRow> load_rows(const Experiment& experiment, const std::filesystem::path& out);
+
+// A scene as the tables, the CSV's `scene` column, the plots and the progress lines name it: a
+// scene file by its stem without ".scene" ("/…/experiments/toplight-hg.scene.toml" is
+// "toplight-hg"), a name as it is. The cells keep the sweep's own spelling.
+std::string scene_label(const std::string& scene);
+
+// A cell as the row files and process isolation's command line carry it.
+nlohmann::json cell_to_json(const Cell& cell);
+Cell cell_from_json(const nlohmann::json& json);  // throws sl::Error on a malformed one
+
+}  // namespace sl::experiments
