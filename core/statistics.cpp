@@ -6,13 +6,13 @@
 namespace sl {
 
 void collect(NamedSeries& series, const std::vector<std::pair<std::string, double>>& values) {
-    for (const auto& [name, value] : values) {
+    for (const auto& named : values) {
         auto same = std::find_if(series.begin(), series.end(),
-                                 [&](const auto& s) { return s.first == name; });
+                                 [&](const auto& s) { return s.first == named.first; });
         if (same == series.end()) {
-            series.emplace_back(name, std::vector<double>{value});
+            series.emplace_back(named.first, std::vector<double>{named.second});
         } else {
-            same->second.push_back(value);
+            same->second.push_back(named.second);
         }
     }
 }
