@@ -32,6 +32,8 @@
 #include "methods/registry.h"
 #include "reference/cache.h"
 #include "scenes/scene_file.h"
+#include "scenes/variations.h"
+#include "sss/subsurface_pass.h"
 
 extern char** environ;
 
@@ -54,20 +56,41 @@ fs::path row_path(const fs::path& out, const Cell& cell, int rep) {
 }
 
 // What one process keeps between cells: scenes, and the region statistics of each view.
+// The cell's scene variations (scenes/variations.h) as text, "" when it has none: with the scene's
+// name, the key of what depends on the scene alone.
+std::string variations_text(const Cell& cell) {
+    std::string text;
+    for (const Setting& setting : cell.settings) {
+        if (is_scene_variation(setting.name)) {
+            text += fmt::format(";{}={}", setting.name, setting.value);
+        }
+    }
+    return text;
+}
+
 struct Caches {
     std::map<std::string, Scene> scenes;
     std::map<std::tuple<std::string, int, int, bool>, methods::RegionStatistics> regions;
 
-    const Scene& scene(const std::string& name) {
-        auto found = scenes.find(name);
+    // The cell's scene, loaded once, with the cell's variations applied.
+    const Scene& scene(const Cell& cell) {
+        const std::string key = cell.scene + variations_text(cell);
+        auto found = scenes.find(key);
         if (found == scenes.end()) {
-            found = scenes.emplace(name, load_scene(name, SceneSearchPaths::defaults())).first;
+            Scene scene = load_scene(cell.scene, SceneSearchPaths::defaults());
+            for (const Setting& setting : cell.settings) {
+                if (is_scene_variation(setting.name)) {
+                    apply_scene_variation(scene, setting.name, setting.value);
+                }
+            }
+            found = scenes.emplace(key, std::move(scene)).first;
         }
         return found->second;
     }
     // The region statistics of the cell's view (an animation cell: of its first frame).
     const methods::RegionStatistics& region(const Cell& cell, const Scene& view, bool animated) {
-        const auto key = std::make_tuple(cell.scene, cell.width, cell.height, animated);
+        const auto key =
+            std::make_tuple(cell.scene + variations_text(cell), cell.width, cell.height, animated);
         if (!regions.contains(key)) {
             regions[key] = methods::region_statistics(view, cell.width, cell.height);
         }
@@ -86,7 +109,7 @@ struct CellSetup {
 CellSetup set_up(const Experiment& x, const Cell& cell, Caches& caches) {
     CellSetup s;
     const auto start = Clock::now();
-    s.scene = &caches.scene(cell.scene);
+    s.scene = &caches.scene(cell);
     s.load_ms = ms_since(start);
     s.options = {.width = cell.width,
                  .height = cell.height,
@@ -95,7 +118,9 @@ CellSetup set_up(const Experiment& x, const Cell& cell, Caches& caches) {
                             .radius = x.render.pcf_radius}};
     std::vector<std::pair<std::string, std::string>> settings;
     for (const Setting& setting : cell.settings) {
-        settings.emplace_back(setting.name, setting.value);
+        if (!is_scene_variation(setting.name)) {
+            settings.emplace_back(setting.name, setting.value);
+        }
     }
     s.method = methods::create_configured_method(cell.method, s.options.shadow, settings);
     return s;
@@ -245,6 +270,18 @@ void add_tail(Json& row, const Experiment& x, const frame::VolumeMethod& method,
     row["gl_version"] = context.version;
 }
 
+// The translucent objects' splatting (Rohat), when the scene has any: the first material's r_max,
+// the splats drawn and the grid samples of the last frame.
+void add_subsurface(Json& row, const frame::SceneRenderer& renderer) {
+    if (const sss::SubsurfacePass* pass = renderer.subsurface()) {
+        if (!pass->materials().empty()) {
+            row["sss_r_max_mm"] = pass->materials().front().r_max_mm;
+        }
+        row["sss_splat_draws"] = pass->stats().splat_draws;
+        row["sss_grid_samples"] = pass->stats().grid_samples;
+    }
+}
+
 // Renders one still cell and repetition in a fresh GL context and returns its result row.
 Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs::path& out,
                         Caches& caches) {
@@ -284,6 +321,7 @@ Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs
     // psnr is empty when exact (infinite).
     row["psnr"] = metric_value(x, "psnr", error.has_value(), error ? error->psnr : 0.0);
     add_tail(row, x, *s.method, m.statistics, regions, renderer.shadow(), context, image);
+    add_subsurface(row, renderer);
     row["protocol"] = "still";
     row["frame_ms_samples"] = m.frame_ms;  // for the confidence intervals (statistics.h)
     return row;
@@ -470,6 +508,7 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
     row["cpu_ms_region_statistics"] = regions_ms;
     add_sequence_scores(row, x, scores);
     add_tail(row, x, *s.method, method_statistics, regions, renderer.shadow(), context, image);
+    add_subsurface(row, renderer);
     row["protocol"] = "animation";
     row["sequence"] = sequence.description();
     row["frame_mode"] = x.protocol.pipelined ? "pipelined" : "serial";

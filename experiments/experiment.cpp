@@ -14,6 +14,7 @@
 #include "methods/registry.h"
 #include "scenes/scene_file.h"
 #include "scenes/toml_reader.h"
+#include "scenes/variations.h"
 
 namespace sl::experiments {
 
@@ -260,8 +261,9 @@ std::vector<Cell> Experiment::cells() const {
         for (const auto& [width, height] : sizes) {
             for (const std::string& method : methods) {
                 const auto instance = methods::create_volume_method(method);
-                // The swept parameters this method declares; its own lists replace global ones.
-                std::vector<std::pair<std::string, std::vector<std::string>>> axes;
+                // The scene's variations, then the swept parameters this method declares; its own
+                // lists replace global ones.
+                std::vector<std::pair<std::string, std::vector<std::string>>> axes = scene_params;
                 for (const auto& axis : params) {
                     if (instance->has_parameter(axis.first)) {
                         axes.push_back(axis);
@@ -318,6 +320,7 @@ std::vector<std::string> Experiment::listed_values(const std::string& parameter)
             }
         }
     };
+    add(scene_params);
     add(params);
     for (const auto& [method, axes] : method_params) {
         add(axes);
@@ -547,6 +550,20 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
                 x.params.emplace_back(key, std::move(texts));
             }
         }
+        if (const toml::table* scene = r.table("scene")) {
+            TomlTableReader v(*scene, origin, "[sweep.scene]");
+            for (const auto& [key_node, node] : *scene) {
+                const std::string key(key_node.str());
+                std::vector<std::string> texts = values(v, key);
+                for (const std::string& value : texts) {
+                    if (const std::string error = scene_variation_error(key, value);
+                        !error.empty()) {
+                        v.error(key, error);
+                    }
+                }
+                x.scene_params.emplace_back(key, std::move(texts));
+            }
+        }
         r.finish();
     }
     if (const toml::array* exclusions = top.array("exclude")) {
@@ -560,12 +577,14 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
             for (const auto& [key_node, value] : *table) {
                 const std::string key(key_node.str());
                 const bool known =
-                    key == "scene" || key == "method" || key == "size" ||
+                    key == "scene" || key == "method" || key == "size" || is_scene_variation(key) ||
                     std::any_of(x.methods.begin(), x.methods.end(), [&](const std::string& m) {
                         return methods::create_volume_method(m)->has_parameter(key);
                     });
                 if (!known) {
-                    r.error(key, "not scene, method, size or a parameter of a method of the sweep");
+                    r.error(key,
+                            "not scene, method, size, a scene variation or a parameter of a method "
+                            "of the sweep");
                 }
                 exclusion.keys[key] = values(r, key);
             }
@@ -620,14 +639,15 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
             // sweep's methods may be overridden, as for [sweep.params]).
             const auto known = methods::volume_method_names();
             for (const std::string& row : x.table_rows) {
-                if (row == "scene" || row == "size" ||
+                if (row == "scene" || row == "size" || is_scene_variation(row) ||
                     std::any_of(known.begin(), known.end(), [&](const std::string& m) {
                         return methods::create_volume_method(m)->has_parameter(row);
                     })) {
                     continue;
                 }
-                r.error("rows", fmt::format("unknown row {}: expected scene, size or a method's "
-                                            "parameter (see `shaftlab methods`)",
+                r.error("rows", fmt::format("unknown row {}: expected scene, size, a scene "
+                                            "variation or a method's parameter (see `shaftlab "
+                                            "methods`)",
                                             quote(row)));
             }
         }

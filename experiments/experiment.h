@@ -20,6 +20,9 @@
 //   [sweep.params]          dz = [0.5, 0.1], jitter = 0      (a list sweeps, a scalar is fixed;
 //                           applied to every method that declares the parameter)
 //   [sweep.params.march]    samples = [16, 64]               (for one method only)
+//   [sweep.scene]           sss_grid = ["30x29", "40x39"], camera_distance = [0.55, 1]
+//                           (variations of every scene, scenes/variations.h; swept for every
+//                           method, named in cells, tables and exclusions like parameters)
 //   [[exclude]]   method = "hybrid1", size = ["1024x1024"]   (a cell matching every key is
 //                 skipped; keys: scene, method, size, any parameter; values or lists of values)
 //   [reference]   method = "reference" (or "" for none), metrics = ["rel_rmse", "max_abs", "psnr"],
@@ -138,6 +141,8 @@ struct Experiment {
     std::vector<std::pair<std::string, std::vector<std::string>>> params;
     std::map<std::string, std::vector<std::pair<std::string, std::vector<std::string>>>>
         method_params;
+    // Scene variation → values (scenes/variations.h), swept for every method.
+    std::vector<std::pair<std::string, std::vector<std::string>>> scene_params;
     std::vector<Exclusion> exclusions;
 
     std::string reference = "reference";  // empty: no error metrics

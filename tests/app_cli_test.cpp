@@ -442,7 +442,6 @@ TEST(Cli, EveryCommandsEarlyFailureWritesNothing) {
         {"merge " + d + " --out " + out, "not a bench output directory"},
         {"ibl prefilter atlantis --out " + out, "no environment 'atlantis'"},
         {"ibl reference --scene toplight --out " + out, "has no [environment]"},
-        {"sss bench --scene toplight --out " + out, "has no translucent object"},
         {"sss profile --material unobtainium --out " + out, "unknown translucent material"},
         {"sss uniformity --mesh " + d + "/absent.off --out " + out, "absent.off"},
         {"view --scene toplight --method magic --frames 1 --screenshot " + out + "/s.png",

@@ -191,8 +191,8 @@ TEST(Experiment, BadFilesGiveOneErrorNamingTheFileAndKey) {
     EXPECT_NE(parse_error(base, {"protocol.frmes=2"}).find("command line"), std::string::npos);
     // A table row that is neither scene, size nor a parameter was silently dropped (issue 33).
     EXPECT_NE(parse_error(base, {"table.rows=[\"nope\"]"})
-                  .find("[table] rows: unknown row 'nope': expected scene, size or a method's "
-                        "parameter"),
+                  .find("[table] rows: unknown row 'nope': expected scene, size, a scene "
+                        "variation or a method's parameter"),
               std::string::npos);
 }
 
@@ -327,6 +327,68 @@ TEST(Bench, BadExperimentFileIsOneErrorAndWritesNothing) {
                      "/experiments/smoke.toml --shard 3/2 --out " + (dir.path() / "out").string())
             .exit_code,
         0);
+}
+
+// [sweep.scene] sweeps variations of every scene (scenes/variations.h) for every method, named in
+// the cells like parameters; an unknown variation or a value it does not take is one error that
+// names the file, the key and what is allowed.
+TEST(Experiment, SceneVariationsAreSweptForEveryMethodAndChecked) {
+    const std::string text = R"(
+name = "t"
+[sweep]
+scenes = ["sss-bunny"]
+methods = ["none", "march"]
+sizes = ["32x16"]
+[sweep.scene]
+sss_grid = ["8x8", "16x12"]
+camera_distance = [1, 2]
+[sweep.params.march]
+samples = [4, 8]
+)";
+    const std::vector<Cell> cells = parse_experiment(text, "t.toml").cells();
+    ASSERT_EQ(cells.size(), 4u + 8u);  // none: 2 x 2; march: 2 x 2 x 2
+    EXPECT_NE(cells.front().id().find("sss_grid=8x8"), std::string::npos) << cells.front().id();
+    EXPECT_NE(cells.front().id().find("camera_distance=1"), std::string::npos);
+    const std::string unknown = parse_error(text, {"sweep.scene.sss_gird=\"8x8\""});
+    EXPECT_NE(unknown.find("bad.toml"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("sss_gird"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("sss_grid, sss_model"), std::string::npos) << unknown;
+    const std::string grid = parse_error(text, {"sweep.scene.sss_grid=\"8by8\""});
+    EXPECT_NE(grid.find("NxM"), std::string::npos) << grid;
+    const std::string distance = parse_error(text, {"sweep.scene.camera_distance=0"});
+    EXPECT_NE(distance.find("camera_distance"), std::string::npos) << distance;
+    const std::string model = parse_error(text, {"sweep.scene.sss_model=\"tripole\""});
+    EXPECT_NE(model.find("dipole or multipole"), std::string::npos) << model;
+}
+
+// The splatting study (experiments/sss_splats.toml, Rohat's tables as presets) runs in the one
+// harness: each grid is a cell of its own, measured on the scene the variation made (more grid
+// samples for the larger grid), with the subsurface pass's GPU time in its row.
+TEST(Bench, SceneVariationsChangeTheMeasuredScene) {
+    TempDir dir;
+    const std::string file = std::string(SHAFTLAB_SOURCE_DIR) + "/experiments/sss_splats.toml";
+    const CommandResult run =
+        run_shaftlab("bench " + file + " --preset tiny --out " + dir.path().string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const auto csv = read_csv(dir.path() / "results.csv");
+    ASSERT_EQ(csv.size(), 3u);
+    const auto column = [&](const std::string& name) {
+        const auto at = std::find(csv[0].begin(), csv[0].end(), name);
+        EXPECT_NE(at, csv[0].end()) << name;
+        return size_t(at - csv[0].begin());
+    };
+    const size_t samples = column("sss_grid_samples"), subsurface = column("gpu_ms_subsurface");
+    EXPECT_LT(std::stod(csv[1][samples]), std::stod(csv[2][samples]));
+    EXPECT_GE(std::stod(csv[1][subsurface]), 0.0);
+    EXPECT_NE(csv[1][column("params")].find("sss_grid=8x8"), std::string::npos);
+    // A scene without translucent objects cannot take an sss_ variation: the cell fails, naming
+    // why.
+    const CommandResult wrong = run_shaftlab("bench " + file +
+                                             " --preset tiny --set 'sweep.scenes=[\"toplight\"]' "
+                                             "--out " +
+                                             (dir.path() / "wrong").string());
+    EXPECT_NE(wrong.exit_code, 0);
+    EXPECT_NE(wrong.output.find("has no translucent object"), std::string::npos) << wrong.output;
 }
 
 // smoke.toml end to end: every output, every required column, one row per cell.
