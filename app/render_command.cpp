@@ -16,7 +16,9 @@
 #include "gl/platform.h"
 #include "methods/configured_method.h"
 #include "methods/frame_measurement.h"
+#include "methods/region_statistics.h"
 #include "methods/registry.h"
+#include "methods/result_row.h"
 #include "scenes/animation.h"
 #include "scenes/scene_file.h"
 
@@ -64,6 +66,12 @@ int run_render(const RenderArguments& args) {
     const double frame_gpu_ms = measured.gpu_total_ms;
     const frame::ShadowSettings shadow = renderer.shadow();
 
+    // The region statistics of the view, as a harness cell reports them.
+    start = Clock::now();
+    const methods::RegionStatistics regions =
+        methods::region_statistics(scene, options.width, options.height);
+    const double regions_ms = ms_since(start);
+
     // Error against the reference on the I_s buffer, rendered by the same renderer (and cached).
     std::optional<ErrorMetrics> error;
     std::optional<Image> reference_image;
@@ -73,86 +81,45 @@ int run_render(const RenderArguments& args) {
         error = compare_images(frame.in_scattering, *reference_image);
     }
 
+    // One row in the harness's columns (methods/result_row.h), so that a render and a cell of a
+    // sweep report the same quantities under the same names.
     const std::string stem = fmt::format("{}.{}", scene.name, method->name());
-    nlohmann::ordered_json json = {
-        {"scene", scene.name},
-        {"scene_file", scene.source.string()},
-        {"method", method->name()},
-        {"parameters",
-         [&] {
-             nlohmann::ordered_json parameters = nlohmann::ordered_json::object();
-             for (const frame::Parameter& p : method->parameters())
-                 parameters[p.name] = p.type == frame::Parameter::Type::choice
-                                          ? nlohmann::ordered_json(p.text())
-                                      : p.type == frame::Parameter::Type::boolean
-                                          ? nlohmann::ordered_json(p.value != 0.0)
-                                          : nlohmann::ordered_json(p.value);
-             return parameters;
-         }()},
-        {"width", options.width},
-        {"height", options.height},
-        {"shadow",
-         {{"filter", frame::to_string(shadow.filter)},
-          {"radius", shadow.radius},
-          {"map_size", shadow.map_size}}},
-        {"protocol",
-         {{"warmup_frames", args.warmup},
-          {"measured_frames", args.frames},
-          {"statistic", "median"}}},
-        {"gl",
-         {{"renderer", context.renderer},
-          {"version", context.version},
-          {"vendor", context.vendor}}},
-        {"stats", {{"objects", scene.objects.size()}, {"triangles", scene.triangle_count()}}},
-        {"timings_ms",
-         {{"scene_load", load_ms},
-          {"gl_setup", setup_ms},
-          {"method_prepare", prepare_ms},
-          {"frame_cpu", frame.cpu_ms},
-          {"gpu",
-           {{"shadow", frame.gpu.shadow_ms},
-            {"surface", frame.gpu.surface_ms},
-            {"volume", frame.gpu.volume_ms},
-            {"composite", frame.gpu.composite_ms},
-            {"subsurface", frame.gpu.subsurface_ms},
-            {"total", frame_gpu_ms},
-            {"volume_sections",
-             [&] {
-                 nlohmann::ordered_json sections = nlohmann::ordered_json::object();
-                 for (const auto& [name, ms] : frame.gpu.volume_sections)
-                     sections[name] = ms;
-                 return sections;
-             }()}}}}},
-        {"method_statistics",
-         [&] {
-             // Medians over the measured frames.
-             nlohmann::ordered_json values = nlohmann::ordered_json::object();
-             for (const auto& [name, value] : measured.statistics)
-                 values[name] = value;
-             return values;
-         }()},
-        {"files",
-         [&] {
-             std::vector<std::string> files = {stem + ".png", stem + ".exr",
-                                               stem + ".inscatter.exr", stem + ".json"};
-             if (!args.compare.empty() && args.compare != method->name()) {
-                 files.push_back(fmt::format("{}.{}.inscatter.exr", scene.name, args.compare));
-             }
-             return files;
-         }()},
-    };
-
+    std::string params;
+    for (const std::string& setting : args.settings) {
+        params += (params.empty() ? "" : ";") + setting;
+    }
+    methods::Row json =
+        methods::view_columns(scene.name, method->name(), options.width, options.height, params);
+    json["scene_file"] = scene.source.string();
+    methods::add_frame_times(json, args.frames, measured.frame_ms);
+    methods::add_gpu(json, measured.gpu, frame_gpu_ms);
+    json["volume_cost_ms"] =
+        measured.gpu.volume_ms + methods::statistic(measured.statistics, "cpu_ms_frame");
+    json["cpu_ms_scene_load"] = load_ms;
+    json["cpu_ms_gl_setup"] = setup_ms;
+    json["cpu_ms_prepare"] = prepare_ms;
+    json["cpu_ms_region_statistics"] = regions_ms;
+    // JSON has no infinity: an exact match has psnr null; no comparison, all three null.
+    json["rel_rmse"] = error ? methods::Row(error->rel_rmse) : methods::Row();
+    json["max_abs"] = error ? methods::Row(error->max_abs) : methods::Row();
+    json["psnr"] = error && std::isfinite(error->psnr) ? methods::Row(error->psnr) : methods::Row();
+    methods::add_regions(json, regions, measured.statistics);
+    methods::add_method(json, *method, measured.statistics, stem + ".png");
+    methods::add_context(json, shadow, context);
+    json["reference"] = args.compare;
+    json["warmup"] = args.warmup;
+    methods::add_subsurface(json, renderer);
+    json["objects"] = scene.objects.size();
+    json["triangles"] = scene.triangle_count();
     if (args.time) {
         json["time_s"] = *args.time;  // the still frame of the scene's [animation]
     }
-    if (error) {
-        // JSON has no infinity: an exact match has psnr null.
-        json["error"] = {
-            {"against", args.compare},
-            {"rel_rmse", error->rel_rmse},
-            {"max_abs", error->max_abs},
-            {"psnr", std::isfinite(error->psnr) ? nlohmann::json(error->psnr) : nlohmann::json()}};
+    std::vector<std::string> files = {stem + ".png", stem + ".exr", stem + ".inscatter.exr",
+                                      stem + ".json"};
+    if (!args.compare.empty() && args.compare != method->name()) {
+        files.push_back(fmt::format("{}.{}.inscatter.exr", scene.name, args.compare));
     }
+    json["files"] = files;
     OutputFiles outputs(args.out);
     outputs.add(stem + ".png", [&](const std::filesystem::path& path) {
         write_png(frame.display_srgb8, options.width, options.height, path);

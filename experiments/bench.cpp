@@ -30,6 +30,7 @@
 #include "methods/frame_measurement.h"
 #include "methods/region_statistics.h"
 #include "methods/registry.h"
+#include "methods/result_row.h"
 #include "reference/cache.h"
 #include "scenes/scene_file.h"
 #include "scenes/variations.h"
@@ -174,43 +175,12 @@ std::string write_images(const Experiment& x, const Cell& cell, int rep, const f
 
 Json row_head(const Experiment& x, const Cell& cell, int rep, int frames,
               const std::vector<double>& frame_ms) {
-    const double median_ms = median(frame_ms);
-    return {
-        {"experiment", x.name},
-        {"cell", cell.id()},
-        {"scene", cell.scene},
-        {"method", cell.method},
-        {"width", cell.width},
-        {"height", cell.height},
-        {"params", cell.settings_text()},
-        {"rep", rep},
-        {"frames", frames},
-        {"fps", 1000.0 / median_ms},
-        {"frame_ms_median", median_ms},
-        {"frame_ms_p5", percentile(frame_ms, 5.0)},
-        {"frame_ms_p95", percentile(frame_ms, 95.0)},
-    };
-}
-
-void add_gpu(Json& row, const frame::PassTimings& gpu, double total_ms) {
-    row["gpu_ms_total"] = total_ms;
-    row["gpu_ms_shadow"] = gpu.shadow_ms;
-    row["gpu_ms_surface"] = gpu.surface_ms;
-    row["gpu_ms_volume"] = gpu.volume_ms;
-    row["gpu_ms_composite"] = gpu.composite_ms;
-    row["gpu_ms_subsurface"] = gpu.subsurface_ms;
-    for (const auto& [section, ms] : gpu.volume_sections) {
-        row["gpu_ms_volume_" + section] = ms;
-    }
-}
-
-double statistic(const frame::MethodStatistics& statistics, const std::string& name) {
-    for (const auto& [key, value] : statistics) {
-        if (key == name) {
-            return value;
-        }
-    }
-    return 0.0;
+    Json row = {{"experiment", x.name}, {"cell", cell.id()}};
+    row.update(methods::view_columns(cell.scene, cell.method, cell.width, cell.height,
+                                     cell.settings_text()));
+    row["rep"] = rep;
+    methods::add_frame_times(row, frames, frame_ms);
+    return row;
 }
 
 Json metric_value(const Experiment& x, const char* name, bool scored, double value) {
@@ -219,67 +189,19 @@ Json metric_value(const Experiment& x, const char* name, bool scored, double val
     return wanted && std::isfinite(value) ? Json(value) : Json();
 }
 
-// The region statistics, the method's counters and parameters, the shadow map and the context.
+// The region statistics, the method's counters and parameters, the shadow map, the context and
+// the harness's own settings.
 void add_tail(Json& row, const Experiment& x, const frame::VolumeMethod& method,
               const frame::MethodStatistics& statistics, const methods::RegionStatistics& regions,
-              const frame::ShadowSettings& shadow, const gl::ContextInfo& context,
+              const frame::SceneRenderer& renderer, const gl::ContextInfo& context,
               const std::string& image) {
-    row["cpu_ms_beamtree_regions"] = regions.build_ms;
-    for (const auto& [name, value] : statistics) {
-        if (name.starts_with("cpu_ms_")) {
-            row[name] = value;
-        }
-    }
-    for (size_t r = 0; r < 3; ++r) {
-        const char* region = std::array{"lit", "uncertain", "unlit"}[r];
-        row[fmt::format("ray_frac_{}", region)] = regions.ray_fraction[r];
-        row[fmt::format("volume_frac_{}", region)] = regions.volume_fraction[r];
-    }
-    row["lit_crossings"] = regions.lit_crossings;
-    row["lit_crossings_visible"] = regions.lit_crossings_visible;
-    row["uncertain_span_ratio"] = regions.uncertain_span_ratio;
-    row["beams"] = regions.beams;
-    row["region_faces"] = regions.region_faces;
-    Json samples_or_slices;
-    for (const auto& [name, value] : statistics) {
-        if (name == "slices") {
-            samples_or_slices = value;
-        }
-    }
-    if (samples_or_slices.is_null() && method.has_parameter("samples")) {
-        samples_or_slices = method.number("samples");
-    }
-    row["samples_or_slices"] = samples_or_slices;
-    row["image"] = image;
-    for (const auto& [name, value] : statistics) {
-        if (!name.starts_with("cpu_ms_")) {
-            row["stat_" + name] = value;
-        }
-    }
-    for (const frame::Parameter& p : method.parameters()) {
-        row["param_" + p.name] = p.text();
-    }
-    row["shadow"] = frame::to_string(shadow.filter);
-    row["shadow_map_size"] = shadow.map_size;
-    row["shadow_radius"] = shadow.radius;
+    methods::add_regions(row, regions, statistics);
+    methods::add_method(row, method, statistics, image);
+    methods::add_context(row, renderer.shadow(), context);
     row["reference"] = x.reference;
     row["isolation"] = x.protocol.isolation == Isolation::process ? "process" : "context";
     row["warmup"] = x.protocol.warmup;
-    row["gl_vendor"] = context.vendor;
-    row["gl_renderer"] = context.renderer;
-    row["gl_version"] = context.version;
-}
-
-// The translucent objects' splatting (Rohat), when the scene has any: the first material's r_max,
-// the splats drawn and the grid samples of the last frame.
-void add_subsurface(Json& row, const frame::SceneRenderer& renderer) {
-    if (const sss::SubsurfacePass* pass = renderer.subsurface()) {
-        if (!pass->materials().empty()) {
-            row["sss_r_max_mm"] = pass->materials().front().r_max_mm;
-        }
-        row["sss_splat_draws"] = pass->stats().splat_draws;
-        row["sss_grid_samples"] = pass->stats().grid_samples;
-    }
+    methods::add_subsurface(row, renderer);
 }
 
 // Renders one still cell and repetition in a fresh GL context and returns its result row.
@@ -308,10 +230,10 @@ Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs
     const std::string image = write_images(x, cell, rep, out, frame);
 
     Json row = row_head(x, cell, rep, x.protocol.frames, m.frame_ms);
-    add_gpu(row, m.gpu, m.gpu_total_ms);
+    methods::add_gpu(row, m.gpu, m.gpu_total_ms);
     // The volume cost (docs/design.md §11): the volume pass's GPU time plus the method's CPU work
     // per frame (slicing and partitioning sampling planes); what the regions must make cheaper.
-    row["volume_cost_ms"] = m.gpu.volume_ms + statistic(m.statistics, "cpu_ms_frame");
+    row["volume_cost_ms"] = m.gpu.volume_ms + methods::statistic(m.statistics, "cpu_ms_frame");
     row["cpu_ms_scene_load"] = s.load_ms;
     row["cpu_ms_gl_setup"] = setup_ms;
     row["cpu_ms_prepare"] = prepare_ms;
@@ -320,8 +242,7 @@ Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs
     row["max_abs"] = metric_value(x, "max_abs", error.has_value(), error ? error->max_abs : 0.0);
     // psnr is empty when exact (infinite).
     row["psnr"] = metric_value(x, "psnr", error.has_value(), error ? error->psnr : 0.0);
-    add_tail(row, x, *s.method, m.statistics, regions, renderer.shadow(), context, image);
-    add_subsurface(row, renderer);
+    add_tail(row, x, *s.method, m.statistics, regions, renderer, context, image);
     row["protocol"] = "still";
     row["frame_ms_samples"] = m.frame_ms;  // for the confidence intervals (statistics.h)
     return row;
@@ -493,9 +414,9 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
         size_t(std::max_element(frame_ms.begin(), frame_ms.end()) - frame_ms.begin());
     row["frame_ms_worst"] = frame_ms[slowest];
     row["frame_worst"] = int(slowest);
-    add_gpu(row, gpu, passes.total_median());
+    methods::add_gpu(row, gpu, passes.total_median());
     row["volume_cost_ms"] =
-        gpu.volume_ms + statistic(method_statistics, "cpu_ms_frame") + median(critical);
+        gpu.volume_ms + methods::statistic(method_statistics, "cpu_ms_frame") + median(critical);
     row["cpu_ms_update"] = median(series([](const auto& r) { return r.update_ms; }));
     row["cpu_ms_update_p95"] = percentile(series([](const auto& r) { return r.update_ms; }), 95.0);
     row["cpu_ms_apply"] = median(series([](const auto& r) { return r.apply_ms; }));
@@ -507,8 +428,7 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
     row["cpu_ms_prepare"] = prepare_ms;
     row["cpu_ms_region_statistics"] = regions_ms;
     add_sequence_scores(row, x, scores);
-    add_tail(row, x, *s.method, method_statistics, regions, renderer.shadow(), context, image);
-    add_subsurface(row, renderer);
+    add_tail(row, x, *s.method, method_statistics, regions, renderer, context, image);
     row["protocol"] = "animation";
     row["sequence"] = sequence.description();
     row["frame_mode"] = x.protocol.pipelined ? "pipelined" : "serial";
