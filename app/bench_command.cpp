@@ -12,8 +12,10 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/output_files.h"
+#include "experiments/baseline.h"
 #include "experiments/bench.h"
 #include "experiments/report.h"
+#include "experiments/tables.h"
 
 namespace sl::app {
 

@@ -17,12 +17,14 @@
 
 #include "core/error.h"
 #include "core/statistics.h"
+#include "experiments/baseline.h"
 #include "experiments/bench.h"
 #include "experiments/csv.h"
 #include "experiments/experiment.h"
 #include "experiments/report.h"
 #include "experiments/sequence.h"
 #include "experiments/statistics.h"
+#include "experiments/tables.h"
 #include "reference/cache.h"
 #include "scenes/scene_file.h"
 

@@ -14,10 +14,12 @@
 
 #include "core/error.h"
 #include "core/statistics.h"
+#include "experiments/baseline.h"
 #include "experiments/bench.h"
 #include "experiments/equal_error.h"
 #include "experiments/experiment.h"
 #include "experiments/report.h"
+#include "experiments/tables.h"
 
 #include "tests/support.h"
 
