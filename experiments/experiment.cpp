@@ -336,236 +336,181 @@ fs::path Experiment::output_directory() const {
     return path;
 }
 
-Experiment parse_experiment(const std::string& text, const std::string& origin,
-                            const std::vector<std::string>& presets,
-                            const std::vector<std::string>& overrides) {
-    toml::table root;
+namespace {
+
+// [protocol]: what a cell measures and how often (still or animation, frames, repetitions,
+// isolation, order).
+void read_protocol(const toml::table& table, const std::string& origin, Experiment& x) {
+    TomlTableReader r(table, origin, "[protocol]");
+    const std::string kind = r.string("kind", "still");
+    if (kind != "still" && kind != "animation") {
+        r.error("kind", fmt::format("{}: expected \"still\" (one frame measured again and "
+                                    "again) or \"animation\" (the scene played frame by "
+                                    "frame)",
+                                    quote(kind)));
+    }
+    x.protocol.kind = kind == "animation" ? ProtocolKind::animation : ProtocolKind::still;
+    const bool animated = x.protocol.animated();
+    x.protocol.warmup = r.integer_in("warmup", x.protocol.warmup, 0, 1000);
+    x.protocol.frames =
+        r.integer_in("frames", animated ? 0 : x.protocol.frames, animated ? 0 : 1, 100000);
+    if (animated) {
+        x.protocol.step = r.number_in("step", 0.0, 0.0, 3600.0);
+        x.protocol.orbit_degrees = r.number_in("orbit_degrees", 90.0, -3600.0, 3600.0);
+        const std::string mode = r.string("frame_mode", "serial");
+        if (mode != "serial" && mode != "pipelined") {
+            r.error("frame_mode",
+                    fmt::format("{}: expected \"serial\" or \"pipelined\"", quote(mode)));
+        }
+        x.protocol.pipelined = mode == "pipelined";
+    } else {
+        for (const char* key : {"step", "orbit_degrees", "frame_mode"}) {
+            if (r.has(key)) {
+                r.error(key, "only for kind = \"animation\"");
+            }
+        }
+    }
+    x.protocol.repetitions = r.integer_in("repetitions", x.protocol.repetitions, 1, 1000);
+    const std::string isolation = r.string("isolation", "context");
+    if (isolation != "context" && isolation != "process") {
+        r.error("isolation", fmt::format("{}: expected \"context\" (a fresh GL context per "
+                                         "repetition) or \"process\" (a fresh process)",
+                                         quote(isolation)));
+    }
+    x.protocol.isolation = isolation == "process" ? Isolation::process : Isolation::context;
+    const std::string order = r.string("order", "sweep");
+    if (order != "sweep" && order != "shuffled") {
+        r.error("order", fmt::format("{}: expected \"sweep\" or \"shuffled\"", quote(order)));
+    }
+    x.protocol.order_shuffled = order == "shuffled";
+    x.protocol.seed = uint64_t(r.integer_in("seed", 1, 0, 1 << 30));
+    r.finish();
+}
+
+// [render]: the frame's shadow map.
+void read_render(const toml::table& table, const std::string& origin, Experiment& x) {
+    TomlTableReader r(table, origin, "[render]");
+    x.render.shadow = r.string("shadow", x.render.shadow);
     try {
-        root = toml::parse(text, origin);
-    } catch (const toml::parse_error& e) {
-        fail("{}:{}: {}", origin, e.source().begin.line, e.description());
+        frame::parse_shadow_filter(x.render.shadow);
+    } catch (const Error& e) {
+        r.error("shadow", e.what());
     }
-    Experiment x;
-    x.source = origin;
-    x.text = text;
+    x.render.shadow_map_size = r.integer_in("shadow_map_size", x.render.shadow_map_size, 16, 16384);
+    x.render.pcf_radius = r.integer_in("pcf_radius", x.render.pcf_radius, 0, 8);
+    r.finish();
+}
 
-    // Presets, then --set overrides, into the document itself: they are read and validated
-    // exactly like the file.
-    const toml::table* preset_tables = root["presets"].as_table();
-    for (const std::string& preset : presets) {
-        const toml::table* table = preset_tables ? (*preset_tables)[preset].as_table() : nullptr;
-        if (!table) {
-            std::vector<std::string> known;
-            if (preset_tables) {
-                for (const auto& [key, node] : *preset_tables) {
-                    known.emplace_back(key.str());
-                }
-            }
-            fail("{}: unknown preset {} (presets: {})", origin, quote(preset),
-                 known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", ")));
-        }
-        const toml::table copy = *table;  // set_path changes `root`, which holds `table`
-        std::vector<std::pair<std::string, const toml::node*>> paths;
-        flatten(copy, "", paths);
-        for (const auto& [path, node] : paths) {
-            if (path.starts_with("presets")) {
-                fail("{}: preset {} may not set presets", origin, quote(preset));
-            }
-            set_path(root, path, *node, origin);
-        }
-        x.overrides.push_back("preset " + preset);
+// [sweep]: scenes, methods, sizes, [sweep.params] (global and per method) and [sweep.scene].
+void read_sweep(TomlTableReader& top, const std::string& origin, Experiment& x) {
+    const toml::table* sweep = top.table("sweep");
+    if (!sweep) {
+        top.error("sweep", "missing: an experiment needs [sweep] scenes, methods and sizes");
     }
-    for (const std::string& override_text : overrides) {
-        const size_t equals = override_text.find('=');
-        if (equals == std::string::npos || equals == 0) {
-            fail("--set {}: expected KEY.PATH=VALUE", quote(override_text));
+    TomlTableReader r(*sweep, origin, "[sweep]");
+    x.scenes = strings(r, "scenes");
+    x.methods = strings(r, "methods");
+    for (const auto& [key, list] :
+         {std::pair{"scenes", &x.scenes}, std::pair{"methods", &x.methods}}) {
+        if (list->empty()) {
+            r.error(key, "missing: the sweep needs at least one");
         }
-        const std::string path = override_text.substr(0, equals);
-        const toml::table value = parse_override_value(override_text.substr(equals + 1));
-        set_path(root, path, *value.get("value"), origin);
-        x.overrides.push_back(override_text);
     }
-
-    TomlTableReader top(root, origin, "");
-    x.name = top.string("name");
-    if (!std::regex_match(x.name, std::regex("[A-Za-z0-9_.-]+"))) {
-        top.error("name", "use letters, digits, '_', '-' and '.' only (it names files)");
-    }
-    x.description = top.string("description", "");
-    x.out = top.string("out", x.out);
-    top.table("presets");  // applied above
-
-    const toml::table empty;
-    auto section = [&](std::string_view key) -> const toml::table& {
-        const toml::table* table = top.table(key);
-        return table ? *table : empty;
-    };
-    {
-        TomlTableReader r(section("protocol"), origin, "[protocol]");
-        const std::string kind = r.string("kind", "still");
-        if (kind != "still" && kind != "animation") {
-            r.error("kind", fmt::format("{}: expected \"still\" (one frame measured again and "
-                                        "again) or \"animation\" (the scene played frame by "
-                                        "frame)",
-                                        quote(kind)));
+    const fs::path folder = fs::path(origin).parent_path();
+    for (std::string& scene : x.scenes) {
+        // A scene file named relative to the experiment file is found beside it first.
+        std::error_code ec;
+        if (scene.ends_with(".toml") && fs::path(scene).is_relative() && !folder.empty() &&
+            fs::is_regular_file(folder / scene, ec)) {
+            scene = (folder / scene).lexically_normal().string();
         }
-        x.protocol.kind = kind == "animation" ? ProtocolKind::animation : ProtocolKind::still;
-        const bool animated = x.protocol.animated();
-        x.protocol.warmup = r.integer_in("warmup", x.protocol.warmup, 0, 1000);
-        x.protocol.frames =
-            r.integer_in("frames", animated ? 0 : x.protocol.frames, animated ? 0 : 1, 100000);
-        if (animated) {
-            x.protocol.step = r.number_in("step", 0.0, 0.0, 3600.0);
-            x.protocol.orbit_degrees = r.number_in("orbit_degrees", 90.0, -3600.0, 3600.0);
-            const std::string mode = r.string("frame_mode", "serial");
-            if (mode != "serial" && mode != "pipelined") {
-                r.error("frame_mode",
-                        fmt::format("{}: expected \"serial\" or \"pipelined\"", quote(mode)));
-            }
-            x.protocol.pipelined = mode == "pipelined";
-        } else {
-            for (const char* key : {"step", "orbit_degrees", "frame_mode"}) {
-                if (r.has(key)) {
-                    r.error(key, "only for kind = \"animation\"");
-                }
-            }
-        }
-        x.protocol.repetitions = r.integer_in("repetitions", x.protocol.repetitions, 1, 1000);
-        const std::string isolation = r.string("isolation", "context");
-        if (isolation != "context" && isolation != "process") {
-            r.error("isolation", fmt::format("{}: expected \"context\" (a fresh GL context per "
-                                             "repetition) or \"process\" (a fresh process)",
-                                             quote(isolation)));
-        }
-        x.protocol.isolation = isolation == "process" ? Isolation::process : Isolation::context;
-        const std::string order = r.string("order", "sweep");
-        if (order != "sweep" && order != "shuffled") {
-            r.error("order", fmt::format("{}: expected \"sweep\" or \"shuffled\"", quote(order)));
-        }
-        x.protocol.order_shuffled = order == "shuffled";
-        x.protocol.seed = uint64_t(r.integer_in("seed", 1, 0, 1 << 30));
-        r.finish();
-    }
-    {
-        TomlTableReader r(section("render"), origin, "[render]");
-        x.render.shadow = r.string("shadow", x.render.shadow);
         try {
-            frame::parse_shadow_filter(x.render.shadow);
+            const Scene loaded = load_scene(scene, SceneSearchPaths::defaults());
+            if (x.protocol.animated()) {
+                Sequence{loaded, x.protocol};  // frames and step fit its animation
+            }
         } catch (const Error& e) {
-            r.error("shadow", e.what());
+            r.error("scenes", e.what());
         }
-        x.render.shadow_map_size =
-            r.integer_in("shadow_map_size", x.render.shadow_map_size, 16, 16384);
-        x.render.pcf_radius = r.integer_in("pcf_radius", x.render.pcf_radius, 0, 8);
-        r.finish();
     }
-    {
-        const toml::table* sweep = top.table("sweep");
-        if (!sweep) {
-            top.error("sweep", "missing: an experiment needs [sweep] scenes, methods and sizes");
+    for (const std::string& method : x.methods) {
+        try {
+            methods::create_volume_method(method);
+        } catch (const Error& e) {
+            r.error("methods", e.what());
         }
-        TomlTableReader r(*sweep, origin, "[sweep]");
-        x.scenes = strings(r, "scenes");
-        x.methods = strings(r, "methods");
-        for (const auto& [key, list] :
-             {std::pair{"scenes", &x.scenes}, std::pair{"methods", &x.methods}}) {
-            if (list->empty()) {
-                r.error(key, "missing: the sweep needs at least one");
-            }
-        }
-        const fs::path folder = fs::path(origin).parent_path();
-        for (std::string& scene : x.scenes) {
-            // A scene file named relative to the experiment file is found beside it first.
-            std::error_code ec;
-            if (scene.ends_with(".toml") && fs::path(scene).is_relative() && !folder.empty() &&
-                fs::is_regular_file(folder / scene, ec)) {
-                scene = (folder / scene).lexically_normal().string();
-            }
-            try {
-                const Scene loaded = load_scene(scene, SceneSearchPaths::defaults());
-                if (x.protocol.animated()) {
-                    Sequence{loaded, x.protocol};  // frames and step fit its animation
-                }
-            } catch (const Error& e) {
-                r.error("scenes", e.what());
-            }
-        }
-        for (const std::string& method : x.methods) {
-            try {
-                methods::create_volume_method(method);
-            } catch (const Error& e) {
-                r.error("methods", e.what());
-            }
-        }
-        std::vector<std::string> sizes = values(r, "sizes");
-        if (sizes.empty()) {
-            r.error("sizes", "missing: the sweep needs at least one size, e.g. [\"256x256\"]");
-        }
-        for (const std::string& size : sizes) {
-            x.sizes.push_back(parse_size_value(r, "sizes", size));
-        }
-        if (const toml::table* params = r.table("params")) {
-            TomlTableReader p(*params, origin, "[sweep.params]");
-            for (const auto& [key_node, node] : *params) {
-                const std::string key(key_node.str());
-                if (const toml::table* own = node.as_table()) {
-                    p.take(key);
-                    const auto known = methods::volume_method_names();
-                    if (std::find(known.begin(), known.end(), key) == known.end()) {
-                        p.error(key, fmt::format("a table of parameters must be named after a "
-                                                 "method (known: {})",
-                                                 fmt::join(known, ", ")));
-                    }
-                    if (std::find(x.methods.begin(), x.methods.end(), key) == x.methods.end()) {
-                        continue;  // not swept (e.g. --set sweep.methods=...): not applied
-                    }
-                    TomlTableReader m(*own, origin, "[sweep.params." + key + "]");
-                    for (const auto& [name_node, value] : *own) {
-                        const std::string name(name_node.str());
-                        std::vector<std::string> texts = values(m, name);
-                        check_method_parameter(key, name, texts, m);
-                        x.method_params[key].emplace_back(name, std::move(texts));
-                    }
-                    continue;
-                }
-                std::vector<std::string> texts = values(p, key);
-                bool declared = false;
-                for (const std::string& method : x.methods) {
-                    if (methods::create_volume_method(method)->has_parameter(key)) {
-                        check_method_parameter(method, key, texts, p);
-                        declared = true;
-                    }
-                }
-                if (!declared) {
-                    // A parameter of no swept method is fine when some method has it (the sweep's
-                    // methods may have been overridden); otherwise it is a typo.
-                    const auto known = methods::volume_method_names();
-                    if (std::none_of(known.begin(), known.end(), [&](const std::string& m) {
-                            return methods::create_volume_method(m)->has_parameter(key);
-                        })) {
-                        p.error(key, "no method has this parameter (see `shaftlab methods`)");
-                    }
-                    continue;
-                }
-                x.params.emplace_back(key, std::move(texts));
-            }
-        }
-        if (const toml::table* scene = r.table("scene")) {
-            TomlTableReader v(*scene, origin, "[sweep.scene]");
-            for (const auto& [key_node, node] : *scene) {
-                const std::string key(key_node.str());
-                std::vector<std::string> texts = values(v, key);
-                for (const std::string& value : texts) {
-                    if (const std::string error = scene_variation_error(key, value);
-                        !error.empty()) {
-                        v.error(key, error);
-                    }
-                }
-                x.scene_params.emplace_back(key, std::move(texts));
-            }
-        }
-        r.finish();
     }
+    std::vector<std::string> sizes = values(r, "sizes");
+    if (sizes.empty()) {
+        r.error("sizes", "missing: the sweep needs at least one size, e.g. [\"256x256\"]");
+    }
+    for (const std::string& size : sizes) {
+        x.sizes.push_back(parse_size_value(r, "sizes", size));
+    }
+    if (const toml::table* params = r.table("params")) {
+        TomlTableReader p(*params, origin, "[sweep.params]");
+        for (const auto& [key_node, node] : *params) {
+            const std::string key(key_node.str());
+            if (const toml::table* own = node.as_table()) {
+                p.take(key);
+                const auto known = methods::volume_method_names();
+                if (std::find(known.begin(), known.end(), key) == known.end()) {
+                    p.error(key, fmt::format("a table of parameters must be named after a "
+                                             "method (known: {})",
+                                             fmt::join(known, ", ")));
+                }
+                if (std::find(x.methods.begin(), x.methods.end(), key) == x.methods.end()) {
+                    continue;  // not swept (e.g. --set sweep.methods=...): not applied
+                }
+                TomlTableReader m(*own, origin, "[sweep.params." + key + "]");
+                for (const auto& [name_node, value] : *own) {
+                    const std::string name(name_node.str());
+                    std::vector<std::string> texts = values(m, name);
+                    check_method_parameter(key, name, texts, m);
+                    x.method_params[key].emplace_back(name, std::move(texts));
+                }
+                continue;
+            }
+            std::vector<std::string> texts = values(p, key);
+            bool declared = false;
+            for (const std::string& method : x.methods) {
+                if (methods::create_volume_method(method)->has_parameter(key)) {
+                    check_method_parameter(method, key, texts, p);
+                    declared = true;
+                }
+            }
+            if (!declared) {
+                // A parameter of no swept method is fine when some method has it (the sweep's
+                // methods may have been overridden); otherwise it is a typo.
+                const auto known = methods::volume_method_names();
+                if (std::none_of(known.begin(), known.end(), [&](const std::string& m) {
+                        return methods::create_volume_method(m)->has_parameter(key);
+                    })) {
+                    p.error(key, "no method has this parameter (see `shaftlab methods`)");
+                }
+                continue;
+            }
+            x.params.emplace_back(key, std::move(texts));
+        }
+    }
+    if (const toml::table* scene = r.table("scene")) {
+        TomlTableReader v(*scene, origin, "[sweep.scene]");
+        for (const auto& [key_node, node] : *scene) {
+            const std::string key(key_node.str());
+            std::vector<std::string> texts = values(v, key);
+            for (const std::string& value : texts) {
+                if (const std::string error = scene_variation_error(key, value); !error.empty()) {
+                    v.error(key, error);
+                }
+            }
+            x.scene_params.emplace_back(key, std::move(texts));
+        }
+    }
+    r.finish();
+}
+
+// [[exclude]]: cells removed from the sweep.
+void read_exclusions(TomlTableReader& top, const std::string& origin, Experiment& x) {
     if (const toml::array* exclusions = top.array("exclude")) {
         for (const toml::node& node : *exclusions) {
             const toml::table* table = node.as_table();
@@ -594,73 +539,83 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
             x.exclusions.push_back(std::move(exclusion));
         }
     }
-    {
-        TomlTableReader r(section("reference"), origin, "[reference]");
-        x.reference = r.string("method", x.reference);
-        if (!x.reference.empty()) {
-            try {
-                methods::create_volume_method(x.reference);
-            } catch (const Error& e) {
-                r.error("method", e.what());
-            }
+}
+
+// [reference]: the method the images are scored against, the metrics and the animation scoring.
+void read_reference(const toml::table& table, const std::string& origin, Experiment& x) {
+    TomlTableReader r(table, origin, "[reference]");
+    x.reference = r.string("method", x.reference);
+    if (!x.reference.empty()) {
+        try {
+            methods::create_volume_method(x.reference);
+        } catch (const Error& e) {
+            r.error("method", e.what());
         }
-        for (const char* key : {"stride", "pop_factor", "pop_floor"}) {
-            if (r.has(key) && !x.protocol.animated()) {
-                r.error(key, "only for [protocol] kind = \"animation\"");
-            }
-        }
-        x.scoring.stride = r.integer_in("stride", x.scoring.stride, 1, 100000);
-        x.scoring.pop_factor = r.number_in("pop_factor", x.scoring.pop_factor, 1.01, 1e6);
-        x.scoring.pop_floor = r.number_in("pop_floor", x.scoring.pop_floor, 0.0, 1.0);
-        if (r.has("metrics")) {
-            x.metrics = strings(r, "metrics");
-            for (const std::string& metric : x.metrics) {
-                if (metric != "rel_rmse" && metric != "max_abs" && metric != "psnr") {
-                    r.error("metrics", fmt::format("unknown metric {} (rel_rmse, max_abs, psnr)",
-                                                   quote(metric)));
-                }
-            }
-        }
-        r.finish();
     }
-    {
-        TomlTableReader r(section("outputs"), origin, "[outputs]");
-        x.images = r.boolean("images", x.images);
-        x.previews = r.boolean("previews", x.previews);
-        x.preview_max_size = r.integer_in("preview_max_size", x.preview_max_size, 1, 16384);
-        x.plots = r.boolean("plots", x.plots);
-        r.finish();
+    for (const char* key : {"stride", "pop_factor", "pop_floor"}) {
+        if (r.has(key) && !x.protocol.animated()) {
+            r.error(key, "only for [protocol] kind = \"animation\"");
+        }
     }
-    {
-        TomlTableReader r(section("table"), origin, "[table]");
-        if (r.has("rows")) {
-            x.table_rows = strings(r, "rows");
-            // A row dimension is the scene, the size or a parameter some method declares (the
-            // sweep's methods may be overridden, as for [sweep.params]).
-            const auto known = methods::volume_method_names();
-            for (const std::string& row : x.table_rows) {
-                if (row == "scene" || row == "size" || is_scene_variation(row) ||
-                    std::any_of(known.begin(), known.end(), [&](const std::string& m) {
-                        return methods::create_volume_method(m)->has_parameter(row);
-                    })) {
-                    continue;
-                }
-                r.error("rows", fmt::format("unknown row {}: expected scene, size, a scene "
-                                            "variation or a method's parameter (see `shaftlab "
-                                            "methods`)",
-                                            quote(row)));
+    x.scoring.stride = r.integer_in("stride", x.scoring.stride, 1, 100000);
+    x.scoring.pop_factor = r.number_in("pop_factor", x.scoring.pop_factor, 1.01, 1e6);
+    x.scoring.pop_floor = r.number_in("pop_floor", x.scoring.pop_floor, 0.0, 1.0);
+    if (r.has("metrics")) {
+        x.metrics = strings(r, "metrics");
+        for (const std::string& metric : x.metrics) {
+            if (metric != "rel_rmse" && metric != "max_abs" && metric != "psnr") {
+                r.error("metrics",
+                        fmt::format("unknown metric {} (rel_rmse, max_abs, psnr)", quote(metric)));
             }
         }
-        x.table_metric = r.string("metric", x.table_metric);
-        if (x.reference.empty() ||
-            std::find(x.metrics.begin(), x.metrics.end(), x.table_metric) == x.metrics.end()) {
-            if (r.has("metric")) {
-                r.error("metric", "not one of the [reference] metrics computed");
-            }
-            x.table_metric = x.reference.empty() || x.metrics.empty() ? "" : x.metrics.front();
-        }
-        r.finish();
     }
+    r.finish();
+}
+
+// [outputs]: images, previews, plots.
+void read_outputs(const toml::table& table, const std::string& origin, Experiment& x) {
+    TomlTableReader r(table, origin, "[outputs]");
+    x.images = r.boolean("images", x.images);
+    x.previews = r.boolean("previews", x.previews);
+    x.preview_max_size = r.integer_in("preview_max_size", x.preview_max_size, 1, 16384);
+    x.plots = r.boolean("plots", x.plots);
+    r.finish();
+}
+
+// [table]: the rows of table.md and the metric beside each FPS.
+void read_table(const toml::table& table, const std::string& origin, Experiment& x) {
+    TomlTableReader r(table, origin, "[table]");
+    if (r.has("rows")) {
+        x.table_rows = strings(r, "rows");
+        // A row dimension is the scene, the size or a parameter some method declares (the
+        // sweep's methods may be overridden, as for [sweep.params]).
+        const auto known = methods::volume_method_names();
+        for (const std::string& row : x.table_rows) {
+            if (row == "scene" || row == "size" || is_scene_variation(row) ||
+                std::any_of(known.begin(), known.end(), [&](const std::string& m) {
+                    return methods::create_volume_method(m)->has_parameter(row);
+                })) {
+                continue;
+            }
+            r.error("rows", fmt::format("unknown row {}: expected scene, size, a scene "
+                                        "variation or a method's parameter (see `shaftlab "
+                                        "methods`)",
+                                        quote(row)));
+        }
+    }
+    x.table_metric = r.string("metric", x.table_metric);
+    if (x.reference.empty() ||
+        std::find(x.metrics.begin(), x.metrics.end(), x.table_metric) == x.metrics.end()) {
+        if (r.has("metric")) {
+            r.error("metric", "not one of the [reference] metrics computed");
+        }
+        x.table_metric = x.reference.empty() || x.metrics.empty() ? "" : x.metrics.front();
+    }
+    r.finish();
+}
+
+// [equal_error]: targets, baselines, tolerance and the searches per method.
+void read_equal_error(TomlTableReader& top, const std::string& origin, Experiment& x) {
     if (const toml::table* table = top.table("equal_error")) {
         TomlTableReader r(*table, origin, "[equal_error]");
         EqualError e;
@@ -739,6 +694,82 @@ Experiment parse_experiment(const std::string& text, const std::string& origin,
         r.finish();
         x.equal_error = std::move(e);
     }
+}
+
+}  // namespace
+
+Experiment parse_experiment(const std::string& text, const std::string& origin,
+                            const std::vector<std::string>& presets,
+                            const std::vector<std::string>& overrides) {
+    toml::table root;
+    try {
+        root = toml::parse(text, origin);
+    } catch (const toml::parse_error& e) {
+        fail("{}:{}: {}", origin, e.source().begin.line, e.description());
+    }
+    Experiment x;
+    x.source = origin;
+    x.text = text;
+
+    // Presets, then --set overrides, into the document itself: they are read and validated
+    // exactly like the file.
+    const toml::table* preset_tables = root["presets"].as_table();
+    for (const std::string& preset : presets) {
+        const toml::table* table = preset_tables ? (*preset_tables)[preset].as_table() : nullptr;
+        if (!table) {
+            std::vector<std::string> known;
+            if (preset_tables) {
+                for (const auto& [key, node] : *preset_tables) {
+                    known.emplace_back(key.str());
+                }
+            }
+            fail("{}: unknown preset {} (presets: {})", origin, quote(preset),
+                 known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", ")));
+        }
+        const toml::table copy = *table;  // set_path changes `root`, which holds `table`
+        std::vector<std::pair<std::string, const toml::node*>> paths;
+        flatten(copy, "", paths);
+        for (const auto& [path, node] : paths) {
+            if (path.starts_with("presets")) {
+                fail("{}: preset {} may not set presets", origin, quote(preset));
+            }
+            set_path(root, path, *node, origin);
+        }
+        x.overrides.push_back("preset " + preset);
+    }
+    for (const std::string& override_text : overrides) {
+        const size_t equals = override_text.find('=');
+        if (equals == std::string::npos || equals == 0) {
+            fail("--set {}: expected KEY.PATH=VALUE", quote(override_text));
+        }
+        const std::string path = override_text.substr(0, equals);
+        const toml::table value = parse_override_value(override_text.substr(equals + 1));
+        set_path(root, path, *value.get("value"), origin);
+        x.overrides.push_back(override_text);
+    }
+
+    TomlTableReader top(root, origin, "");
+    x.name = top.string("name");
+    if (!std::regex_match(x.name, std::regex("[A-Za-z0-9_.-]+"))) {
+        top.error("name", "use letters, digits, '_', '-' and '.' only (it names files)");
+    }
+    x.description = top.string("description", "");
+    x.out = top.string("out", x.out);
+    top.table("presets");  // applied above
+
+    const toml::table empty;
+    auto section = [&](std::string_view key) -> const toml::table& {
+        const toml::table* table = top.table(key);
+        return table ? *table : empty;
+    };
+    read_protocol(section("protocol"), origin, x);
+    read_render(section("render"), origin, x);
+    read_sweep(top, origin, x);
+    read_exclusions(top, origin, x);
+    read_reference(section("reference"), origin, x);
+    read_outputs(section("outputs"), origin, x);
+    read_table(section("table"), origin, x);
+    read_equal_error(top, origin, x);
     top.finish();
 
     // The document as read (presets dropped: they are applied), for resuming and env.json.
