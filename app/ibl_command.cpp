@@ -6,6 +6,7 @@
 // roughness and timings, the SH9 coefficients and, with --brute-force, each level's error against
 // the brute-force integral of the lobe.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -100,9 +101,7 @@ int run_prefilter(const PrefilterArguments& a) {
                                 {"face_size", level.size},
                                 {"roughness", chain.roughness[l]},
                                 {"seconds", chain.level_seconds[l]}};
-        // The lobe must span a few grid cells for the brute force to resolve it.
-        const float cell = 2.0f / float(std::max(a.brute_force_grid, 1));
-        if (a.brute_force_grid > 0 && l > 0 && chain.roughness[l] >= 4.0f * cell) {
+        if (l > 0 && ibl::brute_force_resolves(chain.roughness[l], a.brute_force_grid)) {
             const auto start = std::chrono::steady_clock::now();
             const ibl::CubeMap truth = ibl::brute_force_level(
                 cube, level.size, lobe, chain.roughness[l], a.brute_force_grid);
@@ -178,28 +177,18 @@ int run_reference(const ReferenceArguments& a) {
     const double reference_seconds = ms_since(start) / 1000.0;
 
     // Relative RMSE over the pixels of each object, and over every surface pixel.
-    std::vector<double> error(scene.objects.size() + 1), norm(scene.objects.size() + 1);
-    for (size_t i = 0; i < objects.size(); ++i) {
-        if (objects[i] < 0)
-            continue;
-        const glm::vec3 g(frame.surface.rgb[3 * i], frame.surface.rgb[3 * i + 1],
-                          frame.surface.rgb[3 * i + 2]);
-        const glm::vec3 r(exact.rgb[3 * i], exact.rgb[3 * i + 1], exact.rgb[3 * i + 2]);
-        for (size_t k : {size_t(objects[i]), scene.objects.size()}) {
-            error[k] += glm::dot(g - r, g - r);
-            norm[k] += glm::dot(r, r);
-        }
-    }
+    const std::vector<double> errors =
+        labelled_rel_rmse(frame.surface, exact, objects, int(scene.objects.size()));
     nlohmann::json per_object = nlohmann::json::object();
     for (size_t k = 0; k < scene.objects.size(); ++k) {
-        if (norm[k] > 0.0) {
+        if (std::find(objects.begin(), objects.end(), int(k)) != objects.end()) {
             const Material& m = scene.materials[size_t(scene.objects[k].material)];
-            per_object[scene.objects[k].name] = {{"rel_rmse", std::sqrt(error[k] / norm[k])},
+            per_object[scene.objects[k].name] = {{"rel_rmse", errors[k]},
                                                  {"roughness", m.roughness},
                                                  {"f0", {m.f0.r, m.f0.g, m.f0.b}}};
         }
     }
-    const double surface_rel_rmse = norm.back() > 0.0 ? std::sqrt(error.back() / norm.back()) : 0.0;
+    const double surface_rel_rmse = errors.back();
     const ErrorMetrics image_metrics = compare_images(frame.surface, exact);
     const nlohmann::json summary = {{"scene", scene.name},
                                     {"environment", scene.environment.file.string()},

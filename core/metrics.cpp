@@ -78,4 +78,34 @@ std::vector<unsigned char> error_heat_map(const Image& image, const Image& refer
     return rgb;
 }
 
+std::vector<double> labelled_rel_rmse(const Image& image, const Image& reference,
+                                      const std::vector<int>& labels, int label_count) {
+    if (image.width != reference.width || image.height != reference.height ||
+        labels.size() != size_t(image.width) * size_t(image.height)) {
+        fail("labelled_rel_rmse: {}x{} image, {}x{} reference and {} labels differ in size",
+             image.width, image.height, reference.width, reference.height, labels.size());
+    }
+    std::vector<double> error(size_t(label_count) + 1, 0.0), norm(size_t(label_count) + 1, 0.0);
+    for (size_t i = 0; i < labels.size(); ++i) {
+        if (labels[i] < 0 || labels[i] >= label_count) {
+            continue;
+        }
+        double e = 0.0, r = 0.0;
+        for (size_t c = 0; c < 3; ++c) {
+            const double d = double(image.rgb[3 * i + c]) - double(reference.rgb[3 * i + c]);
+            e += d * d;
+            r += double(reference.rgb[3 * i + c]) * double(reference.rgb[3 * i + c]);
+        }
+        for (const size_t k : {size_t(labels[i]), size_t(label_count)}) {
+            error[k] += e;
+            norm[k] += r;
+        }
+    }
+    std::vector<double> result(error.size(), 0.0);
+    for (size_t k = 0; k < result.size(); ++k) {
+        result[k] = norm[k] > 0.0 ? std::sqrt(error[k] / norm[k]) : 0.0;
+    }
+    return result;
+}
+
 }  // namespace sl

@@ -20,6 +20,13 @@ struct ErrorMetrics {
 // its first such pixel): a score of a broken image would look like a result.
 ErrorMetrics compare_images(const Image& image, const Image& reference);
 
+// Relative RMSE sqrt(Σ |a − r|² / Σ |r|²) over the pixels of each label (labels[i] of pixel i in
+// 0 .. label_count − 1; negative: no label), and, as the last entry, over every labelled pixel;
+// 0 where a label has no reference energy. How `shaftlab ibl reference` scores each object.
+// Throws sl::Error when the sizes differ.
+std::vector<double> labelled_rel_rmse(const Image& image, const Image& reference,
+                                      const std::vector<int>& labels, int label_count);
+
 // Per-pixel error |a - r| (the RGB difference's length) relative to the reference's RMS pixel
 // value sqrt(mean |r|²) — the pixel-level counterpart of rel_rmse — as an 8-bit RGB heat map,
 // rows top to bottom: 0 black, through purple, red and orange, to pale yellow at `full_scale`

@@ -277,6 +277,10 @@ glm::vec3 brute_force_lobe(const CubeMap& source, glm::vec3 r, Distribution dist
     return weights > 0.0 ? glm::vec3(sum / weights) : source.sample(r);
 }
 
+bool brute_force_resolves(float alpha, int grid) {
+    return grid > 0 && alpha >= 4.0f * (2.0f / float(grid));
+}
+
 CubeMap brute_force_level(const CubeMap& source, int face_size, Distribution dist, float alpha,
                           int grid) {
     CubeMap level(face_size);

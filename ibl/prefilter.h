@@ -63,6 +63,9 @@ PrefilteredChain prefilter(const CubeMap& source, const PrefilterSettings& setti
 // dense grid of `grid`² directions per cube face, L by bilinear lookup of `source`.
 glm::vec3 brute_force_lobe(const CubeMap& source, glm::vec3 r, Distribution distribution,
                            float alpha, int grid);
+// Whether a grid of `grid`² directions per face resolves a lobe of roughness `alpha`: the lobe must
+// span a few grid cells (α ≥ 4 cells of 2/grid), or the brute force itself is the larger error.
+bool brute_force_resolves(float alpha, int grid);
 // The same for one whole level (every texel), multithreaded.
 CubeMap brute_force_level(const CubeMap& source, int face_size, Distribution distribution,
                           float alpha, int grid);

@@ -63,6 +63,22 @@ TEST(Image, PngIsWritten) {
 }
 
 // The error metrics on known images: equal images score 0 and +inf dB; a black image scores
+// Per label: the relative RMSE over that label's pixels alone, and the last entry over every
+// labelled pixel; unlabelled pixels count nowhere.
+TEST(ErrorMetrics, LabelledRelativeRmseScoresEachLabelOnItsOwnPixels) {
+    Image reference(3, 1), image(3, 1);
+    for (float& v : reference.rgb) {
+        v = 1.0f;
+    }
+    image.rgb = {1.0f, 1.0f, 1.0f, 2.0f, 2.0f, 2.0f, 9.0f, 9.0f, 9.0f};
+    const std::vector<double> errors = labelled_rel_rmse(image, reference, {0, 1, -1}, 2);
+    ASSERT_EQ(errors.size(), 3u);
+    EXPECT_DOUBLE_EQ(errors[0], 0.0);
+    EXPECT_DOUBLE_EQ(errors[1], 1.0);
+    EXPECT_DOUBLE_EQ(errors[2], std::sqrt(0.5));
+    EXPECT_THROW(labelled_rel_rmse(image, reference, {0, 1}, 2), Error);
+}
+
 // rel_rmse 1; a uniform offset gives its closed-form PSNR; sizes must match.
 TEST(ErrorMetrics, KnownValues) {
     Image reference(4, 2);
