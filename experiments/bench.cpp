@@ -22,6 +22,7 @@
 #include "experiments/process.h"
 #include "experiments/report.h"
 #include "experiments/sequence.h"
+#include "experiments/shards.h"
 #include "experiments/summary.h"
 #include "frame/frame_loop.h"
 #include "frame/renderer.h"
@@ -50,10 +51,6 @@ std::string duration_text(double seconds) {
     const long s = std::lround(seconds);
     return s >= 3600 ? fmt::format("{}h{:02}m", s / 3600, s / 60 % 60)
                      : fmt::format("{}m{:02}s", s / 60, s % 60);
-}
-
-fs::path row_path(const fs::path& out, const Cell& cell, int rep) {
-    return out / "cells" / fmt::format("{}.rep{}.json", cell.id(), rep);
 }
 
 // What one process keeps between cells: scenes, and the region statistics of each view.
@@ -446,64 +443,9 @@ Json measure_cell(const Experiment& x, const Cell& cell, int rep, const fs::path
                                  : measure_still_cell(x, cell, rep, out, caches);
 }
 
-void write_row(const fs::path& out, const Cell& cell, int rep, const Json& row) {
-    OutputFiles rows(out / "cells");
-    rows.add_text(row_path(out, cell, rep).filename().string(),
-                  Json{{"cell", cell_to_json(cell)}, {"rep", rep}, {"row", row}}.dump(1) + "\n");
-    rows.commit();
-}
-
-std::optional<Json> read_row(const fs::path& path) {
-    std::ifstream file(path);
-    if (!file) {
-        return std::nullopt;
-    }
-    try {
-        return Json::parse(file);
-    } catch (const nlohmann::json::exception& e) {
-        fail("{}: not a result row ({}); delete it to measure the cell again", path.string(),
-             e.what());
-    }
-}
-
 }  // namespace
 
 namespace {
-
-// The directory holds one experiment: its effective document is written on the first run and
-// must match on every later one (resume), so rows of different settings never mix.
-void claim_directory(const Experiment& x, const fs::path& out) {
-    for (const char* sub : {"cells", "images"}) {
-        std::error_code ec;
-        fs::create_directories(out / sub, ec);
-        if (ec) {
-            fail("{}: cannot create: {}", (out / sub).string(), ec.message());
-        }
-        // Temporaries of a run that was killed mid-write.
-        for (const auto& entry : fs::directory_iterator(out / sub)) {
-            const std::string name = entry.path().filename().string();
-            if (name.starts_with(".") && name.ends_with(".tmp")) {
-                fs::remove(entry.path(), ec);
-            }
-        }
-    }
-    const fs::path marker = out / "experiment.toml";
-    if (fs::exists(marker)) {
-        std::ifstream file(marker, std::ios::binary);
-        std::ostringstream text;
-        text << file.rdbuf();
-        if (text.str() != x.effective) {
-            fail(
-                "{} holds results of a different experiment or different overrides (see its "
-                "experiment.toml); use another --out, or delete the directory",
-                out.string());
-        }
-        return;
-    }
-    OutputFiles files(out);
-    files.add_text("experiment.toml", x.effective);
-    files.commit();
-}
 
 std::string cell_label(const Cell& cell) {
     const std::string scene = scene_label(cell.scene);
@@ -513,18 +455,6 @@ std::string cell_label(const Cell& cell) {
 }
 
 }  // namespace
-
-Shard parse_shard(const std::string& text) {
-    static const std::regex pattern(R"((\d{1,6})/(\d{1,6}))");
-    std::smatch match;
-    if (std::regex_match(text, match, pattern)) {
-        const Shard shard{std::stoi(match[1]), std::stoi(match[2])};
-        if (shard.count >= 1 && shard.index >= 1 && shard.index <= shard.count) {
-            return shard;
-        }
-    }
-    fail("--shard {}: expected i/n with 1 <= i <= n, e.g. 2/4", quote(text));
-}
 
 void run_cell(const Experiment& x, const fs::path& out, const nlohmann::json& cell_json, int rep) {
     const Cell cell = cell_from_json(cell_json);
@@ -662,71 +592,6 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
                    failed);
     }
     return failed;
-}
-
-void merge_shards(const std::vector<fs::path>& shards, const fs::path& out) {
-    if (shards.empty()) {
-        fail("merge: no shard directories given");
-    }
-    std::string effective;
-    for (const fs::path& shard : shards) {
-        std::ifstream file(shard / "experiment.toml", std::ios::binary);
-        if (!file) {
-            fail("{}: not a bench output directory (no experiment.toml)", shard.string());
-        }
-        std::ostringstream text;
-        text << file.rdbuf();
-        if (effective.empty()) {
-            effective = text.str();
-        } else if (text.str() != effective) {
-            fail("{}: a different experiment than {} (experiment.toml differs)", shard.string(),
-                 shards.front().string());
-        }
-    }
-    // The experiment as run, re-read from the first shard's env.json (verbatim file and
-    // overrides), so the summary knows its sweep.
-    const fs::path env_path = shards.front() / "env.json";
-    std::ifstream env_file(env_path);
-    if (!env_file) {
-        fail("{}: missing; was the shard run to its end?", env_path.string());
-    }
-    const Json env = Json::parse(env_file);
-    const Json& source = env.at("experiment");
-    std::vector<std::string> presets, overrides;
-    for (const auto& o : source.at("overrides")) {
-        const std::string text = o.get<std::string>();
-        if (text.starts_with("preset ")) {
-            presets.push_back(text.substr(7));
-        } else {
-            overrides.push_back(text);
-        }
-    }
-    const Experiment x = parse_experiment(source.at("text").get<std::string>(),
-                                          source.at("file").get<std::string>(), presets, overrides);
-    claim_directory(x, out);
-    size_t copied = 0;
-    for (const fs::path& shard : shards) {
-        for (const char* sub : {"cells", "images"}) {
-            if (!fs::is_directory(shard / sub)) {
-                continue;
-            }
-            for (const auto& entry : fs::directory_iterator(shard / sub)) {
-                const std::string name = entry.path().filename().string();
-                if (name.starts_with(".")) {
-                    continue;
-                }
-                OutputFiles files(out / sub);
-                files.add(name, [&](const fs::path& path) {
-                    fs::copy_file(entry.path(), path, fs::copy_options::overwrite_existing);
-                });
-                files.commit();
-                copied += sub == std::string("cells");
-            }
-        }
-    }
-    fmt::print(stderr, "merge: {} rows from {} shards into {}\n", copied, shards.size(),
-               out.string());
-    write_summary(x, out);
 }
 
 }  // namespace sl::experiments

@@ -23,15 +23,9 @@
 
 #include "experiments/experiment.h"
 #include "experiments/rows.h"
+#include "experiments/shards.h"
 
 namespace sl::experiments {
-
-struct Shard {
-    int index = 1;  // 1..count
-    int count = 1;
-};
-// "i/n" with 1 <= i <= n; throws sl::Error otherwise.
-Shard parse_shard(const std::string& text);
 
 struct BenchOptions {
     std::filesystem::path out;
@@ -58,10 +52,5 @@ int run_bench(const Experiment& experiment, const BenchOptions& options);
 // One cell and repetition in this process (the child of process isolation): writes its row.
 void run_cell(const Experiment& experiment, const std::filesystem::path& out,
               const nlohmann::json& cell, int rep);
-
-// Joins shard directories of one experiment into `out` (rows and images copied) and writes the
-// summary outputs there.
-void merge_shards(const std::vector<std::filesystem::path>& shards,
-                  const std::filesystem::path& out);
 
 }  // namespace sl::experiments

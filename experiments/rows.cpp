@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/output_files.h"
 
 namespace sl::experiments {
 
@@ -138,6 +139,63 @@ std::string scene_label(const std::string& scene) {
         stem.resize(stem.size() - 6);
     }
     return stem;
+}
+
+fs::path row_path(const fs::path& out, const Cell& cell, int rep) {
+    return out / "cells" / fmt::format("{}.rep{}.json", cell.id(), rep);
+}
+
+void write_row(const fs::path& out, const Cell& cell, int rep, const Json& row) {
+    OutputFiles rows(out / "cells");
+    rows.add_text(row_path(out, cell, rep).filename().string(),
+                  Json{{"cell", cell_to_json(cell)}, {"rep", rep}, {"row", row}}.dump(1) + "\n");
+    rows.commit();
+}
+
+std::optional<Json> read_row(const fs::path& path) {
+    std::ifstream file(path);
+    if (!file) {
+        return std::nullopt;
+    }
+    try {
+        return Json::parse(file);
+    } catch (const nlohmann::json::exception& e) {
+        fail("{}: not a result row ({}); delete it to measure the cell again", path.string(),
+             e.what());
+    }
+}
+
+void claim_directory(const Experiment& x, const fs::path& out) {
+    for (const char* sub : {"cells", "images"}) {
+        std::error_code ec;
+        fs::create_directories(out / sub, ec);
+        if (ec) {
+            fail("{}: cannot create: {}", (out / sub).string(), ec.message());
+        }
+        // Temporaries of a run that was killed mid-write.
+        for (const auto& entry : fs::directory_iterator(out / sub)) {
+            const std::string name = entry.path().filename().string();
+            if (name.starts_with(".") && name.ends_with(".tmp")) {
+                fs::remove(entry.path(), ec);
+            }
+        }
+    }
+    const fs::path marker = out / "experiment.toml";
+    if (fs::exists(marker)) {
+        std::ifstream file(marker, std::ios::binary);
+        std::ostringstream text;
+        text << file.rdbuf();
+        if (text.str() != x.effective) {
+            fail(
+                "{} holds results of a different experiment or different overrides (see its "
+                "experiment.toml); use another --out, or delete the directory",
+                out.string());
+        }
+        return;
+    }
+    OutputFiles files(out);
+    files.add_text("experiment.toml", x.effective);
+    files.commit();
 }
 
 }  // namespace sl::experiments

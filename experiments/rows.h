@@ -4,6 +4,7 @@
 // CSV and env.json read them back here.
 
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -25,6 +26,18 @@ std::vector<StoredRow> load_rows(const Experiment& experiment, const std::filesy
 // scene file by its stem without ".scene" ("/…/experiments/toplight-hg.scene.toml" is
 // "toplight-hg"), a name as it is. The cells keep the sweep's own spelling.
 std::string scene_label(const std::string& scene);
+
+// cells/<cell>.rep<r>.json under `out`.
+std::filesystem::path row_path(const std::filesystem::path& out, const Cell& cell, int rep);
+// Writes one row with its cell, atomically.
+void write_row(const std::filesystem::path& out, const Cell& cell, int rep,
+               const nlohmann::ordered_json& row);
+// The row file's document ({cell, rep, row}); nullopt when there is none; throws sl::Error naming
+// the file when it is not a row.
+std::optional<nlohmann::ordered_json> read_row(const std::filesystem::path& path);
+// The directory holds one experiment: its effective document is written on the first run and
+// must match on every later one (resume), so rows of different settings never mix.
+void claim_directory(const Experiment& experiment, const std::filesystem::path& out);
 
 // A cell as the row files and process isolation's command line carry it.
 nlohmann::json cell_to_json(const Cell& cell);
