@@ -40,23 +40,8 @@ int run_compare(const CompareArguments& args) {
                error.psnr);
     if (args.difference.empty())
         return 0;
-    // Luminance-like sum of channels; the scale is the largest |difference|.
-    std::vector<double> delta(size_t(image.width) * image.height);
     double largest = 0.0;
-    for (int y = 0; y < image.height; ++y) {
-        for (int x = 0; x < image.width; ++x) {
-            const glm::vec3 a = image.at(x, y), b = reference.at(x, y);
-            const double d = double(a.r + a.g + a.b) - double(b.r + b.g + b.b);
-            delta[size_t(y) * image.width + x] = d;
-            largest = std::max(largest, std::abs(d));
-        }
-    }
-    std::vector<unsigned char> rgb(delta.size() * 3, 0);
-    for (size_t i = 0; i < delta.size(); ++i) {
-        const double v = largest > 0.0 ? delta[i] / largest : 0.0;
-        const auto level = static_cast<unsigned char>(std::lround(255.0 * std::sqrt(std::abs(v))));
-        rgb[i * 3 + (v > 0.0 ? 0 : 2)] = level;
-    }
+    const std::vector<unsigned char> rgb = signed_difference_map(image, reference, largest);
     const std::filesystem::path path(args.difference);
     OutputFiles outputs(path.parent_path().empty() ? "." : path.parent_path());
     outputs.add(path.filename().string(), [&](const std::filesystem::path& staged) {

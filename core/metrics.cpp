@@ -108,4 +108,30 @@ std::vector<double> labelled_rel_rmse(const Image& image, const Image& reference
     return result;
 }
 
+std::vector<unsigned char> signed_difference_map(const Image& image, const Image& reference,
+                                                 double& full_scale) {
+    if (image.width != reference.width || image.height != reference.height) {
+        fail("difference of a {}x{} image and a {}x{} reference", image.width, image.height,
+             reference.width, reference.height);
+    }
+    // Luminance-like sum of channels; the scale is the largest |difference|.
+    std::vector<double> delta(size_t(image.width) * image.height);
+    full_scale = 0.0;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const glm::vec3 a = image.at(x, y), b = reference.at(x, y);
+            const double d = double(a.r + a.g + a.b) - double(b.r + b.g + b.b);
+            delta[size_t(y) * image.width + x] = d;
+            full_scale = std::max(full_scale, std::abs(d));
+        }
+    }
+    std::vector<unsigned char> rgb(delta.size() * 3, 0);
+    for (size_t i = 0; i < delta.size(); ++i) {
+        const double v = full_scale > 0.0 ? delta[i] / full_scale : 0.0;
+        const auto level = static_cast<unsigned char>(std::lround(255.0 * std::sqrt(std::abs(v))));
+        rgb[i * 3 + (v > 0.0 ? 0 : 2)] = level;
+    }
+    return rgb;
+}
+
 }  // namespace sl

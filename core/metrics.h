@@ -33,6 +33,12 @@ std::vector<double> labelled_rel_rmse(const Image& image, const Image& reference
 // and above (an inferno-like ramp). Throws sl::Error when the sizes differ or full_scale <= 0.
 std::vector<unsigned char> error_heat_map(const Image& image, const Image& reference,
                                           double full_scale);
+// The signed difference of two images as an 8-bit RGB picture, rows top to bottom: per pixel
+// d = (sum of a's channels) − (sum of r's), red where positive and blue where negative, at
+// 255·sqrt(|d| / full) with `full` the largest |d| (returned in `full_scale`; all black when the
+// images are equal). Throws sl::Error when the sizes differ.
+std::vector<unsigned char> signed_difference_map(const Image& image, const Image& reference,
+                                                 double& full_scale);
 // The ramp itself, t in [0, 1] (clamped).
 glm::vec3 heat_color(double t);
 

@@ -64,6 +64,19 @@ TEST(Image, PngIsWritten) {
 
 // The error metrics on known images: equal images score 0 and +inf dB; a black image scores
 // Per label: the relative RMSE over that label's pixels alone, and the last entry over every
+// The signed difference picture: red where the image is brighter, blue where darker, the largest
+// difference at full scale, equal pixels black.
+TEST(ErrorMetrics, SignedDifferenceMapShowsTheSignAtSquareRootScale) {
+    Image reference(3, 1), image(3, 1);
+    reference.rgb = {1, 1, 1, 1, 1, 1, 1, 1, 1};
+    image.rgb = {1, 1, 1, 2, 2, 2, 1, 1, 0.25f};
+    double full = 0.0;
+    const std::vector<unsigned char> rgb = signed_difference_map(image, reference, full);
+    EXPECT_DOUBLE_EQ(full, 3.0);
+    EXPECT_EQ(rgb, (std::vector<unsigned char>{0, 0, 0, 255, 0, 0, 0, 0, 128}));
+    EXPECT_THROW(signed_difference_map(Image(2, 1), reference, full), Error);
+}
+
 // labelled pixel; unlabelled pixels count nowhere.
 TEST(ErrorMetrics, LabelledRelativeRmseScoresEachLabelOnItsOwnPixels) {
     Image reference(3, 1), image(3, 1);
