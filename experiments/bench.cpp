@@ -53,29 +53,38 @@ std::string duration_text(double seconds) {
                      : fmt::format("{}m{:02}s", s / 60, s % 60);
 }
 
-// What one process keeps between cells: scenes, and the region statistics of each view.
-// The cell's scene variations (scenes/variations.h) as text, "" when it has none: with the scene's
-// name, the key of what depends on the scene alone.
-std::string variations_text(const Cell& cell) {
+// The cell's scene variations (scenes/variations.h) as text, "" when it has none; with
+// `view_only`, only those that change what the eye rays and the beam tree see.
+std::string variations_text(const Cell& cell, bool view_only) {
     std::string text;
     for (const Setting& setting : cell.settings) {
-        if (is_scene_variation(setting.name)) {
+        if (is_scene_variation(setting.name) &&
+            (!view_only || scene_variation_changes_view(setting.name))) {
             text += fmt::format(";{}={}", setting.name, setting.value);
         }
     }
     return text;
 }
 
+// What one process keeps between cells: each scene file read once, each variation of it made
+// once, and the region statistics of each view.
 struct Caches {
-    std::map<std::string, Scene> scenes;
+    std::map<std::string, Scene> loaded;  // by name, as read
+    std::map<std::string, Scene> scenes;  // by name and variations
     std::map<std::tuple<std::string, int, int, bool>, methods::RegionStatistics> regions;
 
-    // The cell's scene, loaded once, with the cell's variations applied.
+    // The cell's scene with the cell's variations applied.
     const Scene& scene(const Cell& cell) {
-        const std::string key = cell.scene + variations_text(cell);
+        const std::string key = cell.scene + variations_text(cell, false);
         auto found = scenes.find(key);
         if (found == scenes.end()) {
-            Scene scene = load_scene(cell.scene, SceneSearchPaths::defaults());
+            auto base = loaded.find(cell.scene);
+            if (base == loaded.end()) {
+                base =
+                    loaded.emplace(cell.scene, load_scene(cell.scene, SceneSearchPaths::defaults()))
+                        .first;
+            }
+            Scene scene = base->second;  // meshes are shared, not copied
             for (const Setting& setting : cell.settings) {
                 if (is_scene_variation(setting.name)) {
                     apply_scene_variation(scene, setting.name, setting.value);
@@ -85,10 +94,11 @@ struct Caches {
         }
         return found->second;
     }
-    // The region statistics of the cell's view (an animation cell: of its first frame).
+    // The region statistics of the cell's view (an animation cell: of its first frame), shared by
+    // the variations that leave the view as it is.
     const methods::RegionStatistics& region(const Cell& cell, const Scene& view, bool animated) {
-        const auto key =
-            std::make_tuple(cell.scene + variations_text(cell), cell.width, cell.height, animated);
+        const auto key = std::make_tuple(cell.scene + variations_text(cell, true), cell.width,
+                                         cell.height, animated);
         if (!regions.contains(key)) {
             regions[key] = methods::region_statistics(view, cell.width, cell.height);
         }

@@ -40,7 +40,7 @@ const std::vector<SceneVariation>& scene_variations() {
         {"sss_model", "dipole or multipole"},
         {"sss_radius", "profile or flux"},
         {"sss_footprint", "true or false"},
-        {"camera_distance", "a factor in (0, 1000] on the camera's distance to its target"},
+        {"camera_distance", "a factor in (0, 1000] on the camera's distance to its target", true},
     };
     return variations;
 }
@@ -49,6 +49,12 @@ bool is_scene_variation(const std::string& name) {
     const auto& all = scene_variations();
     return std::any_of(all.begin(), all.end(),
                        [&](const SceneVariation& v) { return v.name == name; });
+}
+
+bool scene_variation_changes_view(const std::string& name) {
+    const auto& all = scene_variations();
+    return std::any_of(all.begin(), all.end(),
+                       [&](const SceneVariation& v) { return v.name == name && v.changes_view; });
 }
 
 std::string scene_variation_error(const std::string& name, const std::string& value) {

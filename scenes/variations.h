@@ -21,9 +21,13 @@ namespace sl {
 struct SceneVariation {
     std::string name;
     std::string values;  // what it takes, for messages and docs
+    // Whether it changes what the beam tree and the eye rays see (geometry, light or camera);
+    // the splatting's settings do not, so the region statistics of a view are shared across them.
+    bool changes_view = false;
 };
 const std::vector<SceneVariation>& scene_variations();
 bool is_scene_variation(const std::string& name);
+bool scene_variation_changes_view(const std::string& name);
 
 // Checks `value` for the variation `name`; returns an empty string when it is fine, otherwise why
 // not (naming what is allowed).
