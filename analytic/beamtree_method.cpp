@@ -1,5 +1,6 @@
 #include "analytic/beamtree_method.h"
 
+#include "analytic/gpu_tree.h"
 #include "analytic/region_pass.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/boundary.h"
@@ -24,6 +25,7 @@ public:
                      "faces (the first round's mesh); fragments: the boundary's faces "
                      "fanned one by one (same integral in all three)",
                  .choices = {"boundary", "cells", "fragments"}});
+        declare(region_route_parameter());
     }
     std::string name() const override { return "beamtree"; }
     std::string accepts() const override { return AnalyticRegionPass::accepts(); }
@@ -34,6 +36,9 @@ public:
     std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
                                                  const SceneChange& change) const override {
         AnalyticRegionPass::require_closed_form(scene, name());
+        if (walks(choice<RegionRoute>("route"), scene)) {
+            return region_frame_work(scene, change, {.gpu_tree = true}, built_, true);
+        }
         const auto surfaces = choice<Surfaces>("surfaces");
         return region_frame_work(
             scene, change,
@@ -49,14 +54,24 @@ public:
             const bt::FrameRegions& r = regions->regions;
             stages_ = r.ms;
             pass_.upload_mesh(r.lit.positions, r.lit.triangles);
+            walk_ = regions->walk;
+            if (walk_) {
+                tree_.upload(r.gpu);
+            }
             built_ = true;
         }
         pass_.set_scene(scene);
     }
-    void render(const frame::VolumeInputs& inputs) override { pass_.draw(inputs); }
+    void render(const frame::VolumeInputs& inputs) override {
+        if (walk_) {
+            pass_.draw_walk(inputs, tree_);
+        } else {
+            pass_.draw(inputs);
+        }
+    }
     gl::TextureViews textures() const override { return pass_.textures(name()); }
     frame::MethodStatistics statistics() const override {
-        frame::MethodStatistics stats = region_statistics(stages_);
+        frame::MethodStatistics stats = region_statistics(stages_, walk_);
         stats.push_back({"region_faces", double(pass_.triangle_count())});
         stats.push_back({"fragments_analytic", pass_.fragments()});
         stats.push_back({"fragments_rasterized", pass_.rasterized()});
@@ -65,8 +80,10 @@ public:
 
 private:
     AnalyticRegionPass pass_;
+    GpuTreeBuffers tree_;  // the walk route's tree
     bt::RegionStageTimes stages_;
     bool built_ = false;
+    bool walk_ = false;  // the last build was for the walk route
 };
 
 }  // namespace

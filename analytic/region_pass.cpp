@@ -119,6 +119,16 @@ void AnalyticRegionPass::set_scene(const Scene& scene) {
             gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                 {GL_FRAGMENT_SHADER, "analytic/shaders/regions_eye.frag"}},
                                closed_form_defines(scene));
+        walk_program_ =
+            gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                {GL_FRAGMENT_SHADER, "analytic/shaders/regions_walk.frag"}},
+                               closed_form_defines(scene));
+        std::vector<std::string> defines = closed_form_defines(scene);
+        defines.push_back("SL_READ_LISTS 1");
+        walk_lists_program_ =
+            gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                {GL_FRAGMENT_SHADER, "analytic/shaders/regions_walk.frag"}},
+                               defines);
     }
     if (!eye_vertex_array_) {
         eye_vertex_array_ = gl::create_vertex_array();
@@ -129,25 +139,29 @@ void AnalyticRegionPass::set_scene(const Scene& scene) {
     }
 }
 
-frame::MethodStatistics region_statistics(const bt::RegionStageTimes& ms) {
+frame::MethodStatistics region_statistics(const bt::RegionStageTimes& ms, bool walk) {
     frame::MethodStatistics stats = {{"cpu_ms_beamtree", ms.total()}};
     for (const auto& [stage, value] : ms.named()) {
         stats.push_back({"cpu_ms_region_" + stage, value});
     }
+    stats.push_back({"region_walk", walk ? 1.0 : 0.0});
     return stats;
 }
 
 std::unique_ptr<frame::FrameWork> region_frame_work(const Scene& scene, const SceneChange& change,
-                                                    const bt::RegionRequest& request, bool built) {
+                                                    const bt::RegionRequest& request, bool built,
+                                                    bool walk) {
     if (built && !change.regions()) {
         return nullptr;
     }
     auto work = std::make_unique<RegionFrameWork>();
     work->regions = bt::build_frame_regions(scene, request);
+    work->walk = walk;
     return work;
 }
 
 void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
+    walked_ = false;
     if (mesh_.index_count == 0)
         return;
     const SignedDrawScope scope(inputs, closed_form_);
@@ -172,8 +186,22 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
 }
 
+void AnalyticRegionPass::draw_walk(const VolumeInputs& inputs, const GpuTreeBuffers& tree,
+                                   bool read_lists) const {
+    walked_ = true;
+    const SignedDrawScope scope(inputs, closed_form_);
+    tree.bind();
+    GL.UseProgram(read_lists ? walk_lists_program_.id() : walk_program_.id());
+    GL.BindVertexArray(eye_vertex_array_.id());
+    GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
+    GL.BeginQuery(GL_SAMPLES_PASSED, rasterized_.id());
+    GL.DrawArrays(GL_TRIANGLES, 0, 3);
+    GL.EndQuery(GL_SAMPLES_PASSED);
+    GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
+}
+
 double AnalyticRegionPass::count(const Query& query) const {
-    if (mesh_.index_count == 0)
+    if (mesh_.index_count == 0 && !walked_)
         return 0.0;
     GLuint64 value = 0;
     GL.GetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &value);

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "analytic/gpu_tree.h"
 #include "beamtree/frame_regions.h"
 
 #include "frame/volume_method.h"
@@ -89,6 +90,13 @@ public:
     // region about it (the winding number, on the CPU) — the closed form's antiderivative is
     // not 0 at the eye.
     void draw(const VolumeInputs& inputs) const;
+    // The same integral by the walk route: a full-screen pass in which every eye ray walks
+    // `tree` (beamtree/shaders/walk.glsl) and adds G(z1) - G(z0) over each lit interval
+    // (analytic/shaders/regions_walk.frag). Needs no mesh. With `read_lists`, the walk's region
+    // lists of this frame are bound (sampling/region_lists.h, RegionLists::walk): the pass sums
+    // their lit intervals instead of walking again, and walks only where a list overflowed.
+    void draw_walk(const VolumeInputs& inputs, const GpuTreeBuffers& tree,
+                   bool read_lists = false) const;
     size_t triangle_count() const { return size_t(mesh_.index_count) / 3; }
     // Its lookup tables, named "<owner>/...".
     TextureViews textures(const std::string& owner) const;
@@ -110,7 +118,10 @@ private:
     mutable std::optional<glm::vec3> windings_eye_;
     mutable int eye_windings_ = 0;
     Program program_;
-    Program eye_program_;  // the full-screen -G(0) of rays that start inside a region
+    Program eye_program_;          // the full-screen -G(0) of rays that start inside a region
+    Program walk_program_;         // the walk route's full-screen pass
+    Program walk_lists_program_;   // the same, reading the walk's region lists
+    mutable bool walked_ = false;  // the last draw was draw_walk (the queries count it)
     gl::VertexArray eye_vertex_array_;
     ClosedFormScene closed_form_;
     Query fragments_;
@@ -121,13 +132,16 @@ private:
 // tree and meshes (beamtree/frame_regions.h).
 struct RegionFrameWork final : frame::FrameWork {
     bt::FrameRegions regions;
+    bool walk = false;  // built for the walk route: the tree alone (analytic/gpu_tree.h)
 };
-// The statistics of the last region build: cpu_ms_beamtree (the whole CPU update) and
-// cpu_ms_region_<stage> for each stage of bt::RegionStageTimes.
-frame::MethodStatistics region_statistics(const bt::RegionStageTimes& ms);
+// The statistics of the last region build: cpu_ms_beamtree (the whole CPU update),
+// cpu_ms_region_<stage> for each stage of bt::RegionStageTimes, and region_walk (1 when it was
+// built for the walk route, 0 for the mesh route).
+frame::MethodStatistics region_statistics(const bt::RegionStageTimes& ms, bool walk);
 // The frame's regions as `request` asks, or null when `change` leaves them as they are (and
-// `built` says there are some).
+// `built` says there are some). `walk`: for the walk route (the request asks for the GPU tree).
 std::unique_ptr<frame::FrameWork> region_frame_work(const Scene& scene, const SceneChange& change,
-                                                    const bt::RegionRequest& request, bool built);
+                                                    const bt::RegionRequest& request, bool built,
+                                                    bool walk = false);
 
 }  // namespace sl::analytic

@@ -56,6 +56,7 @@ public:
                      .max = 1e7,
                      .description = "samples per metre of uncertain interval: N = clamp(ceil("
                                     "density x length), min_samples, samples)"});
+            declare(analytic::region_route_parameter());
             declare({.name = "min_samples",
                      .type = Parameter::Type::integer,
                      .default_value = 2,
@@ -127,8 +128,9 @@ public:
             return nullptr;
         }
         analytic::AnalyticRegionPass::require_closed_form(scene, name());
+        const bool walk = analytic::walks(choice<analytic::RegionRoute>("route"), scene);
         return analytic::region_frame_work(
-            scene, change, {.lit = true, .uncertain = true, .gpu_tree = true}, built_);
+            scene, change, {.lit = !walk, .uncertain = !walk, .gpu_tree = true}, built_, walk);
     }
     void apply_update(const Scene& scene, const SceneChange&,
                       std::unique_ptr<frame::FrameWork> work) override {
@@ -138,6 +140,7 @@ public:
             analytic_.upload_mesh(r.lit.positions, r.lit.triangles);
             lists_.upload(bt::RegionMesh{}, r.uncertain);
             tree_.upload(r.gpu);
+            walk_ = regions->walk;
             built_ = true;
         }
         if (variant_ == MarchVariant::hybrid3) {
@@ -163,14 +166,23 @@ public:
         // rest of the buffer keeps its clear, so the image is the same.
         const bool skip_certain = hybrid && march_stencil_;
         if (hybrid) {
+            const bool walk = walk_;
             inputs.timeline.section("region lists");
             if (skip_certain) {
                 GL.BindFramebuffer(GL_FRAMEBUFFER, march_framebuffer_.id());
             }
-            lists_.build(inputs, skip_certain);
+            if (walk) {
+                lists_.walk(inputs, tree_, skip_certain, RegionLists::kUncertainStencilBit);
+            } else {
+                lists_.build(inputs, skip_certain);
+            }
             GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
             inputs.timeline.section("analytic");
-            analytic_.draw(inputs);
+            if (walk) {
+                analytic_.draw_walk(inputs, tree_, true);
+            } else {
+                analytic_.draw(inputs);
+            }
             tree_.bind();
         }
 
@@ -256,7 +268,7 @@ public:
                                          {"buffer_width", double(buffer_width_)},
                                          {"buffer_height", double(buffer_height_)}};
         if (variant_ == MarchVariant::hybrid3) {
-            const frame::MethodStatistics regions = analytic::region_statistics(stages_);
+            const frame::MethodStatistics regions = analytic::region_statistics(stages_, walk_);
             stats.insert(stats.end(), regions.begin(), regions.end());
             stats.insert(stats.end(), {{"region_faces", double(analytic_.triangle_count())},
                                        {"uncertain_faces", double(lists_.triangle_count(1))},
@@ -337,8 +349,9 @@ private:
     gl::Texture march_target_;
     gl::Texture march_stencil_;  // hybrid3 at the frame's size: the pixels it marches
     gl::Framebuffer march_framebuffer_;
-    RegionLists lists_;    // hybrid3: where each ray is uncertain
-    GpuTreeBuffers tree_;  // and the tree, where a list overflows
+    RegionLists lists_;              // hybrid3: where each ray is uncertain
+    analytic::GpuTreeBuffers tree_;  // and the tree, where a list overflows (or to walk)
+    bool walk_ = false;              // the last build was for the walk route
     std::vector<float> clip_planes_;
     int buffer_width_ = 0, buffer_height_ = 0, frame_width_ = 0, frame_height_ = 0;
     int frame_index_ = 0;

@@ -72,6 +72,7 @@ public:
                                     "GPU (beamtree/shaders/classify.glsl); cpu: every plane cut "
                                     "by the tree on the CPU each frame (Nilsson's method)",
                      .choices = {"gpu", "cpu"}});
+            declare(analytic::region_route_parameter());
         }
     }
 
@@ -120,8 +121,12 @@ public:
         if (variant_ == PlanesVariant::hybrid2) {
             analytic::AnalyticRegionPass::require_closed_form(scene, name());
         }
-        return analytic::region_frame_work(
-            scene, change, {.lit = true, .uncertain = true, .gpu_tree = true}, tree_ != nullptr);
+        // The CPU partition cuts planes with the tree alone; the lists and the lit integral need
+        // the meshes only on the mesh route.
+        const bool walk = analytic::walks(choice<analytic::RegionRoute>("route"), scene);
+        return analytic::region_frame_work(scene, change,
+                                           {.lit = !walk, .uncertain = !walk, .gpu_tree = true},
+                                           tree_ != nullptr, walk);
     }
     void apply_update(const Scene& scene, const SceneChange&,
                       std::unique_ptr<frame::FrameWork> work) override {
@@ -134,6 +139,7 @@ public:
             }
             lists_.upload(r.lit, r.uncertain);
             gpu_tree_.upload(r.gpu);
+            walk_ = regions->walk;
         }
         if (variant_ == PlanesVariant::hybrid2) {
             analytic_.set_scene(scene);
@@ -199,12 +205,23 @@ public:
             const float zero[4] = {0, 0, 0, 0};
             GL.ClearNamedFramebufferfv(own_framebuffer_.id(), GL_COLOR, 0, zero);
             inputs.timeline.section("region lists");
-            lists_.build(inputs, true);
+            if (walk_route()) {
+                lists_.walk(inputs, gpu_tree_, true,
+                            variant_ == PlanesVariant::hybrid1
+                                ? RegionLists::kLitStencilBit | RegionLists::kUncertainStencilBit
+                                : RegionLists::kUncertainStencilBit);
+            } else {
+                lists_.build(inputs, true);
+            }
         }
         if (variant_ == PlanesVariant::hybrid2) {
             inputs.timeline.section("analytic");
             GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
-            analytic_.draw(inputs);
+            if (walk_route()) {
+                analytic_.draw_walk(inputs, gpu_tree_, classify_on_gpu);
+            } else {
+                analytic_.draw(inputs);
+            }
             if (classify_on_gpu) {
                 GL.BindFramebuffer(GL_FRAMEBUFFER, own_framebuffer_.id());
             }
@@ -251,6 +268,8 @@ public:
         GL.Disable(GL_BLEND);
     }
 
+    bool walk_route() const { return variant_ != PlanesVariant::planes && walk_; }
+
     void allocate(int width, int height) {
         if (width == own_width_ && height == own_height_) {
             return;
@@ -280,7 +299,7 @@ public:
                                          {"slices", double(slice_count_)},
                                          {"fragments", double(fragments)}};
         if (tree_) {
-            const frame::MethodStatistics regions = analytic::region_statistics(stages_);
+            const frame::MethodStatistics regions = analytic::region_statistics(stages_, walk_);
             stats.insert(stats.end(), regions.begin(), regions.end());
             stats.insert(stats.end(),
                          {{"cpu_ms_partition", partition_ms_},
@@ -303,7 +322,8 @@ private:
     analytic::AnalyticRegionPass analytic_;
     gl::Program program_;
     gl::Buffer vertex_buffer_;
-    GpuTreeBuffers gpu_tree_;  // the tree for the GPU's classify
+    analytic::GpuTreeBuffers gpu_tree_;  // the tree for the GPU's classify (and walk)
+    bool walk_ = false;                  // the last build was for the walk route
     RegionLists lists_;
     // partition = gpu: the planes' own target and stencil, added into the frame's I_s.
     gl::Texture own_target_, own_stencil_;

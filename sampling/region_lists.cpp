@@ -11,21 +11,10 @@ namespace {
 
 using gl::GL;
 
-constexpr GLuint kCountsBinding = 3, kCrossingsBinding = 4;      // region_lists.glsl
-constexpr int kListSize = 16;                                    // REGION_LIST_SIZE
-constexpr GLuint kTreeNodesBinding = 1, kTreePlanesBinding = 2;  // classify.glsl
+constexpr GLuint kCountsBinding = 3, kCrossingsBinding = 4;  // region_lists.glsl
+constexpr int kListSize = 16;                                // REGION_LIST_SIZE
 
 }  // namespace
-
-void GpuTreeBuffers::upload(const bt::GpuTree& tree) {
-    nodes_ = gl::create_buffer(tree.nodes.data(), tree.nodes.size() * sizeof(tree.nodes[0]));
-    planes_ = gl::create_buffer(tree.planes.data(), tree.planes.size() * sizeof(tree.planes[0]));
-}
-
-void GpuTreeBuffers::bind() const {
-    GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreeNodesBinding, nodes_.id());
-    GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreePlanesBinding, planes_.id());
-}
 
 void RegionLists::upload(const bt::RegionMesh& lit, const bt::RegionMesh& uncertain) {
     if (!program_) {
@@ -36,7 +25,7 @@ void RegionLists::upload(const bt::RegionMesh& lit, const bt::RegionMesh& uncert
     meshes_[1] = gl::create_triangle_mesh(uncertain.positions, uncertain.triangles);
 }
 
-void RegionLists::build(const frame::VolumeInputs& inputs, bool mark_stencil) {
+void RegionLists::begin_build(const frame::VolumeInputs& inputs, bool mark_stencil) {
     if (inputs.width != width_ || inputs.height != height_) {
         width_ = inputs.width;
         height_ = inputs.height;
@@ -54,8 +43,6 @@ void RegionLists::build(const frame::VolumeInputs& inputs, bool mark_stencil) {
     GL.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     GL.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     GL.Disable(GL_BLEND);
-    GL.Enable(GL_DEPTH_CLAMP);  // faces in front of the near plane still cross the ray
-    GL.UseProgram(program_.id());
     if (mark_stencil) {
         GLint framebuffer = 0;
         GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
@@ -63,6 +50,21 @@ void RegionLists::build(const frame::VolumeInputs& inputs, bool mark_stencil) {
         GL.Enable(GL_STENCIL_TEST);
         GL.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     }
+}
+
+void RegionLists::end_build(bool mark_stencil) {
+    GL.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    if (mark_stencil) {
+        GL.StencilMask(0xff);
+        GL.Disable(GL_STENCIL_TEST);
+    }
+    GL.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void RegionLists::build(const frame::VolumeInputs& inputs, bool mark_stencil) {
+    begin_build(inputs, mark_stencil);
+    GL.Enable(GL_DEPTH_CLAMP);  // faces in front of the near plane still cross the ray
+    GL.UseProgram(program_.id());
     for (int s = 0; s < 2; ++s) {
         if (meshes_[s].index_count == 0) {
             continue;
@@ -77,12 +79,32 @@ void RegionLists::build(const frame::VolumeInputs& inputs, bool mark_stencil) {
         GL.DrawElements(GL_TRIANGLES, meshes_[s].index_count, GL_UNSIGNED_INT, nullptr);
     }
     GL.Disable(GL_DEPTH_CLAMP);
-    GL.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    if (mark_stencil) {
-        GL.StencilMask(0xff);
-        GL.Disable(GL_STENCIL_TEST);
+    end_build(mark_stencil);
+}
+
+void RegionLists::walk(const frame::VolumeInputs& inputs, const analytic::GpuTreeBuffers& tree,
+                       bool mark_stencil, GLuint mark_bits) {
+    if (!walk_program_) {
+        walk_program_ =
+            gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                {GL_FRAGMENT_SHADER, "sampling/shaders/region_lists_walk.frag"}});
+        empty_vertex_array_ = gl::create_vertex_array();
     }
-    GL.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    begin_build(inputs, mark_stencil);
+    if (mark_stencil) {
+        const GLuint both = kLitStencilBit | kUncertainStencilBit;
+        GL.StencilFunc(GL_ALWAYS, GLint(both), both);
+        GL.StencilMask(both);
+    }
+    tree.bind();
+    GL.BindTextureUnit(0, inputs.surface_depth);
+    GL.UseProgram(walk_program_.id());
+    GL.ProgramUniform1i(
+        walk_program_.id(), 0,
+        int((mark_bits & kLitStencilBit ? 1 : 0) | (mark_bits & kUncertainStencilBit ? 2 : 0)));
+    GL.BindVertexArray(empty_vertex_array_.id());
+    GL.DrawArrays(GL_TRIANGLES, 0, 3);
+    end_build(mark_stencil);
 }
 
 gl::Texture RegionLists::attach_marks(GLuint framebuffer, int width, int height) {

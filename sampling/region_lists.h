@@ -1,7 +1,9 @@
 #pragma once
-// Per-pixel lists of region-surface crossings (sampling/shaders/region_lists.glsl): each frame
+// Per-pixel lists of region-surface crossings (beamtree/shaders/region_lists.glsl): each frame
 // the lit and uncertain boundary meshes (beamtree/boundary.h) are rasterized once, every
-// fragment appending its signed distance along the eye ray to its pixel's list. The hybrids read
+// fragment appending its signed distance along the eye ray to its pixel's list (the mesh route),
+// or every eye ray walks the beam tree and writes its crossings (the walk route,
+// analytic/gpu_tree.h). The hybrids read
 // them: hybrid1 and hybrid2 to classify a plane sample (lit, uncertain, unlit) in a few compares,
 // hybrid3 to march only the uncertain intervals. A list that overflows falls back to the tree.
 
@@ -9,23 +11,13 @@
 
 #include <glm/vec3.hpp>
 
+#include "analytic/gpu_tree.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
 #include "frame/volume_method.h"
 #include "gl/objects.h"
 
 namespace sl::sampling {
-
-// The beam tree as beamtree/shaders/classify.glsl reads it (bt::GpuTree in two storage
-// buffers): the hybrids classify plane samples with it, and fall back on it where a list
-// overflows.
-class GpuTreeBuffers {
-public:
-    void upload(const bt::GpuTree& tree);  // fresh buffers: the last frame's stay alive
-    void bind() const;                     // at classify.glsl's bindings
-private:
-    gl::Buffer nodes_, planes_;
-};
 
 class RegionLists {
 public:
@@ -39,6 +31,11 @@ public:
     // neither before shading them (MarkedPixelsOnly).
     static constexpr GLuint kLitStencilBit = 1, kUncertainStencilBit = 2;
     void build(const frame::VolumeInputs& inputs, bool mark_stencil = false);
+    // The same lists by the walk route: a full-screen pass walks `tree` along every eye ray up to
+    // its surface (sampling/shaders/region_lists_walk.frag). With `mark_stencil`, both bits are
+    // set where the ray crosses a surface of `mark_bits` (the bits the reader will test).
+    void walk(const frame::VolumeInputs& inputs, const analytic::GpuTreeBuffers& tree,
+              bool mark_stencil, GLuint mark_bits);
 
     // A stencil for the marks, `width` × `height`, attached to `framebuffer`.
     static gl::Texture attach_marks(GLuint framebuffer, int width, int height);
@@ -57,8 +54,15 @@ public:
     size_t triangle_count(int surface) const { return size_t(meshes_[surface].index_count) / 3; }
 
 private:
+    // The build's common half: the lists sized for the view and cleared, bound, colour writes
+    // off; the stencil cleared and enabled with `mark_stencil`. end_build() undoes the state.
+    void begin_build(const frame::VolumeInputs& inputs, bool mark_stencil);
+    void end_build(bool mark_stencil);
+
     gl::TriangleMesh meshes_[2];  // lit, uncertain
     gl::Program program_;
+    gl::Program walk_program_;
+    gl::VertexArray empty_vertex_array_;
     gl::Buffer region_counts_, crossings_;
     int width_ = 0, height_ = 0;
 };

@@ -5,7 +5,7 @@
 // range), then N samples at the middle of N equal steps (or jittered within them), each adding
 // e(z) · visibility · step; samples the shadow map calls dark are skipped before e is evaluated
 // (algorithm 5). `hybrid3` (interval_mode) marches only the pixel's uncertain intervals instead
-// (sampling/shaders/region_lists.glsl: where its ray is inside the uncertain union, in front of
+// (beamtree/shaders/region_lists.glsl: where its ray is inside the uncertain union, in front of
 // the surface and inside the cone), with samples in proportion to their summed length:
 // N = clamp(ceil(density x length), min_samples, samples), spread over the intervals as one
 // stratified sequence; the lit parts between them are the analytic pass's. A pixel whose list
@@ -19,7 +19,7 @@
 #include "gl/shaders/view.glsl"
 #include "analytic/shaders/in_scattering.glsl"
 #include "beamtree/shaders/classify.glsl"
-#include "sampling/shaders/region_lists.glsl"
+#include "beamtree/shaders/region_lists.glsl"
 #include "sampling/shaders/ray_clip.glsl"
 
 layout(binding = 0) uniform sampler2D surface_depth;

@@ -9,7 +9,7 @@
 #include "gl/shaders/shadow.glsl"
 #include "gl/shaders/view.glsl"
 #include "beamtree/shaders/classify.glsl"
-#include "sampling/shaders/region_lists.glsl"
+#include "beamtree/shaders/region_lists.glsl"
 
 // The hybrids' stencil (partition = gpu) rejects pixels without a region crossing before they
 // are shaded.

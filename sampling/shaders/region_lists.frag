@@ -2,7 +2,7 @@
 // Writes one crossing of a region surface into its pixel's list (region_lists.glsl): the distance
 // along the eye ray, + for a front face (entering), - for a back face (leaving). No colour.
 #include "gl/shaders/frame_uniforms.h"
-#include "sampling/shaders/region_lists.glsl"
+#include "beamtree/shaders/region_lists.glsl"
 layout(location = 0) uniform int surface;  // 0 lit, 1 uncertain
 in vec3 world_position;
 void main() {

@@ -1,0 +1,36 @@
+#pragma once
+// The beam tree on the GPU (docs/design.md §14): the flattened tree in two storage buffers, read by
+// classify.glsl (a point's region) and walk.glsl (a segment's regions), and the choice every
+// region method offers between the two routes from the tree to its GPU passes:
+//   walk  the GPU walks the tree per eye ray; the CPU builds the tree and nothing else;
+//   mesh  the CPU extracts the region pieces and the lit and uncertain boundary meshes, which the
+//         GPU rasterizes (Nilsson §3.2.2 for the lit integral, the per-pixel region lists).
+// Both give the same image (tests/beamtree_test.cpp, BoundaryOnTheGpu).
+
+#include "beamtree/beam_tree.h"
+#include "frame/volume_method.h"
+#include "gl/objects.h"
+
+namespace sl::analytic {
+
+// The beam tree as beamtree/shaders/classify.glsl and walk.glsl read it (bt::GpuTree).
+class GpuTreeBuffers {
+public:
+    void upload(const bt::GpuTree& tree);  // fresh buffers: the last frame's stay alive
+    void bind() const;                     // at classify.glsl's bindings
+    explicit operator bool() const { return bool(nodes_); }
+
+private:
+    gl::Buffer nodes_, planes_;
+};
+
+// The `route` choices, in declaration order. `automatic` ("auto") walks an animated scene and
+// meshes a still one: still, the meshes are built once and rasterize faster than a full-screen
+// walk (llvmpipe, results/moving.md); moving, they cost 10-100 times the tree every frame.
+enum class RegionRoute { automatic, walk, mesh };
+// The `route` parameter of the region methods.
+frame::Parameter region_route_parameter();
+// Whether `route` walks the tree for `scene`.
+bool walks(RegionRoute route, const Scene& scene);
+
+}  // namespace sl::analytic

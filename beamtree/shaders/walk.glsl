@@ -1,0 +1,139 @@
+// The beam tree's trace() on the GPU (beamtree/beam_tree.h, docs/design.md §14): the regions
+// along a segment, walked through the tree the CPU built this frame (BeamTree::gpu_tree()), so
+// that no region pieces and no boundary meshes need building per frame. The includer defines
+//     void walk_piece(int region, float begin, float end);
+// and tree_walk() calls it for each piece of [t0, t1] in order of t: consecutive pieces tile the
+// segment, each lies in one leaf (so one region), and pieces of the same region may follow each
+// other (the consumer merges them). Needs frame_uniforms.h and classify.glsl.
+//
+// The walk is classify()'s descent applied to a whole segment (Nilsson Program 2 on an interval):
+// at a split node, the segment's part on each side of the plane (distances a + b t, linear in t,
+// planes relative to the light so that float keeps the tree's ε) goes down that side, the nearer
+// part first. The farther parts wait on a short stack (Horn, Sugerman, Houston & Hanrahan,
+// "Interactive k-D tree GPU raytracing", I3D 2007): when it overflows the oldest entry is
+// dropped, and when it runs dry before the segment's end the walk restarts at the root from
+// where it stands. Deep trees (multiple:256 has depth > 100) cost a few restarts, never a wrong
+// piece. A leaf's occluder and stopper cut its piece into at most three parts, each classified
+// at its middle as classify() would.
+#ifndef SL_WALK_STACK
+#define SL_WALK_STACK 24
+#endif
+// Node visits before a walk gives up (a corrupt tree must not hang the GPU): the rest of the
+// segment is reported as uncertain, which the hybrids march and beamtree leaves dark.
+const int WALK_MAX_STEPS = 1 << 16;
+
+void walk_piece(int region, float begin, float end);
+
+// classify()'s answer at q (light-relative) inside the near and far ranges, for a leaf.
+int walk_leaf_region(TreeNode leaf, vec3 q) {
+    if (leaf.link.z == KIND_OPEN) return REGION_LIT;
+    if (leaf.link.z == KIND_SOLID) {
+        return tree_distance(leaf.plane, q) > 0.0 ? REGION_LIT : REGION_UNCERTAIN;
+    }
+    if (leaf.link.z == KIND_BLOCKER) {
+        if (tree_distance(leaf.plane, q) > 0.0) return REGION_LIT;
+        return tree_distance(tree_planes[leaf.link.w], q) > 0.0 ? REGION_UNCERTAIN : REGION_UNLIT;
+    }
+    return REGION_UNLIT;
+}
+
+void walk_emit(int region, float begin, float end) {
+    if (end > begin) walk_piece(region, begin, end);
+}
+
+// Where the plane's distance a + b t changes sign inside (begin, end), or -1.
+float walk_cut(vec4 plane, vec3 q0, vec3 direction, float begin, float end) {
+    float b = dot(plane.xyz, direction);
+    if (b == 0.0) return -1.0;
+    float t = -tree_distance(plane, q0) / b;
+    return t > begin && t < end ? t : -1.0;
+}
+
+// The pieces of origin + t·direction, t in [t0, t1] (0 <= t0 < t1, both finite). False when the walk
+// gave up after WALK_MAX_STEPS node visits.
+bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
+    vec3 q0 = origin - frame.light_position.xyz;
+    // Inside the near and far ranges: both distances negative (classify's test).
+    float inside0 = t0, inside1 = t1;
+    for (int i = 0; i < 2; ++i) {
+        float a = tree_distance(tree_planes[i], q0), b = dot(tree_planes[i].xyz, direction);
+        if (b == 0.0) {
+            if (!(a < 0.0)) inside1 = inside0;
+        } else if (b > 0.0) {
+            inside1 = min(inside1, -a / b);
+        } else {
+            inside0 = max(inside0, -a / b);
+        }
+    }
+    if (!(inside1 > inside0)) {
+        walk_emit(REGION_UNLIT, t0, t1);
+        return true;
+    }
+    walk_emit(REGION_UNLIT, t0, inside0);
+
+    int stack_node[SL_WALK_STACK];
+    float stack_begin[SL_WALK_STACK], stack_end[SL_WALK_STACK];
+    int top = 0, size = 0;  // a ring: the newest entry at top - 1, `size` entries kept
+    int index = 0;
+    float begin = inside0, end = inside1;
+    for (int step = 0; step < WALK_MAX_STEPS; ++step) {
+        TreeNode node = tree_nodes[index];
+        if (node.link.z == KIND_SPLIT) {
+            float a = tree_distance(node.plane, q0), b = dot(node.plane.xyz, direction);
+            bool front_begin = a + b * begin >= 0.0;
+            bool front_end = a + b * end >= 0.0;
+            if (front_begin == front_end) {
+                index = front_begin ? node.link.x : node.link.y;
+                continue;
+            }
+            float t = b != 0.0 ? clamp(-a / b, begin, end) : 0.5 * (begin + end);
+            stack_node[top] = front_end ? node.link.x : node.link.y;
+            stack_begin[top] = t;
+            stack_end[top] = end;
+            top = (top + 1) % SL_WALK_STACK;
+            size = min(size + 1, SL_WALK_STACK);
+            index = front_begin ? node.link.x : node.link.y;
+            end = t;
+            continue;
+        }
+        // A leaf: its occluder and stopper cut the piece into at most three parts.
+        float cut0 = -1.0, cut1 = -1.0;
+        if (node.link.z == KIND_SOLID || node.link.z == KIND_BLOCKER) {
+            cut0 = walk_cut(node.plane, q0, direction, begin, end);
+        }
+        if (node.link.z == KIND_BLOCKER) {
+            cut1 = walk_cut(tree_planes[node.link.w], q0, direction, begin, end);
+        }
+        if (cut0 < 0.0) {
+            cut0 = cut1;
+            cut1 = -1.0;
+        }
+        float cuts[4];
+        int count = 0;
+        cuts[count++] = begin;
+        if (cut0 >= 0.0) cuts[count++] = cut1 >= 0.0 ? min(cut0, cut1) : cut0;
+        if (cut1 >= 0.0) cuts[count++] = max(cut0, cut1);
+        cuts[count++] = end;
+        for (int k = 0; k + 1 < count; ++k) {
+            float middle = 0.5 * (cuts[k] + cuts[k + 1]);
+            walk_emit(walk_leaf_region(node, q0 + middle * direction), cuts[k], cuts[k + 1]);
+        }
+        if (size > 0) {
+            top = (top + SL_WALK_STACK - 1) % SL_WALK_STACK;
+            --size;
+            index = stack_node[top];
+            begin = stack_begin[top];
+            end = stack_end[top];
+        } else if (end < inside1) {
+            index = 0;  // dropped entries: restart at the root from here
+            begin = end;
+            end = inside1;
+        } else {
+            walk_emit(REGION_UNLIT, inside1, t1);
+            return true;
+        }
+    }
+    walk_emit(REGION_UNCERTAIN, begin, inside1);
+    walk_emit(REGION_UNLIT, inside1, t1);
+    return false;
+}

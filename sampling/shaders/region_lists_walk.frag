@@ -1,0 +1,52 @@
+#version 450 core
+// The region lists of the walk route (sampling/region_lists.h): each pixel's eye ray walks the
+// beam tree from the eye to its first surface (beamtree/shaders/walk.glsl) and writes where it
+// enters (+t) and leaves (-t) the lit and the uncertain regions, the list the meshes' crossings
+// give (region_lists.frag) as far as the readers ask: they read no further than the surface. A
+// ray inside a region at the eye enters it at t = 1e-30. A pixel whose ray crosses none of the
+// surfaces in `mark_surfaces` (bit 0 lit, bit 1 uncertain) is discarded, so that the stencil
+// marks only the others. No colour.
+#include "gl/shaders/frame_uniforms.h"
+#include "gl/shaders/view.glsl"
+#include "beamtree/shaders/classify.glsl"
+#include "beamtree/shaders/walk.glsl"
+#include "beamtree/shaders/region_lists.glsl"
+
+layout(binding = 0) uniform sampler2D surface_depth;
+layout(location = 0) uniform int mark_surfaces;
+
+ivec2 pixel = ivec2(0);
+int counts[2] = int[2](0, 0);
+bool inside[2] = bool[2](false, false);
+
+void cross_surface(int surface, float signed_t) {
+    int i = counts[surface]++;
+    if (i < REGION_LIST_SIZE) {
+        region_crossings[region_slot(pixel, surface) * REGION_LIST_SIZE + i] = signed_t;
+    }
+}
+
+void walk_piece(int region, float begin, float end) {
+    for (int surface = 0; surface < 2; ++surface) {
+        bool in_region = region == surface;
+        if (in_region != inside[surface]) {
+            cross_surface(surface, in_region ? max(begin, 1e-30) : -begin);
+            inside[surface] = in_region;
+        }
+    }
+}
+
+void main() {
+    pixel = ivec2(gl_FragCoord.xy);
+    vec3 origin = frame.camera_position.xyz;
+    vec3 direction = eye_ray_direction(gl_FragCoord.xy);
+    float end = min(surface_distance(surface_depth, gl_FragCoord.xy), 1e7);
+    if (end > 0.0) tree_walk(origin, direction, 0.0, end);
+    for (int surface = 0; surface < 2; ++surface) {
+        if (inside[surface]) cross_surface(surface, -end);
+        region_counts[region_slot(pixel, surface)] = uint(counts[surface]);
+    }
+    bool marked = ((mark_surfaces & 1) != 0 && counts[0] > 0) ||
+                  ((mark_surfaces & 2) != 0 && counts[1] > 0);
+    if (!marked) discard;
+}
