@@ -150,7 +150,9 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
     }
     const Leaf inserted{Kind::solid, plane, -1};
 
-    std::vector<std::pair<int32_t, Polygon>> stack;
+    // Fragments waiting for their descent; kept between calls so that it allocates once.
+    thread_local std::vector<std::pair<int32_t, Polygon>> stack;
+    stack.clear();
     stack.emplace_back(0, std::move(clipped));
     while (!stack.empty()) {
         auto [index, fragment] = std::move(stack.back());
@@ -158,7 +160,8 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
         // Descend while the fragment lies on one side: no copies on the way down.
         while (nodes_[size_t(index)].kind == Kind::split) {
             const Node& node = nodes_[size_t(index)];
-            const Side where = side(fragment, node.plane, epsilon_);
+            Polygon front, back;
+            const Side where = split_straddling(fragment, node.plane, epsilon_, true, front, back);
             if (where == Side::coplanar) {
                 index = -1;  // on a plane through L: edge-on to the light, occludes nothing
                 break;
@@ -167,16 +170,15 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
                 index = where == Side::front ? node.front : node.back;
                 continue;
             }
-            Split parts = split(fragment, node.plane, epsilon_, true);
             // Slivers thinner than the planes' thickness add nothing but nodes.
-            if (area(parts.back) > epsilon_ * epsilon_) {
-                stack.emplace_back(node.back, std::move(parts.back));
+            if (area(back) > epsilon_ * epsilon_) {
+                stack.emplace_back(node.back, std::move(back));
             }
-            if (area(parts.front) <= epsilon_ * epsilon_) {
+            if (area(front) <= epsilon_ * epsilon_) {
                 index = -1;
                 break;
             }
-            fragment = std::move(parts.front);
+            fragment = std::move(front);
             index = node.front;
         }
         if (index < 0) {
@@ -235,7 +237,8 @@ void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside
     // Planes through L and each edge of the fragment that does not already lie on a plane of
     // the path, oriented with the fragment behind (appendix B attachPolygon).
     const dvec3 center = centroid(fragment);
-    std::vector<Plane> edges;
+    thread_local std::vector<Plane> edges;  // allocated once per thread
+    edges.clear();
     const size_t n = fragment.size();
     for (size_t i = 0; i < n; ++i) {
         if (fragment.edge_on_split_plane(i)) {

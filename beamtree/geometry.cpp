@@ -55,35 +55,16 @@ Side side(const Polygon& polygon, const Plane& plane, double epsilon) {
                      : (any_back ? Side::back : Side::coplanar);
 }
 
-Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut_on_split_plane) {
-    Split result;
+namespace {
+
+// The two parts of a polygon that straddles a plane, from its vertices' distances `d`: cut
+// exactly at distance 0, so that the two parts share the cut and conserve the area (ε only
+// decided that there is a split at all). The cut points go to `cut` when given.
+void cut_in_two(const Polygon& polygon, const double* d, bool cut_on_split_plane, Polygon& front,
+                Polygon& back, std::vector<dvec3>* cut) {
     const size_t n = polygon.size();
-    if (n < 3) {
-        return result;
-    }
-    std::vector<double> d(n);
-    bool any_front = false, any_back = false;
-    for (size_t i = 0; i < n; ++i) {
-        d[i] = plane.distance(polygon.vertices[i]);
-        any_front |= d[i] > epsilon;
-        any_back |= d[i] < -epsilon;
-    }
-    if (!any_front && !any_back) {
-        result.coplanar = true;
-        return result;
-    }
-    if (!any_back) {
-        result.front = polygon;
-        return result;
-    }
-    if (!any_front) {
-        result.back = polygon;
-        return result;
-    }
-    // It straddles the plane: split exactly at distance 0, so that the two parts share the cut
-    // and conserve the area (ε only decided that there is a split at all).
-    result.front.vertices.reserve(n + 1);
-    result.back.vertices.reserve(n + 1);
+    front.vertices.reserve(n + 1);
+    back.vertices.reserve(n + 1);
     auto add = [](Polygon& p, const dvec3& v, bool edge_flag) {
         if (edge_flag && p.vertices.size() < 64) {
             p.on_split_plane |= uint64_t(1) << p.vertices.size();
@@ -91,7 +72,7 @@ Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut
         p.vertices.push_back(v);
     };
     for (size_t i = 0; i < n; ++i) {
-        const size_t j = (i + 1) % n;
+        const size_t j = i + 1 == n ? 0 : i + 1;
         const dvec3& a = polygon.vertices[i];
         const dvec3& b = polygon.vertices[j];
         const bool edge_flag = polygon.edge_on_split_plane(i);
@@ -100,14 +81,14 @@ Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut
         // Vertex a and the flag of the edge leaving it: the original edge's, except for a vertex
         // on the plane whose edge dives to the other side, where the polygon continues along
         // the cut.
-        if (!a_back && !a_front) {
-            result.cut.push_back(a);
+        if (!a_back && !a_front && cut) {
+            cut->push_back(a);
         }
         if (!a_back) {
-            add(result.front, a, (!a_front && b_back) ? cut_on_split_plane : edge_flag);
+            add(front, a, (!a_front && b_back) ? cut_on_split_plane : edge_flag);
         }
         if (!a_front) {
-            add(result.back, a, (!a_back && b_front) ? cut_on_split_plane : edge_flag);
+            add(back, a, (!a_back && b_front) ? cut_on_split_plane : edge_flag);
         }
         if ((a_front && b_back) || (a_back && b_front)) {
             // From the back end of the edge whichever way the polygon walks it: the two faces of
@@ -122,18 +103,77 @@ Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut
             const dvec3 p = origin + t * (target - origin);
             // Leaving the front side, the front polygon continues from p along the cut; entering
             // it, the rest of the original edge follows. Likewise for the back polygon.
-            add(result.front, p, a_front ? cut_on_split_plane : edge_flag);
-            add(result.back, p, a_back ? cut_on_split_plane : edge_flag);
-            result.cut.push_back(p);
+            add(front, p, a_front ? cut_on_split_plane : edge_flag);
+            add(back, p, a_back ? cut_on_split_plane : edge_flag);
+            if (cut) {
+                cut->push_back(p);
+            }
         }
     }
-    if (result.front.size() < 3) {
-        result.front = Polygon();
+    if (front.size() < 3) {
+        front = Polygon();
     }
-    if (result.back.size() < 3) {
-        result.back = Polygon();
+    if (back.size() < 3) {
+        back = Polygon();
     }
+}
+
+// The vertices' distances to a plane, in a buffer on the stack for the usual few vertices.
+class Distances {
+public:
+    Distances(const Polygon& polygon, const Plane& plane, double epsilon) {
+        const size_t n = polygon.size();
+        if (n > kInline) {
+            heap_.resize(n);
+        }
+        double* d = data();
+        for (size_t i = 0; i < n; ++i) {
+            d[i] = plane.distance(polygon.vertices[i]);
+            any_front |= d[i] > epsilon;
+            any_back |= d[i] < -epsilon;
+        }
+    }
+    double* data() { return heap_.empty() ? inline_ : heap_.data(); }
+    bool any_front = false, any_back = false;
+
+private:
+    static constexpr size_t kInline = 32;
+    double inline_[kInline];
+    std::vector<double> heap_;
+};
+
+}  // namespace
+
+Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut_on_split_plane) {
+    Split result;
+    if (polygon.size() < 3) {
+        return result;
+    }
+    Distances d(polygon, plane, epsilon);
+    if (!d.any_front && !d.any_back) {
+        result.coplanar = true;
+        return result;
+    }
+    if (!d.any_back) {
+        result.front = polygon;
+        return result;
+    }
+    if (!d.any_front) {
+        result.back = polygon;
+        return result;
+    }
+    cut_in_two(polygon, d.data(), cut_on_split_plane, result.front, result.back, &result.cut);
     return result;
+}
+
+Side split_straddling(const Polygon& polygon, const Plane& plane, double epsilon,
+                      bool cut_on_split_plane, Polygon& front, Polygon& back) {
+    Distances d(polygon, plane, epsilon);
+    if (!(d.any_front && d.any_back)) {
+        return d.any_front ? Side::front : d.any_back ? Side::back : Side::coplanar;
+    }
+    cut_in_two(polygon, d.data(), cut_on_split_plane, front, back, nullptr);
+    return Side::straddling;
 }
 
 Polygon convex_polygon_on_plane(std::vector<dvec3> points, const Plane& plane, double epsilon) {

@@ -80,6 +80,12 @@ struct Split {
 Split split(const Polygon& polygon, const Plane& plane, double epsilon,
             bool cut_on_split_plane = false);
 
+// side() and split() in one pass over the distances, for a fragment descending a tree: where the
+// polygon lies, and when it straddles, its two parts in `front` and `back` (empty ones on entry)
+// exactly as split() cuts them.
+Side split_straddling(const Polygon& polygon, const Plane& plane, double epsilon,
+                      bool cut_on_split_plane, Polygon& front, Polygon& back);
+
 // The convex polygon spanned by points lying on `plane`, counter-clockwise around its normal,
 // with duplicates (within epsilon) removed; empty when fewer than three remain.
 Polygon convex_polygon_on_plane(std::vector<dvec3> points, const Plane& plane, double epsilon);
