@@ -66,6 +66,8 @@ struct StageSamples {
 
 const RegionRequest kBeamtree{.lit = true};
 const RegionRequest kHybrids{.lit = true, .uncertain = true, .gpu_tree = true};
+// The walk route (analytic/gpu_tree.h): every region method needs the tree and nothing else.
+const RegionRequest kWalk{.gpu_tree = true};
 
 Scene light_moved(const Scene& scene, int frame, int frames) {
     Scene s = scene;
@@ -121,7 +123,7 @@ constexpr const char* kStageRule = "---:|---:|---:|---:|---:|---:|---:|---:|";
 int run() {
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     const SceneSearchPaths paths = SceneSearchPaths::defaults();
-    constexpr double kBudget = 4.0;
+    constexpr double kBudget = 2.0;
     constexpr int kFrames = 24;
 
     fmt::print("## A light move on the canonical scenes\n\n");
@@ -139,8 +141,9 @@ int run() {
         for (int k = 0; k < kFrames; ++k)
             states.push_back(light_moved(scene, k, kFrames));
         for (const auto& [label, request] :
-             {std::pair{"beamtree (lit)", kBeamtree},
-              std::pair{"hybrids (lit, uncertain, tree)", kHybrids}}) {
+             {std::pair{"mesh route: beamtree (lit)", kBeamtree},
+              std::pair{"mesh route: hybrids (lit, uncertain, tree)", kHybrids},
+              std::pair{"walk route: all four (tree)", kWalk}}) {
             std::vector<double> before;
             for (int k = 0; k < 3; ++k)
                 before.push_back(first_round_frame(states[size_t(k)], request));
@@ -153,40 +156,51 @@ int run() {
         std::fflush(stdout);
     }
 
-    fmt::print("\n## The canonical animations, every frame (what the hybrids need)\n\n");
-    fmt::print("| scene | frames | {} worst |\n|---|---:|{}---:|\n", kStageHeader, kStageRule);
+    fmt::print("\n## The canonical animations, every frame\n\n");
+    fmt::print("| scene | route | frames | {} worst |\n|---|---|---:|{}---:|\n", kStageHeader,
+               kStageRule);
     for (const std::string& name : animated_scene_names()) {
         const Scene scene = load_scene(name, paths);
         std::vector<Scene> states;
         for (int k = 0; k < scene.animation->frame_count(); ++k)
             states.push_back(scene_at(scene, scene.animation->frame_time(k)));
-        const StageSamples s = play(states, kHybrids);
-        const std::vector<double> totals = s.totals();
-        fmt::print("| {} | {} |{} {:.2f} |\n", name, states.size(), stage_cells(s),
-                   *std::max_element(totals.begin(), totals.end()));
-        std::fflush(stdout);
+        for (const auto& [route, request] :
+             {std::pair{"mesh (hybrids)", kHybrids}, std::pair{"walk", kWalk}}) {
+            const StageSamples s = play(states, request);
+            const std::vector<double> totals = s.totals();
+            fmt::print("| {} | {} | {} |{} {:.2f} |\n", name, route, states.size(), stage_cells(s),
+                       *std::max_element(totals.begin(), totals.end()));
+            std::fflush(stdout);
+        }
     }
 
-    fmt::print("\n## Scaling: a light move on multiple:N (what the hybrids need)\n\n");
-    fmt::print("| N | triangles | {}\n|---:|---:|{}\n", kStageHeader, kStageRule);
-    std::vector<std::pair<double, double>> fit;
-    for (const int n : {4, 8, 16, 32, 64, 128, 256}) {
-        const Scene scene = load_scene(fmt::format("multiple:{}", n), paths);
-        std::vector<Scene> states;
-        const int frames = n <= 64 ? 12 : 6;
-        for (int k = 0; k < frames; ++k)
-            states.push_back(light_moved(scene, k, frames));
-        const StageSamples s = play(states, kHybrids);
-        fit.emplace_back(std::log(double(n)), std::log(quantile(s.totals(), 0.5)));
-        fmt::print("| {} | {} |{}\n", n, scene.triangle_count(), stage_cells(s));
-        std::fflush(stdout);
+    for (const auto& [route, request] : {std::pair{"mesh route, what the hybrids need", kHybrids},
+                                         std::pair{"walk route, what all four need", kWalk}}) {
+        fmt::print("\n## Scaling: a light move on multiple:N ({})\n\n", route);
+        fmt::print("| N | triangles | light-facing polygons | {}\n|---:|---:|---:|{}\n",
+                   kStageHeader, kStageRule);
+        std::vector<std::pair<double, double>> fit;
+        for (const int n : {4, 8, 16, 32, 64, 128, 256}) {
+            const Scene scene = load_scene(fmt::format("multiple:{}", n), paths);
+            std::vector<Scene> states;
+            const int frames = request.lit ? (n <= 64 ? 12 : 6) : 24;
+            for (int k = 0; k < frames; ++k)
+                states.push_back(light_moved(scene, k, frames));
+            const StageSamples s = play(states, request);
+            const BeamTreeStats stats = build_frame_regions(scene, request).tree->stats();
+            fit.emplace_back(std::log(double(n)), std::log(quantile(s.totals(), 0.5)));
+            fmt::print("| {} | {} | {} |{}\n", n, scene.triangle_count(),
+                       stats.outer_polygons + stats.stopper_polygons, stage_cells(s));
+            std::fflush(stdout);
+        }
+        double sx = 0, sy = 0, sxx = 0, sxy = 0;
+        for (const auto& [x, y] : fit) {
+            sx += x, sy += y, sxx += x * x, sxy += x * y;
+        }
+        const double k =
+            (double(fit.size()) * sxy - sx * sy) / (double(fit.size()) * sxx - sx * sx);
+        fmt::print("\nFitted exponent (total ∝ N^k): **k = {:.2f}**.\n", k);
     }
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (const auto& [x, y] : fit) {
-        sx += x, sy += y, sxx += x * x, sxy += x * y;
-    }
-    const double k = (double(fit.size()) * sxy - sx * sy) / (double(fit.size()) * sxx - sx * sx);
-    fmt::print("\nFitted exponent (total ∝ N^k): **k = {:.2f}**.\n", k);
 
     fmt::print("\n## The static half, once per mesh\n\n");
     fmt::print(
