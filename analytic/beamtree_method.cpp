@@ -1,6 +1,7 @@
 #include "analytic/beamtree_method.h"
 
 #include "analytic/gpu_tree.h"
+#include "analytic/region_lists.h"
 #include "analytic/region_pass.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/boundary.h"
@@ -64,6 +65,7 @@ public:
     }
     void render(const frame::VolumeInputs& inputs) override {
         if (walk_) {
+            lists_.walk(inputs, tree_, false, 0);
             pass_.draw_walk(inputs, tree_);
         } else {
             pass_.draw(inputs);
@@ -81,6 +83,7 @@ public:
 private:
     AnalyticRegionPass pass_;
     GpuTreeBuffers tree_;  // the walk route's tree
+    RegionLists lists_;    // and the lit intervals it finds
     bt::RegionStageTimes stages_;
     bool built_ = false;
     bool walk_ = false;  // the last build was for the walk route

@@ -123,12 +123,6 @@ void AnalyticRegionPass::set_scene(const Scene& scene) {
             gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                 {GL_FRAGMENT_SHADER, "analytic/shaders/regions_walk.frag"}},
                                closed_form_defines(scene));
-        std::vector<std::string> defines = closed_form_defines(scene);
-        defines.push_back("SL_READ_LISTS 1");
-        walk_lists_program_ =
-            gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                                {GL_FRAGMENT_SHADER, "analytic/shaders/regions_walk.frag"}},
-                               defines);
     }
     if (!eye_vertex_array_) {
         eye_vertex_array_ = gl::create_vertex_array();
@@ -186,12 +180,11 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
 }
 
-void AnalyticRegionPass::draw_walk(const VolumeInputs& inputs, const GpuTreeBuffers& tree,
-                                   bool read_lists) const {
+void AnalyticRegionPass::draw_walk(const VolumeInputs& inputs, const GpuTreeBuffers& tree) const {
     walked_ = true;
     const SignedDrawScope scope(inputs, closed_form_);
     tree.bind();
-    GL.UseProgram(read_lists ? walk_lists_program_.id() : walk_program_.id());
+    GL.UseProgram(walk_program_.id());
     GL.BindVertexArray(eye_vertex_array_.id());
     GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
     GL.BeginQuery(GL_SAMPLES_PASSED, rasterized_.id());

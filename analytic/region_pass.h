@@ -90,13 +90,12 @@ public:
     // region about it (the winding number, on the CPU) — the closed form's antiderivative is
     // not 0 at the eye.
     void draw(const VolumeInputs& inputs) const;
-    // The same integral by the walk route: a full-screen pass in which every eye ray walks
-    // `tree` (beamtree/shaders/walk.glsl) and adds G(z1) - G(z0) over each lit interval
-    // (analytic/shaders/regions_walk.frag). Needs no mesh. With `read_lists`, the walk's region
-    // lists of this frame are bound (sampling/region_lists.h, RegionLists::walk): the pass sums
-    // their lit intervals instead of walking again, and walks only where a list overflowed.
-    void draw_walk(const VolumeInputs& inputs, const GpuTreeBuffers& tree,
-                   bool read_lists = false) const;
+    // The same integral by the walk route: a full-screen pass that adds G(z1) - G(z0) over each
+    // lit interval of the region lists the walk wrote this frame (RegionLists::walk, bound), and
+    // walks `tree` itself where a list overflowed (analytic/shaders/regions_walk.frag). Needs no
+    // mesh. (Walking and integrating in one pass costs more on a software rasterizer: every lane
+    // of a SIMD group pays for each G evaluation inside the walk's loop.)
+    void draw_walk(const VolumeInputs& inputs, const GpuTreeBuffers& tree) const;
     size_t triangle_count() const { return size_t(mesh_.index_count) / 3; }
     // Its lookup tables, named "<owner>/...".
     TextureViews textures(const std::string& owner) const;
@@ -120,7 +119,6 @@ private:
     Program program_;
     Program eye_program_;          // the full-screen -G(0) of rays that start inside a region
     Program walk_program_;         // the walk route's full-screen pass
-    Program walk_lists_program_;   // the same, reading the walk's region lists
     mutable bool walked_ = false;  // the last draw was draw_walk (the queries count it)
     gl::VertexArray eye_vertex_array_;
     ClosedFormScene closed_form_;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "analytic/region_lists.h"
 #include "analytic/region_pass.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/boundary.h"
@@ -12,7 +13,6 @@
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
-#include "sampling/region_lists.h"
 
 namespace sl::sampling {
 
@@ -172,14 +172,15 @@ public:
                 GL.BindFramebuffer(GL_FRAMEBUFFER, march_framebuffer_.id());
             }
             if (walk) {
-                lists_.walk(inputs, tree_, skip_certain, RegionLists::kUncertainStencilBit);
+                lists_.walk(inputs, tree_, skip_certain,
+                            analytic::RegionLists::kUncertainStencilBit);
             } else {
                 lists_.build(inputs, skip_certain);
             }
             GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
             inputs.timeline.section("analytic");
             if (walk) {
-                analytic_.draw_walk(inputs, tree_, true);
+                analytic_.draw_walk(inputs, tree_);
             } else {
                 analytic_.draw(inputs);
             }
@@ -204,9 +205,9 @@ public:
             GL.Enablei(GL_BLEND, 1);  // added into the frame's I_s
             GL.BlendFunci(1, GL_ONE, GL_ONE);
         }
-        std::optional<RegionLists::MarkedPixelsOnly> marked;
+        std::optional<analytic::RegionLists::MarkedPixelsOnly> marked;
         if (skip_certain) {
-            marked.emplace(RegionLists::kUncertainStencilBit);
+            marked.emplace(analytic::RegionLists::kUncertainStencilBit);
         }
         const GLuint program = march_program_.id();
         GL.UseProgram(program);
@@ -338,7 +339,7 @@ private:
                                    march_target_.id(), 0);
         march_stencil_ = {};
         if (variant_ == MarchVariant::hybrid3 && w == width && h == height) {
-            march_stencil_ = RegionLists::attach_marks(march_framebuffer_.id(), w, h);
+            march_stencil_ = analytic::RegionLists::attach_marks(march_framebuffer_.id(), w, h);
         }
     }
 
@@ -349,7 +350,7 @@ private:
     gl::Texture march_target_;
     gl::Texture march_stencil_;  // hybrid3 at the frame's size: the pixels it marches
     gl::Framebuffer march_framebuffer_;
-    RegionLists lists_;              // hybrid3: where each ray is uncertain
+    analytic::RegionLists lists_;    // hybrid3: where each ray is uncertain
     analytic::GpuTreeBuffers tree_;  // and the tree, where a list overflows (or to walk)
     bool walk_ = false;              // the last build was for the walk route
     std::vector<float> clip_planes_;

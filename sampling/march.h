@@ -8,7 +8,7 @@
 //            variant.
 //   hybrid3  the lit regions in closed form (the boundary of their union, beamtree/boundary.h)
 //            plus the marcher inside each pixel's uncertain intervals only (per-pixel lists of
-//            the uncertain surface's crossings, sampling/region_lists.h), with samples in
+//            the uncertain surface's crossings, analytic/region_lists.h), with samples in
 //            proportion to their length: N = clamp(ceil(density x length), min_samples,
 //            samples). Lit and uncertain regions are disjoint: nothing is counted twice.
 // Parameters: samples, resolution_scale, blur, shadow, shadow_size, jitter, clip (march),

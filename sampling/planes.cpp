@@ -7,6 +7,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "analytic/region_lists.h"
 #include "analytic/region_pass.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/boundary.h"
@@ -15,7 +16,6 @@
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
-#include "sampling/region_lists.h"
 #include "sampling/slices.h"
 
 namespace sl::sampling {
@@ -208,17 +208,22 @@ public:
             if (walk_route()) {
                 lists_.walk(inputs, gpu_tree_, true,
                             variant_ == PlanesVariant::hybrid1
-                                ? RegionLists::kLitStencilBit | RegionLists::kUncertainStencilBit
-                                : RegionLists::kUncertainStencilBit);
+                                ? analytic::RegionLists::kLitStencilBit |
+                                      analytic::RegionLists::kUncertainStencilBit
+                                : analytic::RegionLists::kUncertainStencilBit);
             } else {
                 lists_.build(inputs, true);
             }
         }
         if (variant_ == PlanesVariant::hybrid2) {
-            inputs.timeline.section("analytic");
             GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+            if (walk_route() && !classify_on_gpu) {
+                inputs.timeline.section("region lists");
+                lists_.walk(inputs, gpu_tree_, false, 0);  // for the lit integral alone
+            }
+            inputs.timeline.section("analytic");
             if (walk_route()) {
-                analytic_.draw_walk(inputs, gpu_tree_, classify_on_gpu);
+                analytic_.draw_walk(inputs, gpu_tree_);
             } else {
                 analytic_.draw(inputs);
             }
@@ -227,11 +232,12 @@ public:
             }
         }
         inputs.timeline.section("planes");
-        std::optional<RegionLists::MarkedPixelsOnly> marked;
+        std::optional<analytic::RegionLists::MarkedPixelsOnly> marked;
         if (classify_on_gpu) {
             marked.emplace(variant_ == PlanesVariant::hybrid1
-                               ? RegionLists::kLitStencilBit | RegionLists::kUncertainStencilBit
-                               : RegionLists::kUncertainStencilBit);
+                               ? analytic::RegionLists::kLitStencilBit |
+                                     analytic::RegionLists::kUncertainStencilBit
+                               : analytic::RegionLists::kUncertainStencilBit);
         }
         GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
         GL.UseProgram(program_.id());
@@ -280,7 +286,7 @@ public:
         own_framebuffer_ = gl::create_framebuffer();
         GL.NamedFramebufferTexture(own_framebuffer_.id(), GL_COLOR_ATTACHMENT0, own_target_.id(),
                                    0);
-        own_stencil_ = RegionLists::attach_marks(own_framebuffer_.id(), width, height);
+        own_stencil_ = analytic::RegionLists::attach_marks(own_framebuffer_.id(), width, height);
         if (!copy_program_) {
             copy_program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                                 {GL_FRAGMENT_SHADER, "gl/shaders/copy.frag"}});
@@ -324,7 +330,7 @@ private:
     gl::Buffer vertex_buffer_;
     analytic::GpuTreeBuffers gpu_tree_;  // the tree for the GPU's classify (and walk)
     bool walk_ = false;                  // the last build was for the walk route
-    RegionLists lists_;
+    analytic::RegionLists lists_;
     // partition = gpu: the planes' own target and stencil, added into the frame's I_s.
     gl::Texture own_target_, own_stencil_;
     gl::Framebuffer own_framebuffer_;

@@ -5,7 +5,7 @@
 // antiderivative at the same ends as the mesh route's back and front faces (regions.frag). No eye
 // winding pass is needed: a ray that starts inside a lit region gets an interval from z = 0.
 // With SL_READ_LISTS (hybrid2, hybrid3), the walk already ran this frame and left each pixel's lit
-// crossings in the region lists (sampling/shaders/region_lists_walk.frag): the pass sums over
+// crossings in the region lists (analytic/shaders/region_lists_walk.frag): the pass sums over
 // them, and walks only where a list overflowed.
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
@@ -13,9 +13,7 @@
 #include "gl/shaders/view.glsl"
 #include "beamtree/shaders/classify.glsl"
 #include "beamtree/shaders/walk.glsl"
-#ifdef SL_READ_LISTS
 #include "beamtree/shaders/region_lists.glsl"
-#endif
 
 layout(binding = 0) uniform sampler2D surface_depth;
 layout(location = 0) out vec4 in_scattered;
@@ -51,7 +49,6 @@ void main() {
     float end = min(surface_distance(surface_depth, gl_FragCoord.xy), 1e7);
     if (!(end > 0.0)) discard;
     spans = light_spans(ray_origin, ray_direction);
-#ifdef SL_READ_LISTS
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     int count = region_crossing_count(pixel, 0);
     if (count >= 0) {
@@ -63,7 +60,6 @@ void main() {
         in_scattered = vec4(sum, 0.0);
         return;
     }
-#endif
     tree_walk(ray_origin, ray_direction, 0.0, end);
     flush_lit();
     in_scattered = vec4(sum, 0.0);

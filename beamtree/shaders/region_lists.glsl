@@ -1,6 +1,6 @@
 // Per-pixel lists of where each eye ray crosses the beam tree's region surfaces (the boundaries
 // of the lit and of the uncertain union, beamtree/boundary.h), written by region_lists.frag,
-// read by the hybrids (sampling/region_lists.h): a signed distance per crossing, + where the ray
+// read by the hybrids (analytic/region_lists.h): a signed distance per crossing, + where the ray
 // enters the region (a front face: the surfaces face outward), - where it leaves. A ray crosses
 // each surface a few times; a pixel with more than REGION_LIST_SIZE crossings of one surface
 // overflows, and its readers fall back to the tree itself (beamtree/shaders/classify.glsl).

@@ -53,10 +53,13 @@ float walk_cut(vec4 plane, vec3 q0, vec3 direction, float begin, float end) {
 // gave up after WALK_MAX_STEPS node visits.
 bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
     vec3 q0 = origin - frame.light_position.xyz;
-    // Inside the near and far ranges: both distances negative (classify's test).
+    // Inside the near and far ranges (classify's test) and the influence pyramid (the tree's
+    // root chain, nodes 0-3: their back sides): all six distances negative. Most eye rays miss
+    // the pyramid and stop here; the rest start inside it.
     float inside0 = t0, inside1 = t1;
-    for (int i = 0; i < 2; ++i) {
-        float a = tree_distance(tree_planes[i], q0), b = dot(tree_planes[i].xyz, direction);
+    for (int i = 0; i < 6; ++i) {
+        vec4 plane = i < 2 ? tree_planes[i] : tree_nodes[i - 2].plane;
+        float a = tree_distance(plane, q0), b = dot(plane.xyz, direction);
         if (b == 0.0) {
             if (!(a < 0.0)) inside1 = inside0;
         } else if (b > 0.0) {
@@ -71,8 +74,10 @@ bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
     }
     walk_emit(REGION_UNLIT, t0, inside0);
 
+    // One vec2 per entry (begin, end) and the node in an ivec: fewer indirect accesses, which
+    // a software rasterizer pays per lane.
+    vec2 stack_span[SL_WALK_STACK];
     int stack_node[SL_WALK_STACK];
-    float stack_begin[SL_WALK_STACK], stack_end[SL_WALK_STACK];
     int top = 0, size = 0;  // a ring: the newest entry at top - 1, `size` entries kept
     int index = 0;
     float begin = inside0, end = inside1;
@@ -88,9 +93,8 @@ bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
             }
             float t = b != 0.0 ? clamp(-a / b, begin, end) : 0.5 * (begin + end);
             stack_node[top] = front_end ? node.link.x : node.link.y;
-            stack_begin[top] = t;
-            stack_end[top] = end;
-            top = (top + 1) % SL_WALK_STACK;
+            stack_span[top] = vec2(t, end);
+            top = top + 1 == SL_WALK_STACK ? 0 : top + 1;
             size = min(size + 1, SL_WALK_STACK);
             index = front_begin ? node.link.x : node.link.y;
             end = t;
@@ -104,26 +108,28 @@ bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
         if (node.link.z == KIND_BLOCKER) {
             cut1 = walk_cut(tree_planes[node.link.w], q0, direction, begin, end);
         }
-        if (cut0 < 0.0) {
-            cut0 = cut1;
-            cut1 = -1.0;
+        // The parts' ends in order: begin, c1, c2, end (c1 = c2 = end without cuts).
+        float c1 = end, c2 = end;
+        if (cut0 >= 0.0 && cut1 >= 0.0) {
+            c1 = min(cut0, cut1);
+            c2 = max(cut0, cut1);
+        } else if (cut0 >= 0.0 || cut1 >= 0.0) {
+            c1 = max(cut0, cut1);
         }
-        float cuts[4];
-        int count = 0;
-        cuts[count++] = begin;
-        if (cut0 >= 0.0) cuts[count++] = cut1 >= 0.0 ? min(cut0, cut1) : cut0;
-        if (cut1 >= 0.0) cuts[count++] = max(cut0, cut1);
-        cuts[count++] = end;
-        for (int k = 0; k + 1 < count; ++k) {
-            float middle = 0.5 * (cuts[k] + cuts[k + 1]);
-            walk_emit(walk_leaf_region(node, q0 + middle * direction), cuts[k], cuts[k + 1]);
+        for (int k = 0; k < 3; ++k) {
+            float from = k == 0 ? begin : k == 1 ? c1 : c2;
+            float to = k == 0 ? c1 : k == 1 ? c2 : end;
+            if (to > from) {
+                float middle = 0.5 * (from + to);
+                walk_piece(walk_leaf_region(node, q0 + middle * direction), from, to);
+            }
         }
         if (size > 0) {
-            top = (top + SL_WALK_STACK - 1) % SL_WALK_STACK;
+            top = top == 0 ? SL_WALK_STACK - 1 : top - 1;
             --size;
             index = stack_node[top];
-            begin = stack_begin[top];
-            end = stack_end[top];
+            begin = stack_span[top].x;
+            end = stack_span[top].y;
         } else if (end < inside1) {
             index = 0;  // dropped entries: restart at the root from here
             begin = end;

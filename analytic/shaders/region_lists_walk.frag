@@ -1,5 +1,5 @@
 #version 450 core
-// The region lists of the walk route (sampling/region_lists.h): each pixel's eye ray walks the
+// The region lists of the walk route (analytic/region_lists.h): each pixel's eye ray walks the
 // beam tree from the eye to its first surface (beamtree/shaders/walk.glsl) and writes where it
 // enters (+t) and leaves (-t) the lit and the uncertain regions, the list the meshes' crossings
 // give (region_lists.frag) as far as the readers ask: they read no further than the surface. A
@@ -16,24 +16,21 @@ layout(binding = 0) uniform sampler2D surface_depth;
 layout(location = 0) uniform int mark_surfaces;
 
 ivec2 pixel = ivec2(0);
-int counts[2] = int[2](0, 0);
-bool inside[2] = bool[2](false, false);
+// Per surface (x lit, y uncertain): the crossings written, and whether the walk is inside.
+ivec2 counts = ivec2(0);
+bvec2 inside = bvec2(false);
 
-void cross_surface(int surface, float signed_t) {
-    int i = counts[surface]++;
+void cross_surface(int surface, int i, float signed_t) {
     if (i < REGION_LIST_SIZE) {
         region_crossings[region_slot(pixel, surface) * REGION_LIST_SIZE + i] = signed_t;
     }
 }
 
 void walk_piece(int region, float begin, float end) {
-    for (int surface = 0; surface < 2; ++surface) {
-        bool in_region = region == surface;
-        if (in_region != inside[surface]) {
-            cross_surface(surface, in_region ? max(begin, 1e-30) : -begin);
-            inside[surface] = in_region;
-        }
-    }
+    bvec2 now = bvec2(region == REGION_LIT, region == REGION_UNCERTAIN);
+    if (now.x != inside.x) cross_surface(0, counts.x++, now.x ? max(begin, 1e-30) : -begin);
+    if (now.y != inside.y) cross_surface(1, counts.y++, now.y ? max(begin, 1e-30) : -begin);
+    inside = now;
 }
 
 void main() {
@@ -42,11 +39,11 @@ void main() {
     vec3 direction = eye_ray_direction(gl_FragCoord.xy);
     float end = min(surface_distance(surface_depth, gl_FragCoord.xy), 1e7);
     if (end > 0.0) tree_walk(origin, direction, 0.0, end);
-    for (int surface = 0; surface < 2; ++surface) {
-        if (inside[surface]) cross_surface(surface, -end);
-        region_counts[region_slot(pixel, surface)] = uint(counts[surface]);
-    }
-    bool marked = ((mark_surfaces & 1) != 0 && counts[0] > 0) ||
-                  ((mark_surfaces & 2) != 0 && counts[1] > 0);
+    if (inside.x) cross_surface(0, counts.x++, -end);
+    if (inside.y) cross_surface(1, counts.y++, -end);
+    region_counts[region_slot(pixel, 0)] = uint(counts.x);
+    region_counts[region_slot(pixel, 1)] = uint(counts.y);
+    bool marked = ((mark_surfaces & 1) != 0 && counts.x > 0) ||
+                  ((mark_surfaces & 2) != 0 && counts.y > 0);
     if (!marked) discard;
 }

@@ -3,9 +3,10 @@
 // the lit and uncertain boundary meshes (beamtree/boundary.h) are rasterized once, every
 // fragment appending its signed distance along the eye ray to its pixel's list (the mesh route),
 // or every eye ray walks the beam tree and writes its crossings (the walk route,
-// analytic/gpu_tree.h). The hybrids read
-// them: hybrid1 and hybrid2 to classify a plane sample (lit, uncertain, unlit) in a few compares,
-// hybrid3 to march only the uncertain intervals. A list that overflows falls back to the tree.
+// analytic/gpu_tree.h). The hybrids read them: hybrid1 and hybrid2 to classify a plane sample
+// (lit, uncertain, unlit) in a few compares, hybrid3 to march only the uncertain intervals; on the
+// walk route, the lit integral of beamtree, hybrid2 and hybrid3 sums the lit ones
+// (AnalyticRegionPass::draw_walk). A list that overflows falls back to the tree.
 
 #include <vector>
 
@@ -17,7 +18,7 @@
 #include "frame/volume_method.h"
 #include "gl/objects.h"
 
-namespace sl::sampling {
+namespace sl::analytic {
 
 class RegionLists {
 public:
@@ -32,10 +33,10 @@ public:
     static constexpr GLuint kLitStencilBit = 1, kUncertainStencilBit = 2;
     void build(const frame::VolumeInputs& inputs, bool mark_stencil = false);
     // The same lists by the walk route: a full-screen pass walks `tree` along every eye ray up to
-    // its surface (sampling/shaders/region_lists_walk.frag). With `mark_stencil`, both bits are
+    // its surface (analytic/shaders/region_lists_walk.frag). With `mark_stencil`, both bits are
     // set where the ray crosses a surface of `mark_bits` (the bits the reader will test).
-    void walk(const frame::VolumeInputs& inputs, const analytic::GpuTreeBuffers& tree,
-              bool mark_stencil, GLuint mark_bits);
+    void walk(const frame::VolumeInputs& inputs, const GpuTreeBuffers& tree, bool mark_stencil,
+              GLuint mark_bits);
 
     // A stencil for the marks, `width` × `height`, attached to `framebuffer`.
     static gl::Texture attach_marks(GLuint framebuffer, int width, int height);
@@ -67,4 +68,4 @@ private:
     int width_ = 0, height_ = 0;
 };
 
-}  // namespace sl::sampling
+}  // namespace sl::analytic

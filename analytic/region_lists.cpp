@@ -1,11 +1,11 @@
-#include "sampling/region_lists.h"
+#include "analytic/region_lists.h"
 
 #include <algorithm>
 
 #include "gl/functions.h"
 #include "gl/shaders.h"
 
-namespace sl::sampling {
+namespace sl::analytic {
 
 namespace {
 
@@ -19,7 +19,7 @@ constexpr int kListSize = 16;                                // REGION_LIST_SIZE
 void RegionLists::upload(const bt::RegionMesh& lit, const bt::RegionMesh& uncertain) {
     if (!program_) {
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
-                                       {GL_FRAGMENT_SHADER, "sampling/shaders/region_lists.frag"}});
+                                       {GL_FRAGMENT_SHADER, "analytic/shaders/region_lists.frag"}});
     }
     meshes_[0] = gl::create_triangle_mesh(lit.positions, lit.triangles);
     meshes_[1] = gl::create_triangle_mesh(uncertain.positions, uncertain.triangles);
@@ -82,12 +82,12 @@ void RegionLists::build(const frame::VolumeInputs& inputs, bool mark_stencil) {
     end_build(mark_stencil);
 }
 
-void RegionLists::walk(const frame::VolumeInputs& inputs, const analytic::GpuTreeBuffers& tree,
+void RegionLists::walk(const frame::VolumeInputs& inputs, const GpuTreeBuffers& tree,
                        bool mark_stencil, GLuint mark_bits) {
     if (!walk_program_) {
         walk_program_ =
             gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                                {GL_FRAGMENT_SHADER, "sampling/shaders/region_lists_walk.frag"}});
+                                {GL_FRAGMENT_SHADER, "analytic/shaders/region_lists_walk.frag"}});
         empty_vertex_array_ = gl::create_vertex_array();
     }
     begin_build(inputs, mark_stencil);
@@ -135,4 +135,4 @@ size_t RegionLists::overflows() const {
                                 [](GLuint n) { return n > GLuint(kListSize); }));
 }
 
-}  // namespace sl::sampling
+}  // namespace sl::analytic
