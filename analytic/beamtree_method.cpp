@@ -6,6 +6,7 @@
 #include "beamtree/beam_tree.h"
 #include "beamtree/boundary.h"
 #include "beamtree/regions.h"
+#include "gl/platform.h"
 
 namespace sl::analytic {
 
@@ -31,13 +32,14 @@ public:
     std::string name() const override { return "beamtree"; }
     std::string accepts() const override { return AnalyticRegionPass::accepts(); }
     void prepare(const Scene& scene) override {
+        software_ = gl::current_renderer_is_software();  // for route = auto
         built_ = false;
         update(scene, SceneChange::everything(scene));
     }
     std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
                                                  const SceneChange& change) const override {
         AnalyticRegionPass::require_closed_form(scene, name());
-        if (walks(choice<RegionRoute>("route"), scene)) {
+        if (walks(choice<RegionRoute>("route"), scene, software_)) {
             return region_frame_work(scene, change, {.gpu_tree = true}, built_, true);
         }
         const auto surfaces = choice<Surfaces>("surfaces");
@@ -86,7 +88,8 @@ private:
     RegionLists lists_;    // and the lit intervals it finds
     bt::RegionStageTimes stages_;
     bool built_ = false;
-    bool walk_ = false;  // the last build was for the walk route
+    bool walk_ = false;      // the last build was for the walk route
+    bool software_ = false;  // the GL is a software rasterizer (prepare())
 };
 
 }  // namespace

@@ -31,8 +31,9 @@ frame::Parameter region_route_parameter() {
             .choices = {"auto", "walk", "mesh"}};
 }
 
-bool walks(RegionRoute route, const Scene& scene) {
-    return route == RegionRoute::walk || (route == RegionRoute::automatic && scene.animation);
+bool walks(RegionRoute route, const Scene& scene, bool software) {
+    return route == RegionRoute::walk ||
+           (route == RegionRoute::automatic && scene.animation && !software);
 }
 
 }  // namespace sl::analytic

@@ -24,13 +24,15 @@ private:
     gl::Buffer nodes_, planes_;
 };
 
-// The `route` choices, in declaration order. `automatic` ("auto") walks an animated scene and
-// meshes a still one: still, the meshes are built once and rasterize faster than a full-screen
-// walk (llvmpipe, results/moving.md); moving, they cost 10-100 times the tree every frame.
+// The `route` choices, in declaration order. `automatic` ("auto") walks an animated scene on a
+// GPU and meshes otherwise: still, the meshes are built once; moving, they cost the CPU 10-100
+// times the tree every frame, more than a GPU's walk, but on a software rasterizer the
+// full-screen walk costs more than that (results/moving.md, results/animated).
 enum class RegionRoute { automatic, walk, mesh };
 // The `route` parameter of the region methods.
 frame::Parameter region_route_parameter();
-// Whether `route` walks the tree for `scene`.
-bool walks(RegionRoute route, const Scene& scene);
+// Whether `route` walks the tree for `scene`; `software`: the GL is a software rasterizer
+// (gl::current_renderer_is_software(), asked on the GL thread).
+bool walks(RegionRoute route, const Scene& scene, bool software);
 
 }  // namespace sl::analytic

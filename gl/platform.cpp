@@ -26,6 +26,21 @@ ContextInfo Platform::info() const {
     return info;
 }
 
+bool is_software_renderer(const std::string& renderer) {
+    for (const char* name :
+         {"llvmpipe", "softpipe", "Software Rasterizer", "swrast", "SwiftShader"}) {
+        if (renderer.find(name) != std::string::npos) {
+            return true;
+        }
+    }
+    return false;
+}
+
+bool current_renderer_is_software() {
+    const auto* renderer = reinterpret_cast<const char*>(GL.GetString(GL_RENDERER));
+    return is_software_renderer(renderer ? renderer : "");
+}
+
 void initialize_loaded_context(void* (*resolve)(const char*)) {
     load_api(resolve);
     GLint major = 0, minor = 0;

@@ -57,4 +57,10 @@ std::unique_ptr<WindowPlatform> create_glfw_platform(int width, int height,
 // Called by every backend once its context is current.
 void initialize_loaded_context(void* (*resolve)(const char*));
 
+// Whether a GL_RENDERER string names a software rasterizer (Mesa's llvmpipe, softpipe, swrast;
+// SwiftShader), where shading runs on the CPU in SIMD lanes instead of on a GPU.
+bool is_software_renderer(const std::string& renderer);
+// The same for the current context.
+bool current_renderer_is_software();
+
 }  // namespace sl::gl

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
+#include "gl/platform.h"
 #include "gl/shaders.h"
 
 namespace sl::sampling {
@@ -108,6 +109,7 @@ public:
     }
 
     void prepare(const Scene& scene) override {
+        software_ = gl::current_renderer_is_software();  // for route = auto
         built_ = false;
         update(scene, SceneChange::everything(scene));
         if (!march_program_) {
@@ -128,7 +130,7 @@ public:
             return nullptr;
         }
         analytic::AnalyticRegionPass::require_closed_form(scene, name());
-        const bool walk = analytic::walks(choice<analytic::RegionRoute>("route"), scene);
+        const bool walk = analytic::walks(choice<analytic::RegionRoute>("route"), scene, software_);
         return analytic::region_frame_work(
             scene, change, {.lit = !walk, .uncertain = !walk, .gpu_tree = true}, built_, walk);
     }
@@ -353,6 +355,7 @@ private:
     analytic::RegionLists lists_;    // hybrid3: where each ray is uncertain
     analytic::GpuTreeBuffers tree_;  // and the tree, where a list overflows (or to walk)
     bool walk_ = false;              // the last build was for the walk route
+    bool software_ = false;          // the GL is a software rasterizer (prepare())
     std::vector<float> clip_planes_;
     int buffer_width_ = 0, buffer_height_ = 0, frame_width_ = 0, frame_height_ = 0;
     int frame_index_ = 0;

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
+#include "gl/platform.h"
 #include "gl/shaders.h"
 #include "sampling/slices.h"
 
@@ -93,6 +94,7 @@ public:
     }
 
     void prepare(const Scene& scene) override {
+        software_ = gl::current_renderer_is_software();  // for route = auto
         tree_.reset();
         update(scene, SceneChange::everything(scene));
         if (!program_) {
@@ -123,7 +125,7 @@ public:
         }
         // The CPU partition cuts planes with the tree alone; the lists and the lit integral need
         // the meshes only on the mesh route.
-        const bool walk = analytic::walks(choice<analytic::RegionRoute>("route"), scene);
+        const bool walk = analytic::walks(choice<analytic::RegionRoute>("route"), scene, software_);
         return analytic::region_frame_work(scene, change,
                                            {.lit = !walk, .uncertain = !walk, .gpu_tree = true},
                                            tree_ != nullptr, walk);
@@ -330,6 +332,7 @@ private:
     gl::Buffer vertex_buffer_;
     analytic::GpuTreeBuffers gpu_tree_;  // the tree for the GPU's classify (and walk)
     bool walk_ = false;                  // the last build was for the walk route
+    bool software_ = false;              // the GL is a software rasterizer (prepare())
     analytic::RegionLists lists_;
     // partition = gpu: the planes' own target and stencil, added into the frame's I_s.
     gl::Texture own_target_, own_stencil_;

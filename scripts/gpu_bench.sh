@@ -12,7 +12,9 @@
 #
 #   scripts/gpu_bench.sh run [--limit SECONDS] [EXPERIMENT ...]
 #       There: unpacks gpu-package.tar.xz into a temporary folder, records the GL renderer
-#       (`shaftlab gl-info` through EGL), and runs each experiment (default: equal_error) with
+#       (`shaftlab gl-info` through EGL), and runs each experiment (default: equal_error, then
+#       animated: every method along the canonical animations, the region methods on both routes
+#       from the beam tree to the GPU, walk and mesh, docs/design.md §14) with
 #       `shaftlab bench`, each under `timeout` so the whole call ends within --limit seconds
 #       (default 480): an experiment cut short keeps the cells it finished (bench resumes).
 #       Results go to $OUT/gpu-<renderer>/<experiment>/ ($OUT as the device tool sets it, else
@@ -76,7 +78,7 @@ run() {
         *) experiments+=("$1"); shift ;;
         esac
     done
-    ((${#experiments[@]})) || experiments=(equal_error)
+    ((${#experiments[@]})) || experiments=(equal_error animated)
     [ -f "$package" ] || { echo "gpu_bench: no $package (run 'scripts/gpu_bench.sh package' first)" >&2; exit 2; }
     local start=$SECONDS
     root=$(mktemp -d)  # global: the EXIT trap runs after this function has returned

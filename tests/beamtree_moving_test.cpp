@@ -67,8 +67,9 @@ private:
 
 // Every frame of each canonical animation: the per-frame path (the shared library's cached
 // volumes transformed) against a fresh build of the still scene at that time, by a library that
-// computes every volume itself. Regions PLY for PLY at every frame; the boundary meshes and the
-// GPU tree at every 20th frame and the last (they cost most).
+// computes every volume itself. Regions PLY for PLY at every frame, and the walk route's update
+// (the tree alone, analytic/gpu_tree.h) as the GPU reads it, bit for bit; the mesh route's
+// boundary meshes and GPU tree at every 20th frame and the last (they cost most).
 TEST(MovingRegions, PerFrameUpdateEqualsAFreshBuildAtEveryFrame) {
     TempDir dir;
     for (const std::string& name : animated_scene_names()) {
@@ -88,13 +89,24 @@ TEST(MovingRegions, PerFrameUpdateEqualsAFreshBuildAtEveryFrame) {
             ASSERT_EQ(ply_bytes(*frame.regions, dir, "frame.ply"),
                       ply_bytes(regions, dir, "fresh.ply"))
                 << label;
+            const GpuTree gpu = tree.gpu_tree();
+            const FrameRegions walk = build_frame_regions(still, {.gpu_tree = true});
+            ASSERT_EQ(walk.gpu.nodes.size(), gpu.nodes.size()) << label;
+            ASSERT_EQ(walk.gpu.planes.size(), gpu.planes.size()) << label;
+            EXPECT_EQ(0, std::memcmp(walk.gpu.nodes.data(), gpu.nodes.data(),
+                                     gpu.nodes.size() * sizeof(gpu.nodes[0])))
+                << label;
+            EXPECT_EQ(0, std::memcmp(walk.gpu.planes.data(), gpu.planes.data(),
+                                     gpu.planes.size() * sizeof(gpu.planes[0])))
+                << label;
+            EXPECT_EQ(walk.ms.regions + walk.ms.lit + walk.ms.uncertain, 0.0)
+                << label << ": the walk route builds no regions or meshes";
             if (!meshes) {
                 continue;
             }
             EXPECT_TRUE(same_mesh(frame.lit, boundary_mesh(tree, regions, Region::lit))) << label;
             EXPECT_TRUE(same_mesh(frame.uncertain, boundary_mesh(tree, regions, Region::uncertain)))
                 << label;
-            const GpuTree gpu = tree.gpu_tree();
             ASSERT_EQ(frame.gpu.nodes.size(), gpu.nodes.size()) << label;
             EXPECT_EQ(0, std::memcmp(frame.gpu.nodes.data(), gpu.nodes.data(),
                                      gpu.nodes.size() * sizeof(gpu.nodes[0])))

@@ -50,20 +50,27 @@ TEST_F(FrameLoopTest, FrameKOfAnAnimationEqualsTheStillSceneAtItsTime) {
     for (const std::string& scene_name : animated_scene_names()) {
         const Scene animated = load_scene(scene_name, SceneSearchPaths::defaults());
         const std::vector<int> frames = {0, 37, 90};
-        // Every method with its defaults, and march clipped to the influence pyramid (planes it
-        // takes from the frame's light in its update).
-        std::vector<std::pair<std::string, std::string>> cases;
+        // Every method with its defaults, march clipped to the influence pyramid (planes it
+        // takes from the frame's light in its update), and the region methods on the walk route
+        // (the suite's software GL makes `auto` mesh).
+        struct Case {
+            std::string method, parameter, value;
+        };
+        std::vector<Case> cases;
         for (const std::string& name : methods::volume_method_names()) {
             if (name != "reference") {
-                cases.emplace_back(name, "");
+                cases.push_back({name, "", ""});
             }
         }
-        cases.emplace_back("march", "pyramid");
-        for (const auto& [name, clip] : cases) {
+        cases.push_back({"march", "clip", "pyramid"});
+        for (const char* name : {"beamtree", "hybrid1", "hybrid2", "hybrid3"}) {
+            cases.push_back({name, "route", "walk"});
+        }
+        for (const Case& c : cases) {
             auto create = [&] {
-                auto method = methods::create_volume_method(name);
-                if (!clip.empty()) {
-                    method->set("clip", clip);
+                auto method = methods::create_volume_method(c.method);
+                if (!c.parameter.empty()) {
+                    method->set(c.parameter, c.value);
                 }
                 return method;
             };
@@ -79,7 +86,8 @@ TEST_F(FrameLoopTest, FrameKOfAnAnimationEqualsTheStillSceneAtItsTime) {
                 // Jitter is off by default, so the frame index leaves no trace.
                 EXPECT_LE(test::max_abs_difference(updated[i], expected),
                           1e-5 * (1.0 + test::image_peak(expected)))
-                    << scene_name << " " << name << " " << clip << " frame " << frames[i];
+                    << scene_name << " " << c.method << " " << c.parameter << "=" << c.value
+                    << " frame " << frames[i];
             }
         }
     }

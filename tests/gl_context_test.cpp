@@ -8,6 +8,7 @@
 #include "gl/debug.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
+#include "gl/platform.h"
 #include "gl/shaders.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "tests/support.h"
@@ -101,6 +102,19 @@ TEST_F(GlContext, FrameUniformsLayoutMatchesBetweenCppAndGlsl) {
         gl::GL.GetActiveUniformsiv(program.id(), 1, &index, GL_UNIFORM_OFFSET, &gl_offset);
         EXPECT_EQ(size_t(gl_offset), offset) << name;
     }
+}
+
+// route = auto (analytic/gpu_tree.h) meshes on a software rasterizer: the renderer strings of
+// Mesa's and Google's software GLs are told from GPUs', and the suite's own GL is one.
+TEST(GlPlatform, TellsSoftwareRasterizersFromGpus) {
+    EXPECT_TRUE(gl::is_software_renderer("llvmpipe (LLVM 15.0.6, 256 bits)"));
+    EXPECT_TRUE(gl::is_software_renderer("softpipe"));
+    EXPECT_TRUE(gl::is_software_renderer("Mesa OffScreen / Software Rasterizer"));
+    EXPECT_TRUE(gl::is_software_renderer("Google SwiftShader"));
+    EXPECT_FALSE(gl::is_software_renderer("NVIDIA H100 80GB HBM3/PCIe/SSE2"));
+    EXPECT_FALSE(
+        gl::is_software_renderer("AMD Radeon RX 7900 XTX (radeonsi, navi31, LLVM 15.0.6)"));
+    EXPECT_FALSE(gl::is_software_renderer("Mesa Intel(R) UHD Graphics 630 (CFL GT2)"));
 }
 
 }  // namespace

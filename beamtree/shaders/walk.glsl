@@ -3,8 +3,7 @@
 // that no region pieces and no boundary meshes need building per frame. The includer defines
 //     void walk_piece(int region, float begin, float end);
 // and tree_walk() calls it for each piece of [t0, t1] in order of t: consecutive pieces tile the
-// segment, each lies in one leaf (so one region), and pieces of the same region may follow each
-// other (the consumer merges them). Needs frame_uniforms.h and classify.glsl.
+// segment and differ in region (trace()'s intervals). Needs frame_uniforms.h and classify.glsl.
 //
 // The walk is classify()'s descent applied to a whole segment (Nilsson Program 2 on an interval):
 // at a split node, the segment's part on each side of the plane (distances a + b t, linear in t,
@@ -26,31 +25,57 @@ void walk_piece(int region, float begin, float end);
 
 // classify()'s answer at q (light-relative) inside the near and far ranges, for a leaf.
 int walk_leaf_region(TreeNode leaf, vec3 q) {
-    if (leaf.link.z == KIND_OPEN) return REGION_LIT;
+    if (leaf.link.z == KIND_OPEN)
+        return REGION_LIT;
     if (leaf.link.z == KIND_SOLID) {
         return tree_distance(leaf.plane, q) > 0.0 ? REGION_LIT : REGION_UNCERTAIN;
     }
     if (leaf.link.z == KIND_BLOCKER) {
-        if (tree_distance(leaf.plane, q) > 0.0) return REGION_LIT;
+        if (tree_distance(leaf.plane, q) > 0.0)
+            return REGION_LIT;
         return tree_distance(tree_planes[leaf.link.w], q) > 0.0 ? REGION_UNCERTAIN : REGION_UNLIT;
     }
     return REGION_UNLIT;
 }
 
+// The run of pieces of one region the walk is in: consecutive pieces of a region are merged, so
+// that walk_piece() is called once per change of region rather than once per leaf. Inside the
+// walk's loop every lane of a SIMD group runs what any lane runs: the consumer's work (list
+// writes, G) there cost half the walk on llvmpipe before the merge.
+int walk_run_region = -1;
+float walk_run_begin = 0.0, walk_run_end = 0.0;
+
 void walk_emit(int region, float begin, float end) {
-    if (end > begin) walk_piece(region, begin, end);
+    if (!(end > begin))
+        return;
+    if (region == walk_run_region && begin == walk_run_end) {
+        walk_run_end = end;
+        return;
+    }
+    if (walk_run_region >= 0)
+        walk_piece(walk_run_region, walk_run_begin, walk_run_end);
+    walk_run_region = region;
+    walk_run_begin = begin;
+    walk_run_end = end;
+}
+
+void walk_finish() {
+    if (walk_run_region >= 0)
+        walk_piece(walk_run_region, walk_run_begin, walk_run_end);
+    walk_run_region = -1;
 }
 
 // Where the plane's distance a + b t changes sign inside (begin, end), or -1.
 float walk_cut(vec4 plane, vec3 q0, vec3 direction, float begin, float end) {
     float b = dot(plane.xyz, direction);
-    if (b == 0.0) return -1.0;
+    if (b == 0.0)
+        return -1.0;
     float t = -tree_distance(plane, q0) / b;
     return t > begin && t < end ? t : -1.0;
 }
 
-// The pieces of origin + t·direction, t in [t0, t1] (0 <= t0 < t1, both finite). False when the walk
-// gave up after WALK_MAX_STEPS node visits.
+// The pieces of origin + t·direction, t in [t0, t1] (0 <= t0 < t1, both finite). False when the
+// walk gave up after WALK_MAX_STEPS node visits.
 bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
     vec3 q0 = origin - frame.light_position.xyz;
     // Inside the near and far ranges (classify's test) and the influence pyramid (the tree's
@@ -61,7 +86,8 @@ bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
         vec4 plane = i < 2 ? tree_planes[i] : tree_nodes[i - 2].plane;
         float a = tree_distance(plane, q0), b = dot(plane.xyz, direction);
         if (b == 0.0) {
-            if (!(a < 0.0)) inside1 = inside0;
+            if (!(a < 0.0))
+                inside1 = inside0;
         } else if (b > 0.0) {
             inside1 = min(inside1, -a / b);
         } else {
@@ -70,6 +96,7 @@ bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
     }
     if (!(inside1 > inside0)) {
         walk_emit(REGION_UNLIT, t0, t1);
+        walk_finish();
         return true;
     }
     walk_emit(REGION_UNLIT, t0, inside0);
@@ -79,8 +106,11 @@ bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
     vec2 stack_span[SL_WALK_STACK];
     int stack_node[SL_WALK_STACK];
     int top = 0, size = 0;  // a ring: the newest entry at top - 1, `size` entries kept
-    int index = 0;
+    // The segment lies inside the pyramid: below the root chain's four sides (restarts too).
+    int root = tree_nodes[3].link.y;
+    int index = root;
     float begin = inside0, end = inside1;
+    bool finished = false;
     for (int step = 0; step < WALK_MAX_STEPS; ++step) {
         TreeNode node = tree_nodes[index];
         if (node.link.z == KIND_SPLIT) {
@@ -116,13 +146,13 @@ bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
         } else if (cut0 >= 0.0 || cut1 >= 0.0) {
             c1 = max(cut0, cut1);
         }
-        for (int k = 0; k < 3; ++k) {
+        // One call site in the loop (the parts' count is not a constant, so it stays a loop).
+        int parts = c2 < end ? 3 : c1 < end ? 2 : 1;
+        for (int k = 0; k < parts; ++k) {
             float from = k == 0 ? begin : k == 1 ? c1 : c2;
             float to = k == 0 ? c1 : k == 1 ? c2 : end;
-            if (to > from) {
-                float middle = 0.5 * (from + to);
-                walk_piece(walk_leaf_region(node, q0 + middle * direction), from, to);
-            }
+            float middle = 0.5 * (from + to);
+            walk_emit(walk_leaf_region(node, q0 + middle * direction), from, to);
         }
         if (size > 0) {
             top = top == 0 ? SL_WALK_STACK - 1 : top - 1;
@@ -131,15 +161,17 @@ bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
             begin = stack_span[top].x;
             end = stack_span[top].y;
         } else if (end < inside1) {
-            index = 0;  // dropped entries: restart at the root from here
+            index = root;  // dropped entries: restart at the root from here
             begin = end;
             end = inside1;
         } else {
-            walk_emit(REGION_UNLIT, inside1, t1);
-            return true;
+            finished = true;
+            break;
         }
     }
-    walk_emit(REGION_UNCERTAIN, begin, inside1);
+    if (!finished)
+        walk_emit(REGION_UNCERTAIN, begin, inside1);  // gave up
     walk_emit(REGION_UNLIT, inside1, t1);
-    return false;
+    walk_finish();
+    return finished;
 }
