@@ -26,8 +26,9 @@ frame::Parameter region_route_parameter() {
                 "walk: each eye ray walks the beam tree on the GPU, the CPU builds "
                 "only the tree per change; mesh: the CPU builds the region pieces "
                 "and boundary meshes, the GPU rasterizes them (same image, "
-                "docs/design.md §14); auto: walk when the scene is animated, mesh "
-                "when it is still",
+                "docs/design.md §14); auto: walk when the scene is animated and the GL "
+                "is a GPU, mesh when it is still or the GL is a software rasterizer "
+                "(llvmpipe)",
             .choices = {"auto", "walk", "mesh"}};
 }
 
