@@ -6,6 +6,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <unordered_map>
 #include <utility>
@@ -411,14 +412,17 @@ RegionMesh maximal_polygon_mesh(const std::vector<PlanarFace>& faces, double tol
                 outlines[i] = sets[i].outline;
             }
         }
-        std::vector<bool> refused(sets.size(), false);
+        // One byte per set: the tasks below write their own flags at once, and std::vector<bool>
+        // packs 64 flags in a word, so two tasks' writes to one word raced and one was lost (a
+        // refused triangulation then read as merged: an empty optional, a crash).
+        std::vector<uint8_t> refused(sets.size(), 0);
         tbb::parallel_for(size_t(0), sets.size(), [&](size_t i) {
             if (sets[i].fanned || (merged[i] && triangulated[i] == outlines[i])) {
                 return;  // kept as they are, or the same outline as the last round
             }
             merged[i] = triangulate_outline(positions, outlines[i], sets[i].normal);
             triangulated[i] = outlines[i];
-            refused[i] = !merged[i];
+            refused[i] = merged[i] ? 0 : 1;
         });
         bool any = false;
         for (size_t i = 0; i < sets.size(); ++i) {
