@@ -27,7 +27,7 @@ for scene in toplight-orbit parallel-walk multiple-moving; do
     done
 done
 # A picture to look at: multiple-moving at 2 s, the swapping pairs inside each other.
-"$build_dir/shaftlab" animate --scene multiple-moving --method hybrid3 --frames 61 --size 480x270 \
+"$build_dir/shaftlab" animate --scene multiple-moving --method hybrid3 --set route=walk --frames 61 --size 480x270 \
     --mode pipelined --warmup 0 --out "$scratch/picture" >/dev/null
 latency=$(xvfb-run -a "$build_dir/shaftlab" view --scene parallel-walk --method hybrid2 \
     --frames 8 --size 640x360 --hidden | grep "scene changes")
