@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "analytic/gpu_tree.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/bounding_volumes.h"
 #include "frame/renderer.h"
@@ -31,13 +32,9 @@ TEST_F(BeamTreeGpu, GlslClassifyMatchesCpp) {
         bt::VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
                                    .automatic_inner = scene.bounds.automatic_inner});
         const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
-        const bt::GpuTree gpu = tree.gpu_tree();
-        const gl::Buffer nodes =
-            gl::create_buffer(gpu.nodes.data(), gpu.nodes.size() * sizeof(gpu.nodes[0]));
-        const gl::Buffer planes =
-            gl::create_buffer(gpu.planes.data(), gpu.planes.size() * sizeof(gpu.planes[0]));
-        gl::GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, nodes.id());
-        gl::GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, planes.id());
+        analytic::GpuTreeBuffers buffers;  // what the methods upload, at classify.glsl's bindings
+        buffers.upload(tree.gpu_tree());
+        buffers.bind();
 
         // Points in the light's cone and range, a little beyond it too.
         std::mt19937 rng(17);

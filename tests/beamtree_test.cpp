@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "analytic/gpu_tree.h"
 #include "analytic/in_scattering.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/boundary.h"
@@ -1292,13 +1293,9 @@ TEST_F(BoundaryOnTheGpu, WalkFindsTheTreesIntervalsAlongRandomLines) {
                                        .automatic_inner = c.scene.bounds.automatic_inner});
         const bt::BeamTree tree(c.scene.light, volumes.build(c.scene, nullptr));
         deepest = std::max(deepest, tree.stats().max_depth);
-        const bt::GpuTree gpu = tree.gpu_tree();
-        const gl::Buffer nodes =
-            gl::create_buffer(gpu.nodes.data(), gpu.nodes.size() * sizeof(gpu.nodes[0]));
-        const gl::Buffer planes =
-            gl::create_buffer(gpu.planes.data(), gpu.planes.size() * sizeof(gpu.planes[0]));
-        gl::GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, nodes.id());
-        gl::GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, planes.id());
+        analytic::GpuTreeBuffers buffers;  // what the methods upload, at classify.glsl's bindings
+        buffers.upload(tree.gpu_tree());
+        buffers.bind();
         // Segments between random points of the influence volume and a little around it.
         const double size = double(c.scene.light.far);
         std::vector<glm::vec4> origins(size_t(kWidth) * kHeight), directions(origins.size());
