@@ -18,7 +18,6 @@ class GpuTreeBuffers {
 public:
     void upload(const bt::GpuTree& tree);  // fresh buffers: the last frame's stay alive
     void bind() const;                     // at classify.glsl's bindings
-    explicit operator bool() const { return bool(nodes_); }
 
 private:
     gl::Buffer nodes_, planes_;

@@ -99,9 +99,9 @@ void RegionLists::walk(const frame::VolumeInputs& inputs, const GpuTreeBuffers& 
     tree.bind();
     GL.BindTextureUnit(0, inputs.surface_depth);
     GL.UseProgram(walk_program_.id());
-    GL.ProgramUniform1i(
-        walk_program_.id(), 0,
-        int((mark_bits & kLitStencilBit ? 1 : 0) | (mark_bits & kUncertainStencilBit ? 2 : 0)));
+    // region_lists_walk.frag's mark_surfaces: bit 0 lit, bit 1 uncertain, as the stencil's bits.
+    static_assert(kLitStencilBit == 1 && kUncertainStencilBit == 2);
+    GL.ProgramUniform1i(walk_program_.id(), 0, GLint(mark_bits));
     GL.BindVertexArray(empty_vertex_array_.id());
     GL.DrawArrays(GL_TRIANGLES, 0, 3);
     end_build(mark_stencil);

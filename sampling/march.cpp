@@ -168,12 +168,11 @@ public:
         // rest of the buffer keeps its clear, so the image is the same.
         const bool skip_certain = hybrid && march_stencil_;
         if (hybrid) {
-            const bool walk = walk_;
             inputs.timeline.section("region lists");
             if (skip_certain) {
                 GL.BindFramebuffer(GL_FRAMEBUFFER, march_framebuffer_.id());
             }
-            if (walk) {
+            if (walk_) {
                 lists_.walk(inputs, tree_, skip_certain,
                             analytic::RegionLists::kUncertainStencilBit);
             } else {
@@ -181,7 +180,7 @@ public:
             }
             GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
             inputs.timeline.section("analytic");
-            if (walk) {
+            if (walk_) {
                 analytic_.draw_walk(inputs, tree_);
             } else {
                 analytic_.draw(inputs);

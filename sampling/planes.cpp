@@ -207,7 +207,7 @@ public:
             const float zero[4] = {0, 0, 0, 0};
             GL.ClearNamedFramebufferfv(own_framebuffer_.id(), GL_COLOR, 0, zero);
             inputs.timeline.section("region lists");
-            if (walk_route()) {
+            if (walk_) {
                 lists_.walk(inputs, gpu_tree_, true,
                             variant_ == PlanesVariant::hybrid1
                                 ? analytic::RegionLists::kLitStencilBit |
@@ -219,12 +219,12 @@ public:
         }
         if (variant_ == PlanesVariant::hybrid2) {
             GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
-            if (walk_route() && !classify_on_gpu) {
+            if (walk_ && !classify_on_gpu) {
                 inputs.timeline.section("region lists");
                 lists_.walk(inputs, gpu_tree_, false, 0);  // for the lit integral alone
             }
             inputs.timeline.section("analytic");
-            if (walk_route()) {
+            if (walk_) {
                 analytic_.draw_walk(inputs, gpu_tree_);
             } else {
                 analytic_.draw(inputs);
@@ -275,8 +275,6 @@ public:
         }
         GL.Disable(GL_BLEND);
     }
-
-    bool walk_route() const { return variant_ != PlanesVariant::planes && walk_; }
 
     void allocate(int width, int height) {
         if (width == own_width_ && height == own_height_) {
@@ -331,8 +329,8 @@ private:
     gl::Program program_;
     gl::Buffer vertex_buffer_;
     analytic::GpuTreeBuffers gpu_tree_;  // the tree for the GPU's classify (and walk)
-    bool walk_ = false;                  // the last build was for the walk route
-    bool software_ = false;              // the GL is a software rasterizer (prepare())
+    bool walk_ = false;      // the last build was for the walk route (never for `planes`: no build)
+    bool software_ = false;  // the GL is a software rasterizer (prepare())
     analytic::RegionLists lists_;
     // partition = gpu: the planes' own target and stencil, added into the frame's I_s.
     gl::Texture own_target_, own_stencil_;

@@ -1,12 +1,12 @@
 #version 450 core
 // Volume-based integration over the lit regions without their meshes (the walk route,
-// docs/design.md §14): each eye ray walks the beam tree from the eye to its first surface
-// (beamtree/shaders/walk.glsl), and each lit interval [z0, z1] adds G(z1) - G(z0), the same
-// antiderivative at the same ends as the mesh route's back and front faces (regions.frag). No eye
-// winding pass is needed: a ray that starts inside a lit region gets an interval from z = 0.
-// With SL_READ_LISTS (hybrid2, hybrid3), the walk already ran this frame and left each pixel's lit
-// crossings in the region lists (analytic/shaders/region_lists_walk.frag): the pass sums over
-// them, and walks only where a list overflowed.
+// docs/design.md §14): the walk of each eye ray through the beam tree, from the eye to its first
+// surface, left the pixel's lit crossings in the region lists this frame
+// (analytic/shaders/region_lists_walk.frag), and each lit interval [z0, z1] adds G(z1) - G(z0),
+// the same antiderivative at the same ends as the mesh route's back and front faces
+// (regions.frag). Where a list overflowed, the pass walks the tree itself
+// (beamtree/shaders/walk.glsl, whose pieces of one region are already merged). No eye winding
+// pass is needed: a ray that starts inside a lit region has an interval from z = 0.
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "analytic/shaders/in_scattering.glsl"
@@ -21,25 +21,12 @@ layout(location = 0) out vec4 in_scattered;
 vec3 ray_origin = vec3(0.0), ray_direction = vec3(0.0);
 LightSpans spans = LightSpans(vec2(0.0), vec2(0.0));
 vec3 sum = vec3(0.0);
-float lit_begin = 0.0, lit_end = -1.0;  // the lit interval being merged (none: end < begin)
-
-void flush_lit() {
-    if (lit_end > lit_begin) {
-        sum += in_scattering_integral(ray_origin, ray_direction, spans, lit_end) -
-               in_scattering_integral(ray_origin, ray_direction, spans, lit_begin);
-    }
-    lit_end = -1.0;
-}
 
 void walk_piece(int region, float begin, float end) {
-    if (region != REGION_LIT) return;
-    if (lit_end == begin) {
-        lit_end = end;  // the next leaf's lit piece continues the interval
-        return;
+    if (region == REGION_LIT) {
+        sum += in_scattering_integral(ray_origin, ray_direction, spans, end) -
+               in_scattering_integral(ray_origin, ray_direction, spans, begin);
     }
-    flush_lit();
-    lit_begin = begin;
-    lit_end = end;
 }
 
 void main() {
@@ -56,11 +43,8 @@ void main() {
         for (int i = 0; i + 1 < count; i += 2) {
             walk_piece(REGION_LIT, region_crossing(pixel, 0, i), -region_crossing(pixel, 0, i + 1));
         }
-        flush_lit();
-        in_scattered = vec4(sum, 0.0);
-        return;
+    } else {
+        tree_walk(ray_origin, ray_direction, 0.0, end);
     }
-    tree_walk(ray_origin, ray_direction, 0.0, end);
-    flush_lit();
     in_scattered = vec4(sum, 0.0);
 }

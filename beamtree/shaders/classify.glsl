@@ -28,6 +28,21 @@ layout(std430, binding = SL_TREE_PLANES_BINDING) readonly buffer TreePlanes { ve
 
 float tree_distance(vec4 plane, vec3 q) { return dot(plane.xyz, q) + plane.w; }
 
+// A leaf's region at q (light-relative, inside the near and far ranges): open lit; solid lit in
+// front of its occluder, uncertain behind; blocker also unlit behind its stopper; out unlit.
+// BeamTree::leaf_region's twin, shared with the walk (walk.glsl).
+int leaf_region(TreeNode leaf, vec3 q) {
+    if (leaf.link.z == KIND_OPEN) return REGION_LIT;
+    if (leaf.link.z == KIND_SOLID) {
+        return tree_distance(leaf.plane, q) > 0.0 ? REGION_LIT : REGION_UNCERTAIN;
+    }
+    if (leaf.link.z == KIND_BLOCKER) {
+        if (tree_distance(leaf.plane, q) > 0.0) return REGION_LIT;
+        return tree_distance(tree_planes[leaf.link.w], q) > 0.0 ? REGION_UNCERTAIN : REGION_UNLIT;
+    }
+    return REGION_UNLIT;  // out: outside the influence pyramid
+}
+
 int classify_region(vec3 p) {
     vec3 q = p - frame.light_position.xyz;
     if (!(tree_distance(tree_planes[0], q) < 0.0) || !(tree_distance(tree_planes[1], q) < 0.0)) {
@@ -39,13 +54,5 @@ int classify_region(vec3 p) {
         index = tree_distance(node.plane, q) >= 0.0 ? node.link.x : node.link.y;
         node = tree_nodes[index];
     }
-    if (node.link.z == KIND_OPEN) return REGION_LIT;
-    if (node.link.z == KIND_SOLID) {
-        return tree_distance(node.plane, q) > 0.0 ? REGION_LIT : REGION_UNCERTAIN;
-    }
-    if (node.link.z == KIND_BLOCKER) {
-        if (tree_distance(node.plane, q) > 0.0) return REGION_LIT;
-        return tree_distance(tree_planes[node.link.w], q) > 0.0 ? REGION_UNCERTAIN : REGION_UNLIT;
-    }
-    return REGION_UNLIT;  // out: outside the influence pyramid
+    return leaf_region(node, q);
 }

@@ -13,7 +13,7 @@
 // dropped, and when it runs dry before the segment's end the walk restarts at the root from
 // where it stands. Deep trees (multiple:256 has depth > 100) cost a few restarts, never a wrong
 // piece. A leaf's occluder and stopper cut its piece into at most three parts, each classified
-// at its middle as classify() would.
+// at its middle as classify() would (classify.glsl's leaf_region).
 #ifndef SL_WALK_STACK
 #define SL_WALK_STACK 24
 #endif
@@ -22,21 +22,6 @@
 const int WALK_MAX_STEPS = 1 << 16;
 
 void walk_piece(int region, float begin, float end);
-
-// classify()'s answer at q (light-relative) inside the near and far ranges, for a leaf.
-int walk_leaf_region(TreeNode leaf, vec3 q) {
-    if (leaf.link.z == KIND_OPEN)
-        return REGION_LIT;
-    if (leaf.link.z == KIND_SOLID) {
-        return tree_distance(leaf.plane, q) > 0.0 ? REGION_LIT : REGION_UNCERTAIN;
-    }
-    if (leaf.link.z == KIND_BLOCKER) {
-        if (tree_distance(leaf.plane, q) > 0.0)
-            return REGION_LIT;
-        return tree_distance(tree_planes[leaf.link.w], q) > 0.0 ? REGION_UNCERTAIN : REGION_UNLIT;
-    }
-    return REGION_UNLIT;
-}
 
 // The run of pieces of one region the walk is in: consecutive pieces of a region are merged, so
 // that walk_piece() is called once per change of region rather than once per leaf. Inside the
@@ -152,7 +137,7 @@ bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
             float from = k == 0 ? begin : k == 1 ? c1 : c2;
             float to = k == 0 ? c1 : k == 1 ? c2 : end;
             float middle = 0.5 * (from + to);
-            walk_emit(walk_leaf_region(node, q0 + middle * direction), from, to);
+            walk_emit(leaf_region(node, q0 + middle * direction), from, to);
         }
         if (size > 0) {
             top = top == 0 ? SL_WALK_STACK - 1 : top - 1;
