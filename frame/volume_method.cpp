@@ -138,10 +138,10 @@ void VolumeMethod::declare_choice(std::string name, std::vector<std::string> cho
              .choices = std::move(choices)});
 }
 
-void VolumeMethod::declare_shadow_parameters() {
+void VolumeMethod::declare_shadow_parameters(ShadowFilter filter) {
     declare({.name = "shadow",
              .type = Parameter::Type::choice,
-             .default_value = double(ShadowFilter::pcf),
+             .default_value = double(filter),
              .description = "shadow map filter for mid-air visibility and surfaces",
              .choices = kShadowFilterNames});
     declare({.name = "shadow_size",

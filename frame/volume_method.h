@@ -151,8 +151,9 @@ protected:
     void declare_flag(std::string name, bool default_value, std::string description);
     void declare_choice(std::string name, std::vector<std::string> choices, size_t default_index,
                         std::string description);
-    // Declares `shadow` (hard, pcf, vsm) and `shadow_size`, read by shadow_settings().
-    void declare_shadow_parameters();
+    // Declares `shadow` (hard, pcf, vsm; `filter` by default) and `shadow_size`, read by
+    // shadow_settings().
+    void declare_shadow_parameters(ShadowFilter filter = ShadowFilter::pcf);
 
 private:
     size_t choice_index(const std::string& name) const;

@@ -40,14 +40,6 @@ void set_grid_uniforms(GLuint program, const FroxelGrid& grid) {
     GL.ProgramUniform2f(program, grid_uniform::depth, grid.depth_extent, grid.linear_depth);
 }
 
-// Runs the bound compute program over `threads` in work groups of `local` (the shader's
-// local_size), then makes its image writes visible to the passes after it.
-void dispatch(glm::ivec3 threads, glm::ivec3 local) {
-    const glm::ivec3 groups = (threads + local - 1) / local;
-    GL.DispatchCompute(GLuint(groups.x), GLuint(groups.y), GLuint(groups.z));
-    GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-}
-
 // The radical inverse of i in base 2 (Halton's first dimension).
 float halton2(int i) {
     float result = 0.0f, f = 0.5f;
@@ -115,7 +107,7 @@ void FroxelIntegrator::integrate(const FroxelGrid& grid, GLuint densities,
     GL.UseProgram(program_.id());
     GL.BindTextureUnit(0, densities);
     GL.BindImageTexture(0, integrated, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    dispatch({grid.size.x, grid.size.y, 1}, {8, 8, 1});
+    gl::dispatch_compute({grid.size.x, grid.size.y, 1}, {8, 8, 1});
 }
 
 namespace {
@@ -209,7 +201,7 @@ public:
                             halton2(frame_index_ % kJitterPeriod + 1));
         GL.UseProgram(program);
         GL.BindImageTexture(0, injected_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        dispatch(grid.size, {4, 4, 4});
+        gl::dispatch_compute(grid.size, {4, 4, 4});
 
         GLuint densities = injected_.id();
         if (temporal) {
@@ -231,7 +223,7 @@ public:
             GL.BindTextureUnit(0, injected_.id());
             GL.BindTextureUnit(1, history_[1 - current].id());
             GL.BindImageTexture(0, result.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-            dispatch(grid.size, {4, 4, 4});
+            gl::dispatch_compute(grid.size, {4, 4, 4});
             densities = result.id();
             previous_ = Previous{.view_projection = inputs.uniforms.view_projection,
                                  .camera = inputs.uniforms.camera_position,
@@ -315,7 +307,7 @@ private:
         GL.ProgramUniform1i(atlas_program_.id(), 0, columns);
         GL.BindTextureUnit(0, volume);
         GL.BindImageTexture(0, atlas.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        dispatch({w, h, 1}, {8, 8, 1});
+        gl::dispatch_compute({w, h, 1}, {8, 8, 1});
     }
 
     gl::Program inject_program_, temporal_program_, apply_program_, atlas_program_;

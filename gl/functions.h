@@ -117,6 +117,8 @@ namespace sl::gl {
     X(PFNGLSTENCILMASKPROC, StencilMask)                                                           \
     X(PFNGLCLEARNAMEDFRAMEBUFFERFIPROC, ClearNamedFramebufferfi)                                   \
     X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                                                   \
+    X(PFNGLDISPATCHCOMPUTEINDIRECTPROC, DispatchComputeIndirect)                                   \
+    X(PFNGLBINDBUFFERPROC, BindBuffer)                                                             \
     X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                                                 \
     X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                                                       \
     X(PFNGLPOLYGONMODEPROC, PolygonMode)                                                           \

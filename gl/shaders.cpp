@@ -103,4 +103,11 @@ Program create_program(const std::vector<ShaderStage>& stages,
     return program;
 }
 
+void dispatch_compute(glm::ivec3 threads, glm::ivec3 local) {
+    const glm::ivec3 groups = (threads + local - 1) / local;
+    GL.DispatchCompute(GLuint(groups.x), GLuint(groups.y), GLuint(groups.z));
+    GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                     GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
 }  // namespace sl::gl

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "gl/objects.h"
 
 namespace sl::gl {
@@ -22,5 +24,9 @@ std::string shader_source(const std::string& path, const std::vector<std::string
 // Compiles and links; throws sl::Error with the info log and the file name on failure.
 Program create_program(const std::vector<ShaderStage>& stages,
                        const std::vector<std::string>& defines = {});
+
+// Runs the bound compute program over `threads` in work groups of `local` (the shader's
+// local_size), then makes its image and buffer writes visible to the passes after it.
+void dispatch_compute(glm::ivec3 threads, glm::ivec3 local);
 
 }  // namespace sl::gl

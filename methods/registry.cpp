@@ -8,6 +8,7 @@
 
 #include "analytic/beamtree_method.h"
 #include "core/error.h"
+#include "epipolar/epipolar.h"
 #include "froxel/froxel.h"
 #include "lightvolume/light_volume.h"
 #include "reference/reference_method.h"
@@ -33,6 +34,7 @@ const std::vector<std::pair<std::string, Factory>>& registry() {
         {"hybrid3", [] { return sampling::create_march_method(MarchVariant::hybrid3); }},
         {"froxel", froxel::create_froxel_method},
         {"lightvolume", lightvolume::create_light_volume_method},
+        {"epipolar", epipolar::create_epipolar_method},
         {"reference", reference::create_reference_method},
     };
     return methods;

@@ -1,0 +1,384 @@
+#include "epipolar/epipolar.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "analytic/gpu_tables.h"
+#include "analytic/region_pass.h"
+#include "epipolar/geometry.h"
+#include "gl/functions.h"
+#include "gl/objects.h"
+#include "gl/shaders.h"
+
+namespace sl::epipolar {
+
+namespace {
+
+using frame::Parameter;
+using gl::GL;
+
+// The choices, in the order declared.
+enum class LitIntegral { closed_form, samples };
+
+// Uniform locations of shaders/epipolar.glsl (every pass but minmax.comp and interpolate.comp).
+namespace uniform {
+constexpr GLint grid = 0, light_screen = 1, arc = 2, map_texels = 3, depth_threshold = 4,
+                max_step = 5, samples = 6, minmax_levels = 7, direct = 8;
+}
+// Units and bindings. Units 4 and 5 hold the frame's shadow map and moments, 7 the medium table.
+constexpr GLuint kSurfaceDepthUnit = 0, kCoordinatesUnit = 1, kTreeUnit = 2, kScatteringUnit = 2,
+                 kLightDepthUnit = 3, kMarksUnit = 6;
+constexpr GLuint kCoordinatesImage = 0, kMarksImage = 1, kTreeImage = 2, kScatteringImage = 3;
+constexpr GLuint kSlicesBinding = 0, kCountersBinding = 1, kMarchedListBinding = 2;
+constexpr int kMaxStep = 256;
+
+// shaders/epipolar.glsl's Counters block: march.comp's indirect dispatch, then the statistics.
+struct Counters {
+    uint32_t march_groups = 0, march_groups_y = 1, march_groups_z = 1;
+    uint32_t marched_samples = 0, tree_lookups = 0, fixup_pixels = 0, fixup_samples = 0;
+};
+
+class EpipolarMethod final : public frame::VolumeMethod {
+public:
+    EpipolarMethod() {
+        declare({.name = "slices",
+                 .type = Parameter::Type::integer,
+                 .default_value = 512,
+                 .min = 1,
+                 .max = 8192,
+                 .description = "epipolar lines from the light's screen position to the border"});
+        declare({.name = "samples_per_slice",
+                 .type = Parameter::Type::integer,
+                 .default_value = 256,
+                 .min = 2,
+                 .max = 8192,
+                 .description = "samples on each line, evenly from its entry to its exit"});
+        declare({.name = "max_step",
+                 .type = Parameter::Type::integer,
+                 .default_value = 16,
+                 .min = 1,
+                 .max = kMaxStep,
+                 .description = "samples between two marched ones at most (more are marched at "
+                                "depth discontinuities)"});
+        declare({.name = "depth_threshold",
+                 .default_value = 0.03,
+                 .min = 0.0,
+                 .max = 1e3,
+                 .description = "view depths further apart than this fraction of the nearer are "
+                                "a discontinuity (refinement and the bilateral unwarp)"});
+        declare({.name = "samples",
+                 .type = Parameter::Type::integer,
+                 .default_value = 64,
+                 .min = 1,
+                 .max = 4096,
+                 .description = "steps per marched eye ray over its interval in the cone"});
+        declare_choice("lit_integral", {"closed_form", "samples"}, 0,
+                       "closed_form: a lit run of steps adds G(z1) - G(z0) (Chen et al.); "
+                       "samples: its steps' densities (any medium)");
+        declare_flag("minmax", true,
+                     "on: the 1D min-max tree skips lit and dark runs; off: every step tests the "
+                     "rectified line");
+        declare_flag("interpolation", true,
+                     "off: every pixel is marched directly through the shadow map (= march)");
+        declare_shadow_parameters(frame::ShadowFilter::hard);
+    }
+
+    std::string name() const override { return "epipolar"; }
+    std::string accepts() const override {
+        return "every medium and light with lit_integral = samples; with closed_form (the "
+               "default): " +
+               analytic::AnalyticRegionPass::accepts();
+    }
+
+    void prepare(const Scene& scene) override {
+        if (!coordinates_program_) {
+            const auto compute = [](const char* path) {
+                return gl::create_program({{GL_COMPUTE_SHADER, path}});
+            };
+            coordinates_program_ = compute("epipolar/shaders/coordinates.comp");
+            refine_program_ = compute("epipolar/shaders/refine.comp");
+            rectify_program_ = compute("epipolar/shaders/rectify.comp");
+            minmax_program_ = compute("epipolar/shaders/minmax.comp");
+            interpolate_program_ = compute("epipolar/shaders/interpolate.comp");
+            apply_program_ =
+                gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                    {GL_FRAGMENT_SHADER, "epipolar/shaders/apply.frag"}});
+            overlay_program_ =
+                gl::create_program({{GL_VERTEX_SHADER, "epipolar/shaders/overlay.vert"},
+                                    {GL_FRAGMENT_SHADER, "epipolar/shaders/overlay.frag"}});
+            empty_vertex_array_ = gl::create_vertex_array();
+            plain_sampler_ = gl::create_plain_sampler(GL_NEAREST);
+            slices_buffer_ = gl::create_mutable_buffer();
+            const Counters zero;
+            counters_ = gl::create_buffer(&zero, sizeof(zero), GL_DYNAMIC_STORAGE_BIT);
+        }
+        update(scene, SceneChange::everything(scene));
+    }
+
+    std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
+                                                 const SceneChange&) const override {
+        if (choice<LitIntegral>("lit_integral") == LitIntegral::closed_form) {
+            analytic::AnalyticRegionPass::require_closed_form(scene, name());
+        }
+        return nullptr;  // the slice table is made per frame in render(), from the frame's views
+    }
+    void apply_update(const Scene& scene, const SceneChange&,
+                      std::unique_ptr<frame::FrameWork>) override {
+        make_march_program(scene);
+    }
+
+    void render(const frame::VolumeInputs& inputs) override {
+        make_march_program(inputs.scene);  // lit_integral may have changed since the update
+        GLint target = 0;
+        GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+        const Counters zero;
+        GL.NamedBufferSubData(counters_.id(), 0, sizeof(zero), &zero);
+        const bool direct = !flag("interpolation");
+        int map_size = 0;
+        GL.GetTextureLevelParameteriv(inputs.shadow_map, 0, GL_TEXTURE_WIDTH, &map_size);
+        const int texels = map_texels(map_size);
+        const int levels = flag("minmax") ? int(std::round(std::log2(double(texels)))) : 0;
+        const glm::ivec2 grid(int(number("samples_per_slice")), int(number("slices")));
+        const Views views{
+            .view_projection = glm::dmat4(inputs.uniforms.view_projection),
+            .light_view_projection = glm::dmat4(inputs.uniforms.light_view_projection),
+            .camera = glm::dvec3(inputs.uniforms.camera_position),
+            .light = glm::dvec3(inputs.uniforms.light_position),
+            .width = inputs.width,
+            .height = inputs.height};
+        const glm::dvec2 screen = light_screen_position(views);
+        const ExitArc arc = exit_arc(screen, inputs.width, inputs.height);
+        light_on_screen_ = inside_image(screen, inputs.width, inputs.height);
+        for (const gl::Program* program : {&coordinates_program_, &refine_program_,
+                                           &rectify_program_, &march_program_, &apply_program_}) {
+            const GLuint id = program->id();
+            GL.ProgramUniform2i(id, uniform::grid, grid.x, grid.y);
+            GL.ProgramUniform2f(id, uniform::light_screen, float(screen.x), float(screen.y));
+            GL.ProgramUniform3f(id, uniform::arc, float(arc.start), float(arc.length),
+                                arc.periodic ? 1.0f : 0.0f);
+            GL.ProgramUniform1i(id, uniform::map_texels, texels);
+            GL.ProgramUniform1f(id, uniform::depth_threshold, float(number("depth_threshold")));
+            GL.ProgramUniform1i(id, uniform::max_step, int(number("max_step")));
+            GL.ProgramUniform1i(id, uniform::samples, int(number("samples")));
+            GL.ProgramUniform1i(id, uniform::minmax_levels, levels);
+            GL.ProgramUniform1i(id, uniform::direct, direct ? 1 : 0);
+        }
+        GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountersBinding, counters_.id());
+        valid_slices_ = 0;
+        if (!direct) {
+            inputs.timeline.section("slices");
+            GL.BindTextureUnit(kLightDepthUnit, inputs.shadow_map);
+            GL.BindSampler(kLightDepthUnit, plain_sampler_.id());  // depths, not comparisons
+            upload_slices(make_slices(views, grid.y, texels));
+            allocate(grid, texels);
+            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kMarchedListBinding, marched_list_.id());
+            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlicesBinding, slices_buffer_.id());
+
+            inputs.timeline.section("coordinates");
+            GL.UseProgram(coordinates_program_.id());
+            GL.BindTextureUnit(kSurfaceDepthUnit, inputs.surface_depth);
+            GL.BindImageTexture(kCoordinatesImage, coordinates_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                                GL_RGBA32F);
+            gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
+
+            inputs.timeline.section("refine");
+            GL.UseProgram(refine_program_.id());
+            GL.BindTextureUnit(kCoordinatesUnit, coordinates_.id());
+            GL.BindImageTexture(kMarksImage, marks_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32I);
+            gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
+
+            inputs.timeline.section("min-max trees");
+            GL.UseProgram(rectify_program_.id());
+            GL.BindImageTexture(kTreeImage, tree_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
+            gl::dispatch_compute({texels / 64, grid.y, 1}, {64, 1, 1});
+            if (levels > 6) {  // 1 to 6 by rectify.comp
+                GL.UseProgram(minmax_program_.id());
+                GL.ProgramUniform3i(minmax_program_.id(), 0, levels, texels, grid.y);
+                gl::dispatch_compute({grid.y, 1, 1}, {64, 1, 1});
+            }
+
+            inputs.timeline.section("march");
+            GL.UseProgram(march_program_.id());
+            GL.BindTextureUnit(kTreeUnit, tree_.id());
+            GL.BindTextureUnit(kMarksUnit, marks_.id());
+            GL.BindTextureUnit(analytic::kMediumTableUnit, closed_form_.medium_table());
+            GL.BindImageTexture(kScatteringImage, scattering_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                                GL_RGBA32F);
+            GL.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, counters_.id());
+            GL.DispatchComputeIndirect(0);  // refine.comp's count of marched samples
+            GL.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+            GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                             GL_SHADER_STORAGE_BARRIER_BIT);
+
+            inputs.timeline.section("interpolate");
+            GL.UseProgram(interpolate_program_.id());
+            GL.ProgramUniform2i(interpolate_program_.id(), uniform::grid, grid.x, grid.y);
+            GL.ProgramUniform1i(interpolate_program_.id(), uniform::max_step,
+                                int(number("max_step")));
+            GL.BindImageTexture(kScatteringImage, scattering_.id(), 0, GL_FALSE, 0, GL_READ_WRITE,
+                                GL_RGBA32F);
+            gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
+        }
+
+        inputs.timeline.section("apply");
+        GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+        GL.UseProgram(apply_program_.id());
+        GL.BindTextureUnit(kSurfaceDepthUnit, inputs.surface_depth);
+        if (!direct) {
+            GL.BindTextureUnit(kCoordinatesUnit, coordinates_.id());
+            GL.BindTextureUnit(kScatteringUnit, scattering_.id());
+        }
+        GL.BindVertexArray(empty_vertex_array_.id());
+        GL.Enable(GL_BLEND);
+        GL.BlendFunc(GL_ONE, GL_ONE);
+        GL.DrawArrays(GL_TRIANGLES, 0, 3);
+        GL.Disable(GL_BLEND);
+        GL.BindSampler(kLightDepthUnit, 0);
+        GL.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        frame_pixels_ = double(inputs.width) * inputs.height;
+        drawn_grid_ = direct ? glm::ivec2(0) : grid;
+        if (overlay_wanted_ && !direct) {
+            draw_overlay(inputs);
+            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+            GL.Viewport(0, 0, inputs.width, inputs.height);
+        }
+    }
+
+    frame::MethodStatistics statistics() const override {
+        Counters counters;
+        GL.GetNamedBufferSubData(counters_.id(), 0, sizeof(counters), &counters);
+        double lit_samples = 0.0;
+        if (drawn_grid_.x > 0) {
+            std::vector<float> rgba(size_t(drawn_grid_.x) * size_t(drawn_grid_.y) * 4);
+            GL.GetTextureImage(scattering_.id(), 0, GL_RGBA, GL_FLOAT,
+                               GLsizei(rgba.size() * sizeof(float)), rgba.data());
+            for (size_t i = 3; i < rgba.size(); i += 4) {
+                lit_samples += rgba[i];
+            }
+        }
+        return {{"slices", double(drawn_grid_.y)},
+                {"valid_slices", double(valid_slices_)},
+                {"samples_per_slice", double(drawn_grid_.x)},
+                {"marched_samples", double(counters.marched_samples)},
+                {"tree_lookups", double(counters.tree_lookups)},
+                {"fixup_pixels", double(counters.fixup_pixels)},
+                {"fixup_share", frame_pixels_ > 0 ? counters.fixup_pixels / frame_pixels_ : 0.0},
+                {"samples_evaluated", lit_samples + double(counters.fixup_samples)},
+                {"light_on_screen", light_on_screen_ ? 1.0 : 0.0}};
+    }
+
+    // The overlay is drawn by the frame after the one that asked for it (the previewer asks every
+    // frame it shows it), so frames nobody looks at do not pay for it.
+    gl::TextureViews textures() const override {
+        overlay_wanted_ = true;
+        gl::TextureViews views;
+        if (overlay_) {
+            views.push_back(
+                {name() + "/samples (orange marched, blue interpolated)", overlay_.id()});
+        }
+        if (coordinates_) {
+            views.push_back(
+                {name() + "/samples' in-scattering (x sample, y slice)", scattering_.id()});
+            views.push_back({name() + "/min-max trees (x level by level, y slice)", tree_.id()});
+        }
+        return views;
+    }
+
+private:
+    void make_march_program(const Scene& scene) {
+        const bool closed = choice<LitIntegral>("lit_integral") == LitIntegral::closed_form;
+        if (closed) {
+            analytic::AnalyticRegionPass::require_closed_form(scene, name());
+        }
+        const bool remake = closed ? closed_form_.set_scene(scene) : false;
+        if (march_program_ && !remake && march_closed_form_ == closed) {
+            return;
+        }
+        std::vector<std::string> defines;
+        if (closed) {
+            defines = analytic::closed_form_defines(scene);
+            defines.push_back("EPIPOLAR_CLOSED_FORM 1");
+        }
+        march_program_ =
+            gl::create_program({{GL_COMPUTE_SHADER, "epipolar/shaders/march.comp"}}, defines);
+        march_closed_form_ = closed;
+    }
+
+    void upload_slices(const std::vector<Slice>& slices) {
+        std::vector<float> data;
+        data.reserve(slices.size() * 8);
+        for (const Slice& s : slices) {
+            data.insert(data.end(), {float(s.entry.x), float(s.entry.y), float(s.exit.x),
+                                     float(s.exit.y), float(s.map_origin.x), float(s.map_origin.y),
+                                     float(s.map_step.x), float(s.map_step.y)});
+            valid_slices_ += s.entry != s.exit ? 1 : 0;
+        }
+        GL.NamedBufferData(slices_buffer_.id(), GLsizeiptr(data.size() * sizeof(float)),
+                           data.data(), GL_STREAM_DRAW);
+    }
+
+    void allocate(glm::ivec2 grid, int texels) {
+        if (grid == grid_ && texels == texels_) {
+            return;
+        }
+        coordinates_ = gl::create_texture_2d(GL_RGBA32F, grid.x, grid.y, GL_NEAREST);
+        coordinates_.label("epipolar coordinates");
+        marks_ = gl::create_texture_2d(GL_R32I, grid.x, grid.y, GL_NEAREST);
+        marks_.label("epipolar marched samples");
+        scattering_ = gl::create_texture_2d(GL_RGBA32F, grid.x, grid.y, GL_NEAREST);
+        scattering_.label("epipolar in-scattering");
+        tree_ = gl::create_texture_2d(GL_RG32F, texels, grid.y, GL_NEAREST);
+        marched_list_ = gl::create_buffer(nullptr, size_t(grid.x) * size_t(grid.y) * 4);
+        tree_.label("epipolar min-max trees");
+        grid_ = grid;
+        texels_ = texels;
+    }
+
+    void draw_overlay(const frame::VolumeInputs& inputs) {
+        if (overlay_width_ != inputs.width || overlay_height_ != inputs.height) {
+            overlay_ = gl::create_texture_2d(GL_RGBA8, inputs.width, inputs.height, GL_LINEAR);
+            overlay_.label("epipolar samples");
+            overlay_framebuffer_ = gl::create_framebuffer();
+            GL.NamedFramebufferTexture(overlay_framebuffer_.id(), GL_COLOR_ATTACHMENT0,
+                                       overlay_.id(), 0);
+            overlay_width_ = inputs.width;
+            overlay_height_ = inputs.height;
+        }
+        const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+        GL.ClearNamedFramebufferfv(overlay_framebuffer_.id(), GL_COLOR, 0, clear);
+        GL.BindFramebuffer(GL_FRAMEBUFFER, overlay_framebuffer_.id());
+        GL.Viewport(0, 0, inputs.width, inputs.height);
+        GL.UseProgram(overlay_program_.id());
+        GL.ProgramUniform2i(overlay_program_.id(), 0, grid_.x, grid_.y);
+        GL.BindTextureUnit(kCoordinatesUnit, coordinates_.id());
+        GL.BindTextureUnit(kMarksUnit, marks_.id());
+        GL.DrawArrays(GL_POINTS, 0, grid_.x * grid_.y);
+    }
+
+    gl::Program coordinates_program_, refine_program_, rectify_program_, minmax_program_,
+        march_program_, interpolate_program_, apply_program_, overlay_program_;
+    bool march_closed_form_ = false;  // march_program_ integrates lit runs in closed form
+    analytic::ClosedFormScene closed_form_;
+    gl::VertexArray empty_vertex_array_;
+    gl::Sampler plain_sampler_;
+    gl::Buffer slices_buffer_, counters_, marched_list_;
+    gl::Texture coordinates_, marks_, scattering_, tree_;
+    glm::ivec2 grid_{0}, drawn_grid_{0};
+    int texels_ = 0;
+    int valid_slices_ = 0;
+    bool light_on_screen_ = false;
+    double frame_pixels_ = 0.0;
+    gl::Texture overlay_;
+    gl::Framebuffer overlay_framebuffer_;
+    int overlay_width_ = 0, overlay_height_ = 0;
+    mutable bool overlay_wanted_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<frame::VolumeMethod> create_epipolar_method() {
+    return std::make_unique<EpipolarMethod>();
+}
+
+}  // namespace sl::epipolar
