@@ -639,6 +639,14 @@ void read_equal_error(TomlTableReader& top, const std::string& origin, Experimen
                         fmt::format("{} is not a method of the sweep", quote(baseline)));
             }
         }
+        // The plain method: `plain`, or march where the sweep has it.
+        const bool has_march =
+            std::find(x.methods.begin(), x.methods.end(), "march") != x.methods.end();
+        e.plain = r.has("plain") ? r.string("plain") : has_march ? "march" : "";
+        if (!e.plain.empty() &&
+            std::find(x.methods.begin(), x.methods.end(), e.plain) == x.methods.end()) {
+            r.error("plain", fmt::format("{} is not a method of the sweep", quote(e.plain)));
+        }
         e.tolerance = r.number_in("tolerance", e.tolerance, 1e-3, 10.0);
         const toml::table* searches = r.table("search");
         for (const std::string& method : x.methods) {

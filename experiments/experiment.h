@@ -114,7 +114,8 @@ struct Search {
 
 struct EqualError {
     std::vector<double> targets;           // relative RMSE of I_s
-    std::vector<std::string> baselines;    // the pure methods the hybrids are compared with
+    std::vector<std::string> baselines;    // the methods without regions the others face
+    std::string plain;                     // the plain method every headline also faces
     double tolerance = 0.05;               // stop when expensive/cheap is within 1 + tolerance
     std::map<std::string, Search> search;  // per method; methods without one are measured as is
 };

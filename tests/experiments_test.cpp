@@ -262,6 +262,83 @@ expensive = 512
     EXPECT_GT(measured, 0);
 }
 
+// The equal-error headline faces the best region method with the cheapest method without regions
+// at the target (here epipolar, not march) and with the plain method (march), names each row's
+// baselines, and measures the volume cost as the frame time less `none`'s with its interval,
+// flagging a method whose timer lies outside it.
+TEST(Report, EqualErrorHeadlineFacesTheBestMethodWithoutRegionsAndThePlainOne) {
+    const Experiment x = parse_experiment(R"(
+name = "t"
+[sweep]
+scenes = ["toplight"]
+methods = ["march", "epipolar", "beamtree", "none"]
+sizes = ["32x16"]
+[reference]
+method = "reference"
+[equal_error]
+targets = [0.01]
+baselines = ["march", "epipolar"]
+plain = "march"
+tolerance = 0.02
+[equal_error.search.march]
+parameter = "samples"
+cheap = 2
+expensive = 512
+[equal_error.search.epipolar]
+parameter = "max_step"
+cheap = 64
+expensive = 1
+)",
+                                          "t.toml");
+    // Frame times: none 100 ms; march 100 + N/4 (error 0.5/N: N = 50 reaches 1%, 112.5 ms);
+    // epipolar 100 + 40/max_step (error max_step/800: 8 reaches 1%, 105 ms); beamtree 103 ms at
+    // 0.5%, its timer 20 ms (outside its difference's interval [2.5, 3.5]).
+    std::vector<experiments::StoredRow> rows;
+    const auto add = [&](const Cell& cell, double ms, double error, double timer) {
+        rows.push_back({cell,
+                        0,
+                        {{"frame_ms_median", ms},
+                         {"frame_ms_samples", {ms - 0.25, ms, ms + 0.25}},
+                         {"rel_rmse", error},
+                         {"volume_cost_ms", timer}}});
+    };
+    for (const Cell& group : experiments::search_groups(x)) {
+        if (group.method == "march") {
+            for (int n = 2; n <= 512; ++n) {
+                const double ms = 100.0 + n / 4.0;
+                add(experiments::with_setting(group, "samples", std::to_string(n)), ms, 0.5 / n,
+                    ms - 100.0);
+            }
+        } else if (group.method == "epipolar") {
+            for (int step = 1; step <= 64; ++step) {
+                const double ms = 100.0 + 40.0 / step;
+                add(experiments::with_setting(group, "max_step", std::to_string(step)), ms,
+                    step / 800.0, ms - 100.0);
+            }
+        } else if (group.method == "beamtree") {
+            add(group, 103.0, 0.005, 20.0);
+        } else {
+            add(group, 100.0, 1.0, 0.0);
+        }
+    }
+    const std::string md = experiments::equal_error_report(x, rows).first;
+    EXPECT_NE(md.find("| toplight | 32x16 | samples=50:"), std::string::npos) << md;
+    EXPECT_NE(md.find(" epipolar · epipolar |"), std::string::npos) << "row's baselines\n" << md;
+    EXPECT_EQ(md.find("| none |"), std::string::npos) << "none is no column\n" << md;
+    EXPECT_NE(md.find("volume cost (frame − none) **beamtree** 3.0 ms [2.5–3.5]: ×1.67 against "
+                      "**epipolar** 5.0 ms; ×4.17 against **march** 12.5 ms."),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("| 1% | toplight | 32x16 | beamtree |  | 20.0 ms | 3.0 ms [2.5–3.5] | "
+                      "**disagree** |"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("| 1% | toplight | 32x16 | epipolar | max_step=8 | 5.0 ms | 5.0 ms "
+                      "[4.5–5.5] | |"),
+              std::string::npos)
+        << md;
+}
+
 TEST(Report, TableRepeatsParameterlessMethodsInEveryRowInListedOrder) {
     const Experiment x = parse_experiment(R"(
 name = "t"
