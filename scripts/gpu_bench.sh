@@ -12,9 +12,10 @@
 #
 #   scripts/gpu_bench.sh run [--limit SECONDS] [EXPERIMENT ...]
 #       There: unpacks gpu-package.tar.xz into a temporary folder, records the GL renderer
-#       (`shaftlab gl-info` through EGL), and runs each experiment (default: equal_error, then
-#       animated: every method along the canonical animations, the region methods on both routes
-#       from the beam tree to the GPU, walk and mesh, docs/design.md §14) with
+#       (`shaftlab gl-info` through EGL), and runs each experiment (default: equal_error, every
+#       method against the cheapest without regions, epipolar included, then animated: every
+#       method along the canonical animations, the region methods on both routes from the beam
+#       tree to the GPU, walk and mesh, docs/design.md §14) with
 #       `shaftlab bench`, each under `timeout` so the whole call ends within --limit seconds
 #       (default 480): an experiment cut short keeps the cells it finished (bench resumes).
 #       Results go to $OUT/gpu-<renderer>/<experiment>/ ($OUT as the device tool sets it, else
@@ -27,7 +28,7 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 package=${SHAFTLAB_GPU_PACKAGE:-$repo/gpu-package.tar.xz}
 
 usage() {
-    sed -n '2,24p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2
+    sed -n '2,25p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2
     exit 2
 }
 

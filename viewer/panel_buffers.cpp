@@ -33,11 +33,12 @@ void Viewer::ui_previewer() {
         if (view.name == preview_name_)
             selected = &view;
     }
+    // A texture asked for by name that is not made yet (a method's overlay appears the frame after
+    // the previewer first asks for its textures) stays asked for: the first is shown meanwhile.
     if (!selected && !views.empty()) {
         selected = &views.front();
-        preview_name_ = selected->name;
     }
-    if (ImGui::BeginCombo("buffer", preview_name_.c_str())) {
+    if (ImGui::BeginCombo("buffer", selected ? selected->name.c_str() : preview_name_.c_str())) {
         for (const gl::TextureView& view : views) {
             if (ImGui::Selectable(view.name.c_str(), view.name == preview_name_)) {
                 preview_name_ = view.name;
