@@ -6,6 +6,7 @@
 
 #include "analytic/gpu_tables.h"
 #include "analytic/region_pass.h"
+#include "core/error.h"
 #include "epipolar/geometry.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
@@ -32,6 +33,7 @@ constexpr GLuint kSurfaceDepthUnit = 0, kCoordinatesUnit = 1, kTreeUnit = 2, kSc
 constexpr GLuint kCoordinatesImage = 0, kMarksImage = 1, kTreeImage = 2, kScatteringImage = 3;
 constexpr GLuint kSlicesBinding = 0, kCountersBinding = 1, kMarchedListBinding = 2;
 constexpr int kMaxStep = 256;
+constexpr int kMaxSamples = 1 << 22;  // slices x samples_per_slice: 64 MiB per RGBA32F texture
 
 // shaders/epipolar.glsl's Counters block: march.comp's indirect dispatch, then the statistics.
 struct Counters {
@@ -140,6 +142,13 @@ public:
         const int texels = map_texels(map_size);
         const int levels = flag("minmax") ? int(std::round(std::log2(double(texels)))) : 0;
         const glm::ivec2 grid(int(number("samples_per_slice")), int(number("slices")));
+        if (double(grid.x) * grid.y > double(kMaxSamples)) {
+            fail(
+                "epipolar: slices x samples_per_slice = {} x {} = {} samples, more than the {} "
+                "it keeps (four RGBA32F textures of that size); lower slices or "
+                "samples_per_slice",
+                grid.y, grid.x, double(grid.x) * grid.y, kMaxSamples);
+        }
         const Views views{
             .view_projection = glm::dmat4(inputs.uniforms.view_projection),
             .light_view_projection = glm::dmat4(inputs.uniforms.light_view_projection),

@@ -234,12 +234,11 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
                         const bool disagree =
                             i && (v.summary.volume_ms < i->low || v.summary.volume_ms > i->high) &&
                             &v == &o;
-                        two_ways.push_back(fmt::format(
-                            "| {:.3g}% | {} | {}x{} | {} | {} | {:.1f} ms | {} |{}", 100 * target,
-                            scene_label(scene), w, h, method,
-                            o.parameter.empty() ? "" : fmt::format("{}={}", o.parameter, o.value),
-                            o.summary.volume_ms, difference_text(o),
-                            disagree ? " **disagree** |" : " |"));
+                        two_ways.push_back(
+                            fmt::format("| {:.3g}% | {} | {}x{} | {} | {} | {:.1f} ms | {} |{}",
+                                        100 * target, scene_label(scene), w, h, method,
+                                        probed_cell(o).settings_text(), o.summary.volume_ms,
+                                        difference_text(o), disagree ? " **disagree** |" : " |"));
                     }
                 }
                 // The headline: the best region method (every method that is not a baseline)

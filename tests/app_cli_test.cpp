@@ -263,7 +263,7 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
          "[environment] shading: unknown IBL shading 'phong'"},
         {"--scene toplight --method magic",
          "unknown method 'magic' (known: none, beamtree, planes, hybrid1, hybrid2, march, hybrid3, "
-         "froxel, lightvolume, reference)"},
+         "froxel, lightvolume, epipolar, reference)"},
         {"--scene toplight --method march --set resolution_scale=0.3",
          "parameter 'resolution_scale': '0.3' is not one of 1, 0.5, 0.25"},
         {"--scene toplight --method march --set samples=0",

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "core/error.h"
 #include "core/metrics.h"
 #include "epipolar/geometry.h"
 #include "frame/renderer.h"
@@ -299,6 +300,18 @@ TEST_F(Epipolar, ConvergesToTheReference) {
             EXPECT_LT(errors[i], errors[i - 1]) << name << " step " << i;
         }
         EXPECT_LT(errors.back(), 0.005) << name;
+    }
+}
+
+// Slices times samples beyond what it keeps: one error naming both parameters, no crash.
+TEST_F(Epipolar, RefusesMoreSamplesThanItKeeps) {
+    try {
+        render_method(boxes_scene(MediumModel::physical), "epipolar", 64, 36,
+                      {{"slices", "8192"}, {"samples_per_slice", "8192"}});
+        ADD_FAILURE() << "epipolar accepted 8192 x 8192 samples";
+    } catch (const sl::Error& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("slices x samples_per_slice"), std::string::npos) << message;
     }
 }
 
