@@ -85,6 +85,37 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
         }
     }
     const std::string& plain = x.equal_error->plain;
+    // The volume cost by difference: an outcome's frame time less that of `none` in its row, and
+    // the interval of the difference where both frames have one; nullopt without `none`.
+    struct Difference {
+        double ms;
+        std::optional<Interval> interval;
+    };
+    auto none_entry = [&](const std::string& scene, int w, int h) -> const Entry* {
+        for (const Entry& e : entries) {
+            if (e.cell.method == "none" && e.cell.scene == scene && e.cell.width == w &&
+                e.cell.height == h) {
+                return &e;
+            }
+        }
+        return nullptr;
+    };
+    auto difference_of = [&](const SearchOutcome& o) -> std::optional<Difference> {
+        const Entry* none = none_entry(o.group.scene, o.group.width, o.group.height);
+        const Entry* e = entry_of(probed_cell(o));
+        if (!none || !e) {
+            return std::nullopt;
+        }
+        Difference d{e->frame_ms - none->frame_ms, std::nullopt};
+        if (e->has_interval && none->has_interval) {
+            d.interval = Interval{e->frame_ms_interval.low - none->frame_ms_interval.high,
+                                  e->frame_ms_interval.high - none->frame_ms_interval.low};
+        }
+        return d;
+    };
+    auto outside = [](double ms, const std::optional<Interval>& i) {
+        return i && (ms < i->low || ms > i->high);
+    };
     std::string csv =
         "target,scene,width,height,method,params,parameter,value,reached,complete,rel_rmse,"
         "frame_ms,fps,best_baseline,speedup_vs_best_baseline,volume_cost_ms,"
@@ -133,16 +164,6 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
             md += "---:|";
         }
         md += "---|\n";
-        // The frame of `none` in a row: what the difference subtracts.
-        auto none_entry = [&](const std::string& scene, int w, int h) -> const Entry* {
-            for (const Entry& e : entries) {
-                if (e.cell.method == "none" && e.cell.scene == scene && e.cell.width == w &&
-                    e.cell.height == h) {
-                    return &e;
-                }
-            }
-            return nullptr;
-        };
         std::map<std::tuple<std::string, int, int>, const SearchOutcome*> baselines,
             volume_baselines;
         for (const std::string& scene : x.scenes) {
@@ -206,22 +227,15 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
                 md +=
                     fmt::format(" {} · {} |\n", baseline ? baseline->group.method : "none reached",
                                 baseline_volume ? baseline_volume->group.method : "none reached");
-                // The volume cost by difference: frame less `none`'s, with the interval of the
-                // difference; the cheapest variant by it is the cheapest by frame time.
-                const Entry* none = none_entry(scene, w, h);
-                auto difference = [&](const SearchOutcome& o) -> std::optional<Interval> {
-                    const Entry* e = entry_of(probed_cell(o));
-                    if (!none || !e || !e->has_interval || !none->has_interval) {
-                        return std::nullopt;
-                    }
-                    return Interval{e->frame_ms_interval.low - none->frame_ms_interval.high,
-                                    e->frame_ms_interval.high - none->frame_ms_interval.low};
-                };
+                // The volume cost by difference; the cheapest variant by it is the cheapest by
+                // frame time.
                 auto difference_text = [&](const SearchOutcome& o) {
-                    const std::optional<Interval> i = difference(o);
-                    return fmt::format("{:.1f} ms [{:.1f}–{:.1f}]", frame(o) - none->frame_ms,
-                                       i ? i->low : 0.0, i ? i->high : 0.0);
+                    const Difference d = *difference_of(o);
+                    return fmt::format("{:.1f} ms [{:.1f}–{:.1f}]", d.ms,
+                                       d.interval ? d.interval->low : 0.0,
+                                       d.interval ? d.interval->high : 0.0);
                 };
+                const Entry* none = none_entry(scene, w, h);
                 if (none) {
                     for (const std::string& method : shown) {
                         if (!best.contains(method)) {
@@ -229,11 +243,9 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
                         }
                         const SearchOutcome& o = *best[method];
                         const SearchOutcome& v = *best_volume[method];
-                        const std::optional<Interval> i = difference(o);
                         // The timer's cheapest variant against the difference at the frame's.
                         const bool disagree =
-                            i && (v.summary.volume_ms < i->low || v.summary.volume_ms > i->high) &&
-                            &v == &o;
+                            &v == &o && outside(v.summary.volume_ms, difference_of(o)->interval);
                         two_ways.push_back(
                             fmt::format("| {:.3g}% | {} | {}x{} | {} | {} | {:.1f} ms | {} |{}",
                                         100 * target, scene_label(scene), w, h, method,
@@ -280,7 +292,7 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
                                                    scene_label(scene), w, h);
                     if (none) {
                         auto by_difference = [&](const SearchOutcome& o) {
-                            return frame(o) - none->frame_ms;
+                            return difference_of(o)->ms;
                         };
                         line += fmt::format(
                             " volume cost (frame − none) **{}** {}: {}{}.", hybrid->group.method,
@@ -301,16 +313,13 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
         }
         // The CSV's volume cost by difference: value, interval, and the flag.
         auto difference_fields = [&](const SearchOutcome& o) -> std::string {
-            const Entry* none = none_entry(o.group.scene, o.group.width, o.group.height);
-            const Entry* e = o.complete && o.reached ? entry_of(probed_cell(o)) : nullptr;
-            if (!none || !e || !e->has_interval || !none->has_interval) {
+            const std::optional<Difference> d =
+                o.complete && o.reached ? difference_of(o) : std::nullopt;
+            if (!d || !d->interval) {
                 return ",,,";
             }
-            const Interval i{e->frame_ms_interval.low - none->frame_ms_interval.high,
-                             e->frame_ms_interval.high - none->frame_ms_interval.low};
-            const bool disagree = o.summary.volume_ms < i.low || o.summary.volume_ms > i.high;
-            return fmt::format("{},{},{},{}", e->frame_ms - none->frame_ms, i.low, i.high,
-                               disagree ? 1 : 0);
+            return fmt::format("{},{},{},{}", d->ms, d->interval->low, d->interval->high,
+                               outside(o.summary.volume_ms, d->interval) ? 1 : 0);
         };
         for (const SearchOutcome& o : outcomes) {
             const auto key = std::tuple{o.group.scene, o.group.width, o.group.height};
