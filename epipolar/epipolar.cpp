@@ -38,7 +38,8 @@ constexpr int kMaxSamples = 1 << 22;  // slices x samples_per_slice: 64 MiB per 
 // shaders/epipolar.glsl's Counters block: march.comp's indirect dispatch, then the statistics.
 struct Counters {
     uint32_t march_groups = 0, march_groups_y = 1, march_groups_z = 1;
-    uint32_t marched_samples = 0, tree_lookups = 0, fixup_pixels = 0, fixup_samples = 0;
+    uint32_t marched_samples = 0, lit_samples = 0, tree_lookups = 0, fixup_pixels = 0,
+             fixup_samples = 0;
 };
 
 class EpipolarMethod final : public frame::VolumeMethod {
@@ -131,7 +132,6 @@ public:
     }
 
     void render(const frame::VolumeInputs& inputs) override {
-        make_march_program(inputs.scene);  // lit_integral may have changed since the update
         GLint target = 0;
         GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
         const Counters zero;
@@ -210,7 +210,6 @@ public:
             inputs.timeline.section("march");
             GL.UseProgram(march_program_.id());
             GL.BindTextureUnit(kTreeUnit, tree_.id());
-            GL.BindTextureUnit(kMarksUnit, marks_.id());
             GL.BindTextureUnit(analytic::kMediumTableUnit, closed_form_.medium_table());
             GL.BindImageTexture(kScatteringImage, scattering_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
                                 GL_RGBA32F);
@@ -222,16 +221,14 @@ public:
 
             inputs.timeline.section("interpolate");
             GL.UseProgram(interpolate_program_.id());
+            GL.BindTextureUnit(kMarksUnit, marks_.id());
             GL.ProgramUniform2i(interpolate_program_.id(), uniform::grid, grid.x, grid.y);
-            GL.ProgramUniform1i(interpolate_program_.id(), uniform::max_step,
-                                int(number("max_step")));
             GL.BindImageTexture(kScatteringImage, scattering_.id(), 0, GL_FALSE, 0, GL_READ_WRITE,
                                 GL_RGBA32F);
             gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
         }
 
         inputs.timeline.section("apply");
-        GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
         GL.UseProgram(apply_program_.id());
         GL.BindTextureUnit(kSurfaceDepthUnit, inputs.surface_depth);
         if (!direct) {
@@ -257,15 +254,6 @@ public:
     frame::MethodStatistics statistics() const override {
         Counters counters;
         GL.GetNamedBufferSubData(counters_.id(), 0, sizeof(counters), &counters);
-        double lit_samples = 0.0;
-        if (drawn_grid_.x > 0) {
-            std::vector<float> rgba(size_t(drawn_grid_.x) * size_t(drawn_grid_.y) * 4);
-            GL.GetTextureImage(scattering_.id(), 0, GL_RGBA, GL_FLOAT,
-                               GLsizei(rgba.size() * sizeof(float)), rgba.data());
-            for (size_t i = 3; i < rgba.size(); i += 4) {
-                lit_samples += rgba[i];
-            }
-        }
         return {{"slices", double(drawn_grid_.y)},
                 {"valid_slices", double(valid_slices_)},
                 {"samples_per_slice", double(drawn_grid_.x)},
@@ -273,7 +261,7 @@ public:
                 {"tree_lookups", double(counters.tree_lookups)},
                 {"fixup_pixels", double(counters.fixup_pixels)},
                 {"fixup_share", frame_pixels_ > 0 ? counters.fixup_pixels / frame_pixels_ : 0.0},
-                {"samples_evaluated", lit_samples + double(counters.fixup_samples)},
+                {"samples_evaluated", double(counters.lit_samples) + counters.fixup_samples},
                 {"light_on_screen", light_on_screen_ ? 1.0 : 0.0}};
     }
 

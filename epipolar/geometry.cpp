@@ -24,10 +24,11 @@ struct Border {
     double perimeter() const { return 2.0 * (w + h); }
 };
 
-// The world direction of the eye ray through window position x.
-glm::dvec3 ray_direction(const Views& views, glm::dvec2 x) {
+// The world direction of the eye ray through window position x (`clip_to_world`: the inverse of
+// the camera's view-projection).
+glm::dvec3 ray_direction(const Views& views, const glm::dmat4& clip_to_world, glm::dvec2 x) {
     const glm::dvec2 ndc = 2.0 * x / glm::dvec2(views.width, views.height) - 1.0;
-    const glm::dvec4 far_point = glm::inverse(views.view_projection) * glm::dvec4(ndc, 1.0, 1.0);
+    const glm::dvec4 far_point = clip_to_world * glm::dvec4(ndc, 1.0, 1.0);
     return glm::normalize(glm::dvec3(far_point) / far_point.w - views.camera);
 }
 
@@ -55,10 +56,11 @@ std::pair<double, double> slab(glm::dvec2 p, glm::dvec2 d, glm::dvec2 lo, glm::d
 // The shadow map's line of the epipolar plane with normal n through the camera: Chen et al.
 // 2011 §4. A plane π through the light maps to light clip space as M^-T π, with no depth term
 // (the light's centre is the clip point (0, 0, B, 0)), so in the map's [0, 1]² it is the line
-// a (2u - 1) + b (2v - 1) + d = 0.
-void map_line(const Views& views, glm::dvec3 n, int texels, Slice& slice) {
+// a (2u - 1) + b (2v - 1) + d = 0 (`plane_to_light_clip`: M^-T).
+void map_line(const Views& views, const glm::dmat4& plane_to_light_clip, glm::dvec3 n, int texels,
+              Slice& slice) {
     const glm::dvec4 plane(n, -glm::dot(n, views.camera));
-    const glm::dvec4 clip = glm::transpose(glm::inverse(views.light_view_projection)) * plane;
+    const glm::dvec4 clip = plane_to_light_clip * plane;
     const glm::dvec2 normal(2.0 * clip.x, 2.0 * clip.y);
     const double norm = glm::length(normal);
     if (!(norm > 0.0)) {
@@ -164,6 +166,9 @@ std::vector<Slice> make_slices(const Views& views, int slices, int map_texels) {
     const ExitArc arc = exit_arc(p, views.width, views.height);
     const bool inside = inside_image(p, views.width, views.height);
     const glm::dvec3 to_light = views.light - views.camera;
+    const glm::dmat4 clip_to_world = glm::inverse(views.view_projection);
+    const glm::dmat4 plane_to_light_clip =
+        glm::transpose(glm::inverse(views.light_view_projection));
     std::vector<Slice> result(size_t(std::max(slices, 0)));
     for (int s = 0; s < slices; ++s) {
         Slice& slice = result[size_t(s)];
@@ -179,16 +184,16 @@ std::vector<Slice> make_slices(const Views& views, int slices, int map_texels) {
         }
         // The epipolar plane: the camera, the light and the exit point's ray (the light's screen
         // position's ray where the light is at the camera's position or on that ray).
-        const glm::dvec3 exit_ray = ray_direction(views, slice.exit);
+        const glm::dvec3 exit_ray = ray_direction(views, clip_to_world, slice.exit);
         glm::dvec3 n = glm::cross(exit_ray, to_light);
         if (!(glm::length(n) > 1e-9 * glm::length(to_light))) {
-            n = glm::cross(exit_ray, ray_direction(views, p));
+            n = glm::cross(exit_ray, ray_direction(views, clip_to_world, p));
         }
         if (!(glm::length(n) > 1e-12)) {
             n = glm::cross(exit_ray,
                            std::abs(exit_ray.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0));
         }
-        map_line(views, glm::normalize(n), map_texels, slice);
+        map_line(views, plane_to_light_clip, glm::normalize(n), map_texels, slice);
     }
     return result;
 }

@@ -30,7 +30,7 @@ layout(std430, binding = 0) readonly buffer Slices {
 // dispatch, then what the statistics report.
 layout(std430, binding = 1) buffer Counters {
     uint march_groups, march_groups_y, march_groups_z;
-    uint marched_samples, tree_lookups, fixup_pixels, fixup_samples;
+    uint marched_samples, lit_samples, tree_lookups, fixup_pixels, fixup_samples;
 };
 // The marched samples (refine.comp), x | y << 16.
 layout(std430, binding = 2) buffer MarchedList {

@@ -4,7 +4,6 @@
 // its slice (refine.comp: at most max_step away, and no depth discontinuity between).
 layout(local_size_x = 64, local_size_y = 1) in;
 layout(location = 0) uniform ivec2 grid;
-layout(location = 5) uniform int max_step;
 layout(binding = 6) uniform isampler2D marks;
 layout(rgba32f, binding = 3) uniform image2D scattering;
 

@@ -1,8 +1,8 @@
 #version 450 core
 // Epipolar pass 5 (Yusov 2013 §3.4): the marched samples (refine.comp's list), each along the eye ray
 // through its window position to its surface, with the 1D min-max tree of its slice
-// (rectified_march.glsl). Output per marched sample: rgb I_s, a the samples lit. The tree's texels
-// read are summed in `counters`.
+// (rectified_march.glsl). Output per marched sample: rgb I_s, a the samples lit. The samples lit and
+// the tree's texels read are summed in `Counters`.
 layout(local_size_x = 64, local_size_y = 1) in;
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
@@ -26,6 +26,7 @@ void main() {
         int lookups = 0;
         result = march_rectified(frame.camera_position.xyz, eye_ray_direction(c.xy), c.z, id.y,
                                  lookups);
+        atomicAdd(lit_samples, uint(result.a));
         atomicAdd(tree_lookups, uint(lookups));
     }
     imageStore(scattering, id, result);
