@@ -272,7 +272,7 @@ public:
         gl::TextureViews views;
         if (overlay_) {
             views.push_back(
-                {name() + "/samples (orange marched, blue interpolated)", overlay_.id()});
+                {name() + "/samples (orange marched, blue interpolated)", overlay_.texture()});
         }
         if (coordinates_) {
             views.push_back(
@@ -333,19 +333,7 @@ private:
     }
 
     void draw_overlay(const frame::VolumeInputs& inputs) {
-        if (overlay_width_ != inputs.width || overlay_height_ != inputs.height) {
-            overlay_ = gl::create_texture_2d(GL_RGBA8, inputs.width, inputs.height, GL_LINEAR);
-            overlay_.label("epipolar samples");
-            overlay_framebuffer_ = gl::create_framebuffer();
-            GL.NamedFramebufferTexture(overlay_framebuffer_.id(), GL_COLOR_ATTACHMENT0,
-                                       overlay_.id(), 0);
-            overlay_width_ = inputs.width;
-            overlay_height_ = inputs.height;
-        }
-        const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-        GL.ClearNamedFramebufferfv(overlay_framebuffer_.id(), GL_COLOR, 0, clear);
-        GL.BindFramebuffer(GL_FRAMEBUFFER, overlay_framebuffer_.id());
-        GL.Viewport(0, 0, inputs.width, inputs.height);
+        overlay_.bind_cleared(inputs.width, inputs.height, "epipolar samples");
         GL.UseProgram(overlay_program_.id());
         GL.ProgramUniform2i(overlay_program_.id(), 0, grid_.x, grid_.y);
         GL.BindTextureUnit(kCoordinatesUnit, coordinates_.id());
@@ -366,9 +354,7 @@ private:
     int valid_slices_ = 0;
     bool light_on_screen_ = false;
     double frame_pixels_ = 0.0;
-    gl::Texture overlay_;
-    gl::Framebuffer overlay_framebuffer_;
-    int overlay_width_ = 0, overlay_height_ = 0;
+    gl::PictureTarget overlay_;
     mutable bool overlay_wanted_ = false;
 };
 

@@ -52,6 +52,21 @@ Framebuffer create_framebuffer() {
     return Framebuffer(id);
 }
 
+void PictureTarget::bind_cleared(int width, int height, const char* label) {
+    if (width != width_ || height != height_) {
+        texture_ = create_texture_2d(GL_RGBA8, width, height, GL_LINEAR);
+        texture_.label(label);
+        framebuffer_ = create_framebuffer();
+        GL.NamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, texture_.id(), 0);
+        width_ = width;
+        height_ = height;
+    }
+    const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    GL.ClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 0, clear);
+    GL.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+    GL.Viewport(0, 0, width, height);
+}
+
 VertexArray create_vertex_array() {
     GLuint id = 0;
     GL.CreateVertexArrays(1, &id);

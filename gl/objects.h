@@ -103,6 +103,21 @@ Query create_query(GLenum target);
 // A sampler that reads any 2D texture as plain values: clamped, `filter`, depth comparison off.
 Sampler create_plain_sampler(GLenum filter);
 
+// A picture a method draws for the previewer (a wireframe, an overlay): an RGBA8 texture of the
+// frame's size and a framebuffer on it, made again when the size changes. bind_cleared() makes or
+// keeps them, clears the picture to opaque black and binds its framebuffer with a viewport over it.
+class PictureTarget {
+public:
+    void bind_cleared(int width, int height, const char* label);
+    GLuint texture() const { return texture_.id(); }
+    explicit operator bool() const { return bool(texture_); }
+
+private:
+    Texture texture_;
+    Framebuffer framebuffer_;
+    int width_ = 0, height_ = 0;
+};
+
 // An indexed triangle mesh of positions alone (attribute 0, vec3), ready for DrawElements with
 // GL_UNSIGNED_INT indices; empty (no objects, index_count 0) for no triangles.
 struct TriangleMesh {

@@ -229,7 +229,7 @@ public:
         gl::TextureViews views;
         if (wireframe_) {
             views.push_back(
-                {name() + "/wireframe (front faces green, back orange)", wireframe_.id()});
+                {name() + "/wireframe (front faces green, back orange)", wireframe_.texture()});
         }
         for (gl::TextureView& view : closed_form_.textures(name())) {
             views.push_back(std::move(view));
@@ -241,18 +241,7 @@ private:
     void draw_wireframe(const frame::VolumeInputs& inputs) {
         GLint target = 0;
         GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-        if (wireframe_width_ != inputs.width || wireframe_height_ != inputs.height) {
-            wireframe_ = gl::create_texture_2d(GL_RGBA8, inputs.width, inputs.height, GL_LINEAR);
-            wireframe_.label("light volume wireframe");
-            wireframe_framebuffer_ = gl::create_framebuffer();
-            GL.NamedFramebufferTexture(wireframe_framebuffer_.id(), GL_COLOR_ATTACHMENT0,
-                                       wireframe_.id(), 0);
-            wireframe_width_ = inputs.width;
-            wireframe_height_ = inputs.height;
-        }
-        const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-        GL.ClearNamedFramebufferfv(wireframe_framebuffer_.id(), GL_COLOR, 0, clear);
-        GL.BindFramebuffer(GL_FRAMEBUFFER, wireframe_framebuffer_.id());
+        wireframe_.bind_cleared(inputs.width, inputs.height, "light volume wireframe");
         GL.UseProgram(wireframe_program_.id());
         GL.PolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         GL.DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
@@ -266,9 +255,7 @@ private:
     gl::Sampler plain_sampler_;
     analytic::ClosedFormScene closed_form_;
     gl::Query fragments_;
-    gl::Texture wireframe_;
-    gl::Framebuffer wireframe_framebuffer_;
-    int wireframe_width_ = 0, wireframe_height_ = 0;
+    gl::PictureTarget wireframe_;
     mutable bool wireframe_wanted_ = false;
     glm::mat4 clip_to_world_{1.0f};
     GLsizei index_count_ = 0;
