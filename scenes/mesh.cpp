@@ -168,11 +168,66 @@ private:
     int line_number_ = 0;
 };
 
-// Appends the fan of a convex polygon (its first vertex to each later edge).
-void append_fan(const std::vector<uint32_t>& face, Mesh& mesh) {
-    for (size_t k = 1; k + 1 < face.size(); ++k) {
-        mesh.triangles.emplace_back(face[0], face[k], face[k + 1]);
+// Appends the triangles of a simple polygon given by vertex indices: a convex polygon is fanned
+// from its first corner; any other one is ear-clipped in the plane of its Newell normal (a
+// keyhole polygon, whose bridge edges run twice, clips like any other). Returns false when no ear
+// is left, i.e. the polygon is not simple.
+bool append_polygon(const std::vector<uint32_t>& face, Mesh& mesh) {
+    const size_t n = face.size();
+    const auto& p = mesh.positions;
+    glm::dvec3 normal(0.0);  // Newell's method: robust for non-planar and non-convex polygons
+    for (size_t i = 0; i < n; ++i) {
+        const glm::dvec3 a(p[face[i]]), b(p[face[(i + 1) % n]]);
+        normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x),
+                             (a.x - b.x) * (a.y + b.y));
     }
+    auto turn = [&](uint32_t a, uint32_t b, uint32_t c) {
+        return glm::dot(
+            glm::cross(glm::dvec3(p[b]) - glm::dvec3(p[a]), glm::dvec3(p[c]) - glm::dvec3(p[b])),
+            normal);
+    };
+    bool convex = true;
+    for (size_t i = 0; i < n && convex; ++i) {
+        convex = turn(face[i], face[(i + 1) % n], face[(i + 2) % n]) >= 0.0;
+    }
+    if (convex || glm::length(normal) == 0.0) {
+        for (size_t k = 1; k + 1 < n; ++k) {
+            mesh.triangles.emplace_back(face[0], face[k], face[k + 1]);
+        }
+        return true;
+    }
+    // Ear clipping: a corner is an ear when it turns left and no other corner lies inside its
+    // triangle (in the polygon's plane). O(n^2) per ear found, so faces are capped in size.
+    std::vector<uint32_t> ring = face;
+    auto inside = [&](uint32_t q, uint32_t a, uint32_t b, uint32_t c) {
+        return turn(a, b, q) > 0.0 && turn(b, c, q) > 0.0 && turn(c, a, q) > 0.0;
+    };
+    while (ring.size() > 3) {
+        const size_t m = ring.size();
+        bool clipped = false;
+        for (size_t i = 0; i < m && !clipped; ++i) {
+            const uint32_t a = ring[(i + m - 1) % m], b = ring[i], c = ring[(i + 1) % m];
+            if (turn(a, b, c) <= 0.0) {
+                continue;
+            }
+            bool ear = true;
+            for (size_t j = 0; j < m && ear; ++j) {
+                const uint32_t q = ring[j];
+                ear = q == a || q == b || q == c || p[q] == p[a] || p[q] == p[b] || p[q] == p[c] ||
+                      !inside(q, a, b, c);
+            }
+            if (ear) {
+                mesh.triangles.emplace_back(a, b, c);
+                ring.erase(ring.begin() + std::ptrdiff_t(i));
+                clipped = true;
+            }
+        }
+        if (!clipped) {
+            return false;
+        }
+    }
+    mesh.triangles.emplace_back(ring[0], ring[1], ring[2]);
+    return true;
 }
 
 }  // namespace
@@ -237,89 +292,13 @@ Mesh load_off(const fs::path& path) {
         if (static_cast<long long>(mesh.triangles.size()) + n - 2 > kMaxMeshTriangles) {
             reader.error(fmt::format("more than {} triangles", kMaxMeshTriangles));
         }
-        append_fan(face, mesh);
-    }
-    validate_mesh(mesh, path.string());
-    compute_vertex_normals(mesh);
-    return mesh;
-}
-
-Mesh load_obj(const fs::path& path) {
-    // Positions (`v`) and polygons (`f`, each corner `v`, `v/vt`, `v//vn` or `v/vt/vn`, indices
-    // from 1 or negative from the end) are read; texture coordinates, normals, groups, materials
-    // and the other statements are skipped. Polygons are fanned here: linear in their size.
-    LineReader reader(path);
-    Mesh mesh;
-    std::vector<uint32_t> face;
-    std::string line, keyword, corner;
-    long long referenced = -1;  // the largest index used, checked against the vertices at the end
-    while (reader.read(line)) {
-        std::istringstream in(line);
-        in >> keyword;
-        if (keyword == "v") {
-            glm::vec3 p;
-            if (!(in >> p.x >> p.y >> p.z)) {
-                reader.error("malformed vertex (expected v x y z)");
-            }
-            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-                reader.error("vertex coordinate is not finite");
-            }
-            if (static_cast<long long>(mesh.positions.size()) == kMaxMeshVertices) {
-                reader.error(fmt::format("more than {} vertices", kMaxMeshVertices));
-            }
-            mesh.positions.push_back(p);
-        } else if (keyword == "f") {
-            face.clear();
-            while (in >> corner) {
-                long long index = 0;
-                const char* end = corner.data() + corner.size();
-                const auto [rest, ec] = std::from_chars(corner.data(), end, index);
-                if (ec != std::errc() || (rest != end && *rest != '/') || index == 0) {
-                    reader.error(fmt::format("malformed face corner {}", quote(corner)));
-                }
-                // Negative: relative to the vertices read so far (-1 is the last).
-                index =
-                    index > 0 ? index - 1 : static_cast<long long>(mesh.positions.size()) + index;
-                if (index < 0 || index >= kMaxMeshVertices) {
-                    reader.error(
-                        fmt::format("face refers to a missing vertex ({})", quote(corner)));
-                }
-                if (static_cast<long long>(face.size()) == kMaxFaceVertices) {
-                    reader.error(fmt::format("face of more than {} vertices", kMaxFaceVertices));
-                }
-                referenced = std::max(referenced, index);
-                face.push_back(uint32_t(index));
-            }
-            if (face.size() < 3) {
-                reader.error("face with fewer than 3 vertices");
-            }
-            if (static_cast<long long>(mesh.triangles.size() + face.size()) - 2 >
-                kMaxMeshTriangles) {
-                reader.error(fmt::format("more than {} triangles", kMaxMeshTriangles));
-            }
-            append_fan(face, mesh);
+        if (!append_polygon(face, mesh)) {
+            reader.error(fmt::format("face of {} vertices is not a simple polygon", n));
         }
     }
-    if (referenced >= static_cast<long long>(mesh.positions.size())) {
-        fail("{}: face refers to vertex {}, the file has {}", path.string(), referenced + 1,
-             mesh.positions.size());
-    }
     validate_mesh(mesh, path.string());
     compute_vertex_normals(mesh);
     return mesh;
-}
-
-Mesh load_mesh(const fs::path& path) {
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    if (extension == ".off") {
-        return load_off(path);
-    }
-    if (extension == ".obj") {
-        return load_obj(path);
-    }
-    fail("{}: unknown mesh format {} (expected .off or .obj)", path.string(), quote(extension));
 }
 
 Mesh make_box(glm::vec3 size) {

@@ -1,5 +1,6 @@
 #pragma once
-// Triangle meshes: loading (OFF, OBJ), procedural shapes, validation. Positions are in the object's
+// Triangle meshes: loading (OFF here, every other format through assimp: scenes/model.h),
+// procedural shapes, validation. Positions are in the object's
 // local frame; normals are per vertex (smooth for loaded meshes, flat per face for boxes).
 
 #include <filesystem>
@@ -35,15 +36,17 @@ struct Mesh {
 // scene that needs more should be split, or decimated first).
 constexpr long long kMaxMeshVertices = 1 << 24;
 constexpr long long kMaxMeshTriangles = 1 << 25;
-// A face is fan-triangulated from its first vertex, which is right for convex faces only:
-// polygons this large are not faces of a mesh but damage.
-constexpr long long kMaxFaceVertices = 4096;
+// An OFF face is fanned when convex and ear-clipped otherwise (quadratic or worse in its size):
+// polygons larger than this are not faces of a mesh but damage.
+constexpr long long kMaxFaceVertices = 1024;
 
-// Load by extension: .off or .obj. Faces with more than three vertices are fan-triangulated
-// (linear in the face's size); zero-area triangles are dropped. Errors name the file and line.
+// Load by extension: .off with the reader below, every other format through assimp
+// (scenes/model.h), the model's parts flattened into one mesh. Zero-area triangles are dropped.
 Mesh load_mesh(const std::filesystem::path& path);
+// OFF, read here rather than by assimp: Debian's assimp 5.2.5 OFF importer drops a face with an
+// out-of-range or negative index without a word, where this reader names the file and line.
+// Faces of more than three corners are triangulated (fanned if convex, else ear-clipped).
 Mesh load_off(const std::filesystem::path& path);
-Mesh load_obj(const std::filesystem::path& path);
 
 // Procedural shapes, centred on the origin (the plane lies in y = 0 facing +y), outward normals.
 Mesh make_box(glm::vec3 size);
