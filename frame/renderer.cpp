@@ -391,7 +391,11 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         GL.Enable(GL_DEPTH_CLAMP);
         const GLuint program = vsm ? shadow_moments_program_.id() : shadow_program_.id();
         GL.UseProgram(program);
-        draw_objects(program, false);
+        for (size_t i = 0; i < scene_.objects.size(); ++i) {
+            if (scene_.casts_shadow(scene_.objects[i])) {  // glass lets the light through
+                draw_object(i, program, false);
+            }
+        }
         GL.Disable(GL_DEPTH_CLAMP);
         GL.Disable(GL_POLYGON_OFFSET_FILL);
         if (vsm && shadow_.radius > 0) {

@@ -22,9 +22,14 @@ ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
     if (!device_) {
         fail("Embree could not create a device");
     }
+    // Two scenes: everything for the camera's rays, the shadow casters for the light's (glass,
+    // Material::casts_shadow = false, is seen but lets the light through).
     rtc_scene_ = rtcNewScene(device_);
-    rtcSetSceneFlags(rtc_scene_, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(rtc_scene_, RTC_BUILD_QUALITY_HIGH);
+    shadow_scene_ = rtcNewScene(device_);
+    for (RTCScene target : {rtc_scene_, shadow_scene_}) {
+        rtcSetSceneFlags(target, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(target, RTC_BUILD_QUALITY_HIGH);
+    }
     for (const Object& object : scene.objects) {
         const Mesh& mesh = *object.mesh;
         RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -42,13 +47,18 @@ ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
                                     3 * sizeof(unsigned), mesh.triangles.size()));
         std::memcpy(indices, mesh.triangles.data(), mesh.triangles.size() * 3 * sizeof(unsigned));
         rtcCommitGeometry(geometry);
-        rtcAttachGeometry(rtc_scene_, geometry);
+        rtcAttachGeometry(rtc_scene_, geometry);  // ids follow the objects' indices
+        if (scene.casts_shadow(object)) {
+            rtcAttachGeometry(shadow_scene_, geometry);
+        }
         rtcReleaseGeometry(geometry);
     }
     rtcCommitScene(rtc_scene_);
+    rtcCommitScene(shadow_scene_);
 }
 
 ReferenceRenderer::~ReferenceRenderer() {
+    rtcReleaseScene(shadow_scene_);
     rtcReleaseScene(rtc_scene_);
     rtcReleaseDevice(device_);
 }
@@ -113,7 +123,7 @@ bool ReferenceRenderer::occluded(const dvec3& from, const dvec3& to) const {
     rtcInitIntersectContext(&context);
     // Start a hair off the sample point so that a point on a surface does not shadow itself.
     RTCRay ray = make_ray(from, d / length, 1e-5 * length, length * (1.0 - 1e-6));
-    rtcOccluded1(rtc_scene_, &context, &ray);
+    rtcOccluded1(shadow_scene_, &context, &ray);
     return ray.tfar == -std::numeric_limits<float>::infinity();
 }
 
@@ -215,6 +225,7 @@ uint64_t reference_key(const Scene& scene, int width, int height, const Referenc
     mix_value(m.model);
     for (const Object& object : scene.objects) {
         mix_value(object.transform);
+        mix_value(scene.casts_shadow(object));
         mix(object.mesh->positions.data(), object.mesh->positions.size() * sizeof(glm::vec3));
         mix(object.mesh->triangles.data(), object.mesh->triangles.size() * sizeof(glm::uvec3));
     }

@@ -257,7 +257,7 @@ Scene scene_at(const Scene& scene, const Animation& a, double time) {
         if (scale.x == 0 || scale.y == 0 || scale.z == 0) {
             fail("{} at time {}: object {} has a zero scale", scene.name, time, quote(object.name));
         }
-        object.transform = object.placement.matrix();
+        object.transform = object.placed();
     }
     auto finite = [](const glm::vec3& v) {
         return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

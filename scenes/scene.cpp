@@ -151,4 +151,9 @@ const char* to_string(SplatWeighting weighting) {
     return weighting == SplatWeighting::jacobian ? "jacobian" : "seed";
 }
 
+bool Scene::casts_shadow(const Object& object) const {
+    return object.material < 0 || size_t(object.material) >= materials.size() ||
+           materials[size_t(object.material)].casts_shadow;
+}
+
 }  // namespace sl

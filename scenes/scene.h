@@ -35,6 +35,9 @@ struct Material {
     float roughness = 0.5f;  // microfacet α (Beckmann's m, GGX's α); used when IBL is on
     glm::vec3 f0{0.04f};     // normal-incidence specular reflectance, likewise
     std::optional<Translucency> translucency{};
+    // false: glass. The light passes the surface as if it were absent (no shadow in any method,
+    // the beam tree or the reference) while the camera still sees it.
+    bool casts_shadow = true;
 };
 
 // An axis-aligned box in an object's local frame.
@@ -56,10 +59,13 @@ struct Placement {
 struct Object {
     std::string name;
     std::shared_ptr<const Mesh> mesh;  // local frame
-    glm::mat4 transform{1.0f};         // local -> world: placement.matrix() for scene files
+    glm::mat4 transform{1.0f};         // local -> world: placed() for scene files
     Placement placement{};
+    glm::mat4 local{1.0f};         // mesh frame -> the placement's frame (a model's node transform)
     int material = 0;              // index into Scene::materials
     std::vector<Box> inner_boxes;  // explicit inner bounding volumes, local frame
+
+    glm::mat4 placed() const { return placement.matrix() * local; }
 };
 
 struct Camera {
@@ -149,6 +155,7 @@ struct Medium {
 struct BoundsSettings {
     int max_outer_planes = 0;     // 0: full convex hulls; else at most this many planes each
     bool automatic_inner = true;  // inscribed boxes for closed meshes without explicit ones
+    bool pieces = false;          // convex pieces where an object's hull is loose
 };
 
 // Image-based lighting from an HDR environment (ibl/, Moschos §3.3); off when `file` is empty.
@@ -212,6 +219,9 @@ struct Scene {
 
     size_t triangle_count() const;
     bool has_translucent_objects() const;
+    // False for glass (Material::casts_shadow): what the shadow maps, the beam tree and the
+    // reference's shadow rays leave out.
+    bool casts_shadow(const Object& object) const;
 };
 
 const char* to_string(PhaseFunction phase);

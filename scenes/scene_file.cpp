@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "scenes/animation_toml.h"
+#include "scenes/model.h"
 #include "scenes/toml_reader.h"
 
 #ifndef SHAFTLAB_SCENES_DIR
@@ -197,6 +198,7 @@ Material read_material(TableReader r, std::string name) {
     }
     m.roughness = float(r.number_in("roughness", m.roughness, 0.0, 1.0));
     m.f0 = r.non_negative_vec3("f0", m.f0);
+    m.casts_shadow = r.boolean("casts_shadow", m.casts_shadow);
     // Translucent: a preset's name (materials/scattering_material.h) with optional overrides, or
     // coefficients.
     if (r.has("translucent")) {
@@ -457,9 +459,9 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
     };
     fail(
         "unknown scene {} (canonical: {}, multiple:N; random: boxes:SEED; animated: {}; effects: "
-        "{}; or a .toml file)",
+        "{}; real: {}; or a .toml file)",
         quote(name), listed(canonical_scene_names()), listed(animated_scene_names()),
-        listed(effect_scene_names()));
+        listed(effect_scene_names()), listed(real_scene_names()));
 }
 
 }  // namespace
@@ -569,6 +571,123 @@ toml::table resolve_base(toml::table root, const std::string& origin, const fs::
     return root;
 }
 
+// Glob patterns ('*' any run, '?' one character) over a part's name or its material's name.
+std::vector<std::string> read_patterns(TableReader& r, std::string_view key,
+                                       std::vector<std::string> fallback) {
+    const toml::array* array = r.array(key);
+    if (!array) {
+        return fallback;
+    }
+    std::vector<std::string> patterns;
+    for (const toml::node& node : *array) {
+        const auto text = node.value<std::string_view>();
+        if (!text) {
+            r.error(key, "expected an array of name patterns (strings)");
+        }
+        patterns.emplace_back(*text);
+    }
+    return patterns;
+}
+
+bool glob_match(std::string_view pattern, std::string_view text) {
+    // Iterative with one backtrack point: linear in practice, never exponential.
+    size_t p = 0, t = 0, star = std::string_view::npos, resume = 0;
+    while (t < text.size()) {
+        if (p < pattern.size() && (pattern[p] == '?' || pattern[p] == text[t])) {
+            ++p;
+            ++t;
+        } else if (p < pattern.size() && pattern[p] == '*') {
+            star = p++;
+            resume = t;
+        } else if (star != std::string_view::npos) {
+            p = star + 1;
+            t = ++resume;
+        } else {
+            return false;
+        }
+    }
+    while (p < pattern.size() && pattern[p] == '*') {
+        ++p;
+    }
+    return p == pattern.size();
+}
+
+bool matches_any(const std::vector<std::string>& patterns, const ModelPart& part) {
+    return std::any_of(patterns.begin(), patterns.end(), [&](const std::string& pattern) {
+        return glob_match(pattern, part.name) || glob_match(pattern, part.material);
+    });
+}
+
+// A [[models]] entry: every part of the model file becomes an object named "<name>/<part>" that
+// keeps its node transform (Object::local) under the model's placement. Parts take a scene
+// material per file material (its diffuse colour as albedo) unless `materials` retags them;
+// `drop` removes parts; `glass` names the parts that cast no shadow (by default those whose
+// file material is not opaque). A retagged part takes its scene material as it is, glass or not.
+void read_model(TableReader& r, const fs::path& base_dir, const SceneSearchPaths& paths,
+                std::map<std::string, int>& material_index, Scene& scene) {
+    const std::string file = r.string("file");
+    const fs::path path = resolve_mesh_path(file, base_dir, paths, r);
+    const std::string name = r.string("name", fs::path(file).stem().string());
+    const Placement placement = read_placement(r, Placement{});
+    const std::vector<std::string> drop = read_patterns(r, "drop", {});
+    const bool glass_by_opacity = !r.has("glass");
+    const std::vector<std::string> glass = read_patterns(r, "glass", {});
+    std::vector<std::pair<std::string, int>> retag;
+    if (const toml::table* materials = r.table("materials")) {
+        for (const auto& [key, node] : *materials) {
+            const auto target = node.value<std::string_view>();
+            const auto it =
+                target ? material_index.find(std::string(*target)) : material_index.end();
+            if (it == material_index.end()) {
+                r.error("materials", fmt::format("{}: expected the name of a [materials] table",
+                                                 quote(std::string(key.str()))));
+            }
+            retag.emplace_back(std::string(key.str()), it->second);
+        }
+    }
+    Model model;
+    try {
+        model = load_model(path);
+    } catch (const Error& e) {
+        r.error("file", e.what());
+    }
+    size_t kept = 0;
+    for (const ModelPart& part : model.parts) {
+        if (matches_any(drop, part)) {
+            continue;
+        }
+        Object object;
+        object.name = fmt::format("{}/{}", name, part.name);
+        object.mesh = part.mesh;
+        object.placement = placement;
+        object.local = part.transform;
+        object.transform = object.placed();
+        const bool is_glass = glass_by_opacity ? part.opacity < 1.0f : matches_any(glass, part);
+        const auto it = std::find_if(retag.begin(), retag.end(), [&](const auto& entry) {
+            return glob_match(entry.first, part.name) || glob_match(entry.first, part.material);
+        });
+        if (it != retag.end()) {
+            object.material = it->second;
+        } else {
+            const std::string material =
+                fmt::format("{}/{}{}", name, part.material.empty() ? "default" : part.material,
+                            is_glass ? " (glass)" : "");
+            auto [entry, added] = material_index.try_emplace(material, int(scene.materials.size()));
+            if (added) {
+                scene.materials.push_back(
+                    Material{.name = material, .albedo = part.diffuse, .casts_shadow = !is_glass});
+            }
+            object.material = entry->second;
+        }
+        scene.objects.push_back(std::move(object));
+        ++kept;
+    }
+    if (kept == 0) {
+        r.error("drop", fmt::format("drops every one of the {} parts of {}", model.parts.size(),
+                                    quote(file)));
+    }
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& origin, const fs::path& base_dir,
@@ -611,6 +730,7 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
             r.error("max_outer_planes", "must be 0 (full hull) or at least 8");
         }
         scene.bounds.automatic_inner = r.boolean("automatic_inner", true);
+        scene.bounds.pieces = r.boolean("pieces", false);
         r.finish();
     }
 
@@ -648,10 +768,21 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
             }
             object.material = it->second;
             object.placement = read_placement(r, Placement{});
-            object.transform = object.placement.matrix();
+            object.transform = object.placed();
             object.inner_boxes = read_inner_boxes(r, origin, context);
             r.finish();
             scene.objects.push_back(std::move(object));
+        }
+    }
+    if (const toml::array* models = top.array("models")) {
+        for (size_t i = 0; i < models->size(); ++i) {
+            const toml::table* table = (*models)[i].as_table();
+            if (!table) {
+                fail("{}: models must be an array of tables ([[models]])", origin);
+            }
+            TableReader r(*table, origin, fmt::format("[[models]] #{}", i + 1));
+            read_model(r, base_dir, paths, material_index, scene);
+            r.finish();
         }
     }
     if (const toml::table* animation = top.table("animation")) {
@@ -745,9 +876,13 @@ std::vector<std::string> effect_scene_names() {
     return {"ibl-spheres", "sss-bunny", "sss-dragon", "sss-shaft"};
 }
 
+std::vector<std::string> real_scene_names() {
+    return {"house", "house-sweep"};
+}
+
 std::vector<std::string> named_scene_names() {
     std::vector<std::string> names = canonical_scene_names();
-    for (const auto& group : {animated_scene_names(), effect_scene_names()}) {
+    for (const auto& group : {animated_scene_names(), effect_scene_names(), real_scene_names()}) {
         names.insert(names.end(), group.begin(), group.end());
     }
     return names;

@@ -11,14 +11,17 @@
 //               intensity = [r, g, b], falloff (degrees, 0 = hard edge)
 //   [medium]    sigma_s, sigma_a ([r, g, b] 1/m), phase, g, model ("simplified" | "physical"),
 //               a0, a1
-//   [beamtree]  max_outer_planes (0 = full convex hulls, else 8..), automatic_inner (bool)
+//   [beamtree]  max_outer_planes (0 = full convex hulls, else 8..), automatic_inner (bool),
+//               pieces (bool, default false: convex pieces where a hull is loose; with full
+//               hulls only)
 //   [environment]  image-based lighting (ibl/): file (a studio light's name, e.g. "courtyard",
 //               from SceneSearchPaths::environments, or an equirectangular .exr relative to this
 //               file), intensity, rotation (degrees about +y), face_size (power of two),
 //               prefilter ("importance" | "cone"), distribution ("ggx" | "beckmann"), samples,
 //               filtered (bool), shading ("split-sum" | "moschos"), skybox (bool), enabled
 //               (bool: false turns a base scene's environment off)
-//   [materials.NAME]  albedo, roughness (microfacet α), f0 = [r, g, b]; translucent (sss/): a
+//   [materials.NAME]  albedo, roughness (microfacet α), f0 = [r, g, b], casts_shadow (bool,
+//               default true; false: glass, seen but passed by the light); translucent (sss/): a
 //               preset name (sss::material_preset) or "custom" with sigma_s_reduced, sigma_a
 //               ([r, g, b] 1/mm) and eta; model ("dipole" | "multipole"); coats = [{ material =
 //               a preset, thickness = mm }, ...] (layers above the material, top first)
@@ -30,6 +33,13 @@
 //               the shape's parameters, material, translate, rotate (degrees about x, y, z,
 //               applied in that order), scale (number or [x, y, z]),
 //               inner = [{ min = [..], max = [..] }, ...]   (boxes in the local frame)
+//   [[models]]  a whole model read through assimp (scenes/model.h): file (any format assimp
+//               reads, looked up as meshes are), name (prefix of the objects' names, default the
+//               file's stem), translate, rotate, scale (the whole model); drop = ["glob", ...]
+//               (parts whose node or material name matches are left out), glass = ["glob",
+//               ...] (the parts that cast no shadow; default: those whose file material is not
+//               opaque), materials = { "glob" = "scene material" } (retag parts). Each (node,
+//               mesh) pair becomes an object "<name>/<node>" with its node's transform.
 //   [animation] keyframed tracks of the light, the camera and the objects (scenes/animation.h)
 
 #include <filesystem>
@@ -70,6 +80,8 @@ std::vector<std::string> canonical_scene_names();
 std::vector<std::string> animated_scene_names();
 // The effect scenes (IBL, SSS), loadable by name like the canonical ones.
 std::vector<std::string> effect_scene_names();
+// Real models read through assimp (house: the FZK-Haus IFC; house-sweep: its light moving).
+std::vector<std::string> real_scene_names();
 // Every scene that loads by name from scenes/: the canonical, the animated and the effect scenes,
 // in that order (`shaftlab scenes` lists them; the generated families are not among them).
 std::vector<std::string> named_scene_names();

@@ -423,8 +423,10 @@ void SubsurfacePass::render(const DrawObject& draw, const glm::mat4& view_projec
         // occludes (clamped to the map's near plane, its positions kept), not clipped away.
         GL.Enable(GL_DEPTH_CLAMP);
         for (size_t i = 0; i < scene_.objects.size(); ++i) {
-            GL.ProgramUniform1f(gbuffer, kGbufferObjectLocation, float(i + 1));
-            draw(i, gbuffer);
+            if (scene_.casts_shadow(scene_.objects[i])) {  // glass lets the light through
+                GL.ProgramUniform1f(gbuffer, kGbufferObjectLocation, float(i + 1));
+                draw(i, gbuffer);
+            }
         }
         GL.Disable(GL_DEPTH_CLAMP);
         if (any_multipole_) {

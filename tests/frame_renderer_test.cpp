@@ -280,5 +280,39 @@ TEST_F(Render, EveryMethodSeesAnOccluderInFrontOfTheNearPlane) {
     }
 }
 
+// Glass (Material::casts_shadow = false) lets the light through in every method and in the
+// reference: a glass slab between the light and the boxes, out of the camera's view, leaves every
+// method's I_s as it is without the slab (to float rounding), while the same slab casting shadows
+// changes the reference's by far more (the control that makes the test able to fail).
+TEST_F(Render, GlassCastsNoShadowInAnyMethodOrTheReference) {
+    const Scene plain = boxes_scene(MediumModel::simplified);
+    Scene glass = plain, opaque = plain;
+    for (Scene* scene : {&glass, &opaque}) {
+        scene->materials.push_back(Material{.name = "glass", .casts_shadow = scene == &opaque});
+        Object slab;
+        slab.name = "slab";
+        slab.mesh = std::make_shared<const Mesh>(make_box(glm::vec3(2.5f, 0.05f, 2.5f)));
+        slab.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.4f, 5.0f, -0.25f));
+        slab.material = 1;
+        scene->objects.push_back(slab);
+    }
+    const int w = 96, h = 54;
+    const Image exact = reference::ReferenceRenderer(plain).render(w, h, {});
+    const double peak = image_peak(exact);
+    EXPECT_LE(max_abs_difference(reference::ReferenceRenderer(glass).render(w, h, {}), exact),
+              1e-6 * peak);
+    EXPECT_GE(max_abs_difference(reference::ReferenceRenderer(opaque).render(w, h, {}), exact),
+              0.2 * peak);
+    for (const std::string& name : methods::volume_method_names()) {
+        if (name == "none" || name == "reference")
+            continue;
+        const Image without = render_method(plain, name, w, h).in_scattering;
+        const Image with = render_method(glass, name, w, h).in_scattering;
+        EXPECT_LE(max_abs_difference(with, without), 1e-5 * image_peak(without)) << name;
+        const Image shadowed = render_method(opaque, name, w, h).in_scattering;
+        EXPECT_GE(max_abs_difference(shadowed, without), 0.1 * image_peak(without)) << name;
+    }
+}
+
 }  // namespace
 }  // namespace sl::test

@@ -62,7 +62,7 @@ void Viewer::handle_input(double dt) {
             if (d != glm::vec2(0.0f)) {
                 object.placement.translate +=
                     per_pixel * (d.x * controller_.right() - d.y * controller_.up());
-                object.transform = object.placement.matrix();
+                object.transform = object.placed();
                 scene_changed();
             }
         } else if (mode_ == CameraMode::orbit) {

@@ -42,7 +42,7 @@ void Viewer::ui_objects() {
     bool changed = ImGui::DragFloat3("translate", &o.placement.translate.x, 0.02f);
     changed |= ImGui::DragFloat3("rotate", &o.placement.rotate_degrees.x, 0.5f);
     if (changed) {
-        o.transform = o.placement.matrix();
+        o.transform = o.placed();
         scene_changed();
     }
     ImGui::TextDisabled("alt + drag in the view moves it too");
