@@ -1,15 +1,19 @@
 // `shaftlab regions`: the beam tree's lit / uncertain / unlit regions of a scene, as a PLY mesh,
 // a JSON summary with timings, and a picture (Nilsson figure 5.4) seen from the scene camera.
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <numeric>
 #include <sstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "analytic/in_scattering.h"
 #include "app/commands.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/region_picture.h"
@@ -31,7 +35,39 @@ struct RegionsArguments : CommonOptions {
     std::string classify;
     int max_planes = -1;  // -1: the scene's setting
     bool no_automatic_inner = false;
+    bool no_pieces = false;
 };
+
+// The length of the eye rays (every other pixel in x and y, up to the first surface) inside the
+// light's cone, by the region the tree gives it: what a hybrid marches is the uncertain share.
+std::array<double, 3> eye_ray_lengths(const Scene& scene, const bt::BeamTree& tree,
+                                      const std::vector<float>& depth, int width, int height) {
+    const PixelUnprojector pixels(scene.camera, width, height);
+    std::array<double, 3> lengths{};
+    std::vector<bt::RegionInterval> intervals;
+    for (int y = 0; y < height; y += 2) {
+        for (int x = 0; x < width; x += 2) {
+            const double ndc = 2.0 * double(depth[size_t(y) * size_t(width) + size_t(x)]) - 1.0;
+            const dvec3 origin = pixels.point(x, y, -1.0);
+            const dvec3 end = pixels.point(x, y, std::min(ndc, 1.0));
+            const double length = glm::length(end - origin);
+            if (!(length > 0.0)) {
+                continue;
+            }
+            const analytic::EyeRay ray{origin, (end - origin) / length};
+            const analytic::Interval cone = analytic::light_interval(ray, scene.light, length);
+            if (cone.empty()) {
+                continue;
+            }
+            intervals.clear();
+            tree.trace(ray.origin, ray.direction, cone.begin, cone.end, intervals);
+            for (const bt::RegionInterval& interval : intervals) {
+                lengths[size_t(interval.region)] += interval.end - interval.begin;
+            }
+        }
+    }
+    return lengths;
+}
 
 std::vector<dvec3> read_points(const std::string& path) {
     std::ifstream in(path);
@@ -69,7 +105,8 @@ int run_regions(const RegionsArguments& args) {
     const int max_planes = args.max_planes >= 0 ? args.max_planes : scene.bounds.max_outer_planes;
     bt::VolumeLibrary library(
         {.max_outer_planes = max_planes,
-         .automatic_inner = scene.bounds.automatic_inner && !args.no_automatic_inner});
+         .automatic_inner = scene.bounds.automatic_inner && !args.no_automatic_inner,
+         .pieces = scene.bounds.pieces && !args.no_pieces});
     std::vector<std::string> warnings;
     const std::vector<bt::ObjectVolumes> volumes = library.build(scene, &warnings);
     const double volumes_ms = ms_since(start);
@@ -104,6 +141,26 @@ int run_regions(const RegionsArguments& args) {
     const std::vector<uint8_t> picture =
         bt::draw_regions(scene, tree, frame.depth, frame.display_srgb8, width, height);
     const double picture_ms = ms_since(start);
+    const std::array<double, 3> lengths = eye_ray_lengths(scene, tree, frame.depth, width, height);
+    const double eye_length = lengths[0] + lengths[1] + lengths[2];
+    auto share = [&](bt::Region r) {
+        return eye_length > 0.0 ? lengths[size_t(r)] / eye_length : 0.0;
+    };
+    // Objects by their number of convex pieces (glass, which casts no shadow, has none).
+    std::map<int, int> objects_by_pieces;
+    {
+        std::map<int, int> pieces_of;
+        for (const bt::ObjectVolumes& v : volumes) {
+            pieces_of[v.object] = v.pieces;
+        }
+        for (const auto& [object, count] : pieces_of) {
+            ++objects_by_pieces[count];
+        }
+    }
+    nlohmann::ordered_json pieces_json = nlohmann::ordered_json::object();
+    for (const auto& [count, objects] : objects_by_pieces) {
+        pieces_json[std::to_string(count)] = objects;
+    }
 
     const bt::BeamTreeStats stats = tree.stats();
     size_t inner_volumes = 0, outer_faces = 0;
@@ -116,6 +173,13 @@ int run_regions(const RegionsArguments& args) {
         {"epsilon", tree.epsilon()},
         {"objects", scene.objects.size()},
         {"outer_volume_faces", outer_faces},
+        {"outer_volumes", volumes.size()},
+        {"objects_by_pieces", pieces_json},
+        {"eye_ray_share",
+         {{"lit", share(bt::Region::lit)},
+          {"uncertain", share(bt::Region::uncertain)},
+          {"unlit", share(bt::Region::unlit)},
+          {"length", eye_length}}},
         {"inner_volumes", inner_volumes},
         {"max_outer_planes", max_planes},
         {"beams", regions.beam_count},
@@ -158,6 +222,20 @@ int run_regions(const RegionsArguments& args) {
     });
     outputs.commit();
     const double write_ms = ms_since(start);
+    std::string by_pieces;
+    for (const auto& [count, objects] : objects_by_pieces) {
+        by_pieces += fmt::format("{}{} x {}", by_pieces.empty() ? "" : ", ", objects, count);
+    }
+    fmt::print(
+        "{}: {} objects casting shadows in {} convex pieces ({} objects x pieces); eye "
+        "rays in the cone: {:.1f}% lit, {:.1f}% uncertain, {:.1f}% unlit\n",
+        scene.name,
+        objects_by_pieces.empty()
+            ? 0
+            : std::accumulate(objects_by_pieces.begin(), objects_by_pieces.end(), 0,
+                              [](int sum, const auto& entry) { return sum + entry.second; }),
+        volumes.size(), by_pieces, 100.0 * share(bt::Region::lit),
+        100.0 * share(bt::Region::uncertain), 100.0 * share(bt::Region::unlit));
     fmt::print(
         "{}: {} beams ({} lit, {} uncertain, {} unlit pieces); volumes {:.0f} ms, tree {:.0f} "
         "ms, regions {:.0f} ms, scene render {:.0f} ms, picture {:.0f} ms, files {:.0f} ms -> "
@@ -186,6 +264,8 @@ Command add_regions_command(CLI::App& app) {
         ->check(CLI::Range(0, 100000) & !CLI::Range(1, 7));
     command->add_flag("--no-auto-inner", args->no_automatic_inner,
                       "Use only explicit inner boxes from the scene file");
+    command->add_flag("--no-pieces", args->no_pieces,
+                      "One convex hull per object, not convex pieces where the hull is loose");
     return [args] { return run_regions(*args); };
 }
 

@@ -78,10 +78,13 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     for (const ObjectVolumes& object : volumes) {
         if (object.outer.contains(apex_, -epsilon_)) {
             fail(
-                "the light at ({}, {}, {}) is inside the outer bounding volume of object {}: the "
-                "beam tree needs the light outside every outer volume",
+                "the light at ({}, {}, {}) is inside the outer bounding volume of object {}{}: "
+                "the beam tree needs the light outside every outer volume",
                 apex_.x, apex_.y, apex_.z,
-                object.name.empty() ? std::to_string(object.object) : "'" + object.name + "'");
+                object.name.empty() ? std::to_string(object.object) : "'" + object.name + "'",
+                object.pieces > 1
+                    ? fmt::format(" (its convex piece {} of {})", object.piece + 1, object.pieces)
+                    : "");
         }
     }
     // Front to back by distance from the light: the result does not depend on the order, but
@@ -640,7 +643,8 @@ BeamTreeStats BeamTree::stats() const {
 BeamTree build_scene_beam_tree(const Scene& scene) {
     VolumeLibrary& library =
         VolumeLibrary::shared({.max_outer_planes = scene.bounds.max_outer_planes,
-                               .automatic_inner = scene.bounds.automatic_inner});
+                               .automatic_inner = scene.bounds.automatic_inner,
+                               .pieces = scene.bounds.pieces});
     return BeamTree(scene.light, library.build(scene, nullptr));
 }
 

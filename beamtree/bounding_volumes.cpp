@@ -22,6 +22,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "beamtree/pieces.h"
 #include "core/cache.h"
 #include "core/error.h"
 #include "core/hash.h"
@@ -304,10 +305,8 @@ bool point_inside_mesh(const Mesh& mesh, const dvec3& p) {
             la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
         solid_angle += 2.0 * std::atan2(numerator, denominator);
     }
-    return solid_angle / (4.0 * std::numbers::pi) > 0.5;
+    return std::abs(solid_angle / (4.0 * std::numbers::pi)) > 0.5;
 }
-
-namespace {
 
 // Triangle/box overlap by the separating axis theorem (Akenine-Möller 2001). Touching counts as
 // overlapping: only a strict gap separates.
@@ -344,6 +343,8 @@ bool triangle_overlaps_box(dvec3 v0, dvec3 v1, dvec3 v2, const dvec3& center, co
     }
     return true;
 }
+
+namespace {
 
 // A mesh's triangles in double precision with their bounding boxes, for many box queries.
 class TriangleSet {
@@ -457,24 +458,138 @@ std::optional<Box> inscribed_box(const Mesh& mesh) {
     return box;
 }
 
+namespace {
+
+// The largest box of a piece's proportions about its hull's vertex centroid that stays inside
+// the hull and touches no triangle of the mesh, with its centre inside the (closed) mesh.
+std::optional<Box> box_in_piece(const ConvexVolume& hull, const TriangleSet& triangles,
+                                const Mesh& closed_mesh) {
+    dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+    dvec3 sum(0.0);
+    size_t count = 0;
+    for (const Polygon& face : hull.faces) {
+        for (const dvec3& v : face.vertices) {
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+            sum += v;
+            ++count;
+        }
+    }
+    if (count == 0 || hull.flat) {
+        return std::nullopt;
+    }
+    const dvec3 center = sum / double(count);
+    const dvec3 half = 0.5 * (hi - lo);
+    auto box_at = [&](double scale) {
+        return Box{glm::vec3(center - scale * half), glm::vec3(center + scale * half)};
+    };
+    auto fits = [&](double scale) {
+        const Box box = box_at(scale);
+        for (int corner = 0; corner < 8; ++corner) {
+            const dvec3 p(corner & 1 ? box.max.x : box.min.x, corner & 2 ? box.max.y : box.min.y,
+                          corner & 4 ? box.max.z : box.min.z);
+            if (!hull.contains(p, 0.0)) {
+                return false;
+            }
+        }
+        return triangles.misses(box);
+    };
+    if (!fits(1e-4)) {
+        return std::nullopt;
+    }
+    double a = 1e-4, b = 1.0;
+    for (int iteration = 0; iteration < 14; ++iteration) {
+        const double mid = 0.5 * (a + b);
+        (fits(mid) ? a : b) = mid;
+    }
+    if (!point_inside_mesh(closed_mesh, center)) {
+        return std::nullopt;
+    }
+    // Then each face pushed out as far as it goes (the piece need not be centred on its
+    // vertices' centroid).
+    Box box = box_at(a);
+    auto box_fits = [&](const Box& candidate) {
+        for (int corner = 0; corner < 8; ++corner) {
+            const dvec3 p(corner & 1 ? candidate.max.x : candidate.min.x,
+                          corner & 2 ? candidate.max.y : candidate.min.y,
+                          corner & 4 ? candidate.max.z : candidate.min.z);
+            if (!hull.contains(p, 0.0)) {
+                return false;
+            }
+        }
+        return triangles.misses(candidate);
+    };
+    for (int axis = 0; axis < 3; ++axis) {
+        for (const bool upper : {false, true}) {
+            float grow_lo = 0.0f, grow_hi = float(hi[axis] - lo[axis]);
+            for (int iteration = 0; iteration < 14; ++iteration) {
+                const float mid = 0.5f * (grow_lo + grow_hi);
+                Box grown = box;
+                (upper ? grown.max[axis] : grown.min[axis]) += upper ? mid : -mid;
+                (box_fits(grown) ? grow_lo : grow_hi) = mid;
+            }
+            (upper ? box.max[axis] : box.min[axis]) += upper ? grow_lo : -grow_lo;
+        }
+    }
+    return box;
+}
+
+}  // namespace
+
 LocalVolumes VolumeLibrary::compute(const Mesh& mesh) const {
     LocalVolumes volumes;
     volumes.outer = convex_hull(mesh, options_.max_outer_planes);
-    volumes.closed = mesh.is_closed();
+    // Closed as drawn, or once welded with its T-junctions split (beamtree/pieces.h); the
+    // inner volumes are verified against that closed mesh.
+    const Mesh repaired = welded(mesh, 1e-6 * max_extent(mesh.bounds()));
+    volumes.closed = mesh.is_closed() || repaired.is_closed();
+    const Mesh& closed_mesh = mesh.is_closed() ? mesh : repaired;
     if (volumes.outer.flat) {
         const double hull_area = area(volumes.outer.faces[0]);
         volumes.self_inner = std::abs(mesh.area() - hull_area) <= 1e-6 * hull_area;
-    } else if (options_.automatic_inner && volumes.closed) {
-        if (const std::optional<Box> box = inscribed_box(mesh)) {
+        return volumes;
+    }
+    if (options_.pieces && options_.max_outer_planes == 0) {
+        const Pieces pieces = convex_pieces(mesh);
+        volumes.cells = pieces.cells;
+        volumes.empty_voxels_whole = pieces.empty_voxels_whole;
+        volumes.empty_voxels_pieces = pieces.empty_voxels_pieces;
+        if (!pieces.whole) {
+            const TriangleSet triangles(closed_mesh);
+            for (const Mesh& part : pieces.parts) {
+                LocalPiece piece;
+                piece.outer = convex_hull(part, 0);
+                if (options_.automatic_inner && volumes.closed) {
+                    if (const std::optional<Box> box =
+                            box_in_piece(piece.outer, triangles, closed_mesh)) {
+                        piece.inner.push_back(box_volume(*box));
+                    }
+                }
+                volumes.pieces.push_back(std::move(piece));
+            }
+        }
+    }
+    if (options_.automatic_inner && volumes.closed && volumes.pieces.empty()) {
+        if (const std::optional<Box> box = inscribed_box(closed_mesh)) {
             volumes.automatic_inner.push_back(box_volume(*box));
         }
+    }
+    const bool any_inner = !volumes.automatic_inner.empty() ||
+                           std::any_of(volumes.pieces.begin(), volumes.pieces.end(),
+                                       [](const LocalPiece& p) { return !p.inner.empty(); });
+    if (!options_.automatic_inner) {
+        volumes.no_inner = "automatic inner volumes are off";
+    } else if (!volumes.closed) {
+        volumes.no_inner = "the mesh is not closed, even welded with its T-junctions split";
+    } else if (!any_inner) {
+        volumes.no_inner = "no box fits inside it (too thin, or no inside point found)";
     }
     return volumes;
 }
 
 namespace {
 
-constexpr std::string_view kVolumesVersion = "shaftlab-volumes-1";
+constexpr std::string_view kVolumesVersion = "shaftlab-volumes-3";
 
 // LocalVolumes known to this process, by content key: libraries share them.
 std::mutex& process_mutex() {
@@ -579,6 +694,23 @@ std::shared_ptr<const LocalVolumes> read_volumes(uint64_t key) {
         for (uint64_t i = 0; i < inner; ++i) {
             volumes->automatic_inner.push_back(r.volume());
         }
+        const uint64_t pieces = r.count(1 << 16);
+        for (uint64_t i = 0; i < pieces; ++i) {
+            LocalPiece& piece = volumes->pieces.emplace_back();
+            piece.outer = r.volume();
+            const uint64_t boxes = r.count(1 << 10);
+            for (uint64_t k = 0; k < boxes; ++k) {
+                piece.inner.push_back(r.volume());
+            }
+        }
+        volumes->cells = r.value<int32_t>();
+        volumes->empty_voxels_whole = r.value<int32_t>();
+        volumes->empty_voxels_pieces = r.value<int32_t>();
+        volumes->no_inner.resize(r.count(1 << 12));
+        in.read(volumes->no_inner.data(), std::streamsize(volumes->no_inner.size()));
+        if (!in) {
+            return nullptr;
+        }
         return volumes;
     } catch (const std::runtime_error&) {
         return nullptr;  // a truncated or foreign file: computed again and rewritten
@@ -598,6 +730,19 @@ void write_volumes(uint64_t key, const LocalVolumes& volumes) {
         for (const ConvexVolume& inner : volumes.automatic_inner) {
             w.volume(inner);
         }
+        w.value(uint64_t(volumes.pieces.size()));
+        for (const LocalPiece& piece : volumes.pieces) {
+            w.volume(piece.outer);
+            w.value(uint64_t(piece.inner.size()));
+            for (const ConvexVolume& inner : piece.inner) {
+                w.volume(inner);
+            }
+        }
+        w.value(int32_t(volumes.cells));
+        w.value(int32_t(volumes.empty_voxels_whole));
+        w.value(int32_t(volumes.empty_voxels_pieces));
+        w.value(uint64_t(volumes.no_inner.size()));
+        out.write(volumes.no_inner.data(), std::streamsize(volumes.no_inner.size()));
         out.close();
         if (!out) {
             fail("{}: cannot write", file.string());
@@ -615,8 +760,9 @@ uint64_t volumes_key(const Mesh& mesh, const BoundingVolumeOptions& options) {
     uint64_t hash = fnv1a(kVolumesVersion);
     hash = mix(hash, mesh.positions.data(), mesh.positions.size());
     hash = mix(hash, mesh.triangles.data(), mesh.triangles.size());
-    const int32_t settings[2] = {options.max_outer_planes, options.automatic_inner ? 1 : 0};
-    return mix(hash, settings, 2);
+    const int32_t settings[3] = {options.max_outer_planes, options.automatic_inner ? 1 : 0,
+                                 options.pieces ? 1 : 0};
+    return mix(hash, settings, 3);
 }
 
 void VolumeLibrary::forget_process_volumes() {
@@ -733,35 +879,58 @@ std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
     std::vector<ObjectVolumes> result;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const Object& object = scene.objects[i];
+        if (!scene.casts_shadow(object)) {
+            continue;  // glass: the light passes it
+        }
         const Entry& entry = this->entry(object.mesh);
         const LocalVolumes& local = *entry.volumes;
         const uint64_t key = entry.key;
         const glm::dmat4 transform(object.transform);
-        ObjectVolumes volumes;
-        volumes.object = int(i);
-        volumes.name = object.name;
-        volumes.outer = local.outer.transformed(transform);
-        if (!object.inner_boxes.empty()) {
-            for (size_t b = 0; b < object.inner_boxes.size(); ++b) {
-                if (!box_verified(*object.mesh, key, object.inner_boxes[b])) {
-                    fail("object '{}': inner box {} is not strictly inside its mesh", object.name,
-                         b);
-                }
-                volumes.inner.push_back(box_volume(object.inner_boxes[b]).transformed(transform));
+        std::vector<ConvexVolume> explicit_inner;
+        for (size_t b = 0; b < object.inner_boxes.size(); ++b) {
+            if (!box_verified(*object.mesh, key, object.inner_boxes[b])) {
+                fail("object '{}': inner box {} is not strictly inside its mesh", object.name, b);
             }
-        } else if (local.self_inner) {
-            volumes.inner.push_back(volumes.outer);
-        } else {
-            for (const ConvexVolume& inner : local.automatic_inner) {
-                volumes.inner.push_back(inner.transformed(transform));
-            }
-            if (!local.closed && options_.automatic_inner && warnings) {
-                warnings->push_back(fmt::format(
-                    "object '{}': mesh is not closed, so it gets no automatic inner volume",
-                    object.name));
-            }
+            explicit_inner.push_back(box_volume(object.inner_boxes[b]).transformed(transform));
         }
-        result.push_back(std::move(volumes));
+        if (!local.pieces.empty()) {
+            for (size_t p = 0; p < local.pieces.size(); ++p) {
+                ObjectVolumes volumes;
+                volumes.object = int(i);
+                volumes.name = object.name;
+                volumes.piece = int(p);
+                volumes.pieces = int(local.pieces.size());
+                volumes.outer = local.pieces[p].outer.transformed(transform);
+                if (object.inner_boxes.empty()) {
+                    for (const ConvexVolume& inner : local.pieces[p].inner) {
+                        volumes.inner.push_back(inner.transformed(transform));
+                    }
+                } else if (p == 0) {
+                    volumes.inner = explicit_inner;
+                }
+                result.push_back(std::move(volumes));
+            }
+        } else {
+            ObjectVolumes volumes;
+            volumes.object = int(i);
+            volumes.name = object.name;
+            volumes.outer = local.outer.transformed(transform);
+            if (!object.inner_boxes.empty()) {
+                volumes.inner = explicit_inner;
+            } else if (local.self_inner) {
+                volumes.inner.push_back(volumes.outer);
+            } else {
+                for (const ConvexVolume& inner : local.automatic_inner) {
+                    volumes.inner.push_back(inner.transformed(transform));
+                }
+            }
+            result.push_back(std::move(volumes));
+        }
+        if (object.inner_boxes.empty() && !local.self_inner && !local.no_inner.empty() &&
+            options_.automatic_inner && warnings) {
+            warnings->push_back(fmt::format("object '{}': no automatic inner volume: {}",
+                                            object.name, local.no_inner));
+        }
     }
     return result;
 }

@@ -39,29 +39,50 @@ struct ConvexVolume {
 struct BoundingVolumeOptions {
     int max_outer_planes = 0;     // 0: the full convex hull; else at most this many planes (>= 8)
     bool automatic_inner = true;  // find an inner box for closed meshes without explicit ones
+    // Several convex hulls where one is loose (beamtree/pieces.h). Off by default: with the
+    // pieces of random tori the boundary meshes miss their 1e-9 volume tolerance (issue 37).
+    bool pieces = false;
 };
 
-// The volumes of one object in world space.
+// The volumes of one object in world space, or of one convex piece of it: an object cut into
+// pieces gives one entry per piece (its hull and the inner volumes inside it).
 struct ObjectVolumes {
     int object = 0;  // index into Scene::objects
     std::string name;
+    int piece = 0;  // which piece of the object, of `pieces`
+    int pieces = 1;
+    ConvexVolume outer;
+    std::vector<ConvexVolume> inner;
+};
+
+// One convex piece of a mesh: its hull and the inner boxes found inside it.
+struct LocalPiece {
     ConvexVolume outer;
     std::vector<ConvexVolume> inner;
 };
 
 // Volumes of a mesh in its local frame.
 struct LocalVolumes {
-    ConvexVolume outer;
+    ConvexVolume outer;                         // the hull of the whole mesh
     std::vector<ConvexVolume> automatic_inner;  // empty when the mesh is open or too thin
-    bool closed = false;
+    bool closed = false;                        // closed once welded and its T-junctions split
     bool self_inner = false;  // a flat convex mesh that covers its hull is its own inner volume
+    std::vector<LocalPiece> pieces;  // empty: `outer` is tight, the mesh is one piece
+    int cells = 0;                   // cells before merging (beamtree/pieces.h)
+    int empty_voxels_whole = 0;      // empty voxels inside `outer`
+    int empty_voxels_pieces = 0;     // ... inside the pieces' hulls, summed
+    std::string no_inner;            // why there is no automatic inner volume ("" if there is)
+    size_t piece_count() const { return pieces.empty() ? 1 : pieces.size(); }
 };
 
 // The hull of a mesh's vertices; max_planes > 0 keeps the 6 axis-aligned support planes plus the
 // largest hull faces, up to max_planes planes in all.
 ConvexVolume convex_hull(const Mesh& mesh, int max_planes);
-// Inside by the winding number (robust for closed meshes).
+// Inside by the winding number (robust for closed meshes): |w| > 1/2, so that a consistently
+// inward (inside-out) closed mesh counts as the outward one does.
 bool point_inside_mesh(const Mesh& mesh, const dvec3& p);
+// Triangle/box overlap by the separating axis theorem; touching counts as overlapping.
+bool triangle_overlaps_box(dvec3 v0, dvec3 v1, dvec3 v2, const dvec3& center, const dvec3& half);
 // The box lies strictly inside a closed mesh: its centre is inside and no triangle touches it.
 bool box_inside_mesh(const Mesh& mesh, const Box& box);
 // An axis-aligned box strictly inside a closed mesh, grown as large as a few binary searches find.

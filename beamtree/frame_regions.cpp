@@ -32,7 +32,8 @@ FrameRegions build_frame_regions(const Scene& scene, const RegionRequest& reques
     };
     VolumeLibrary& library =
         VolumeLibrary::shared({.max_outer_planes = scene.bounds.max_outer_planes,
-                               .automatic_inner = scene.bounds.automatic_inner});
+                               .automatic_inner = scene.bounds.automatic_inner,
+                               .pieces = scene.bounds.pieces});
     const std::vector<ObjectVolumes> volumes = library.build(scene, nullptr);
     lap(out.ms.volumes);
     auto tree = std::make_shared<const BeamTree>(scene.light, volumes);

@@ -91,7 +91,8 @@ StageSamples play(const std::vector<Scene>& states, const RegionRequest& request
 double first_round_frame(const Scene& scene, const RegionRequest& request) {
     const Clock::time_point start = Clock::now();
     VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
-                           .automatic_inner = scene.bounds.automatic_inner});
+                           .automatic_inner = scene.bounds.automatic_inner,
+                           .pieces = scene.bounds.pieces});
     library.set_caching(false);
     const BeamTree tree(scene.light, library.build(scene, nullptr));
     const Regions regions = extract_regions(tree);
@@ -120,13 +121,19 @@ constexpr const char* kStageHeader =
     " volumes | tree | regions | lit mesh | uncertain mesh | GPU tree | total (median) | p95 |";
 constexpr const char* kStageRule = "---:|---:|---:|---:|---:|---:|---:|---:|";
 
-int run() {
+// real: the same tables for the real scenes (house, house-sweep) instead of the canonical ones,
+// without the scaling runs.
+int run(bool real) {
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     const SceneSearchPaths paths = SceneSearchPaths::defaults();
     constexpr double kBudget = 2.0;
     constexpr int kFrames = 24;
 
-    fmt::print("## A light move on the canonical scenes\n\n");
+    const std::vector<std::string> stills =
+        real ? std::vector<std::string>{"house"} : canonical_scene_names();
+    const std::vector<std::string> animations =
+        real ? std::vector<std::string>{"house-sweep"} : animated_scene_names();
+    fmt::print("## A light move on the {} scenes\n\n", real ? "real" : "canonical");
     fmt::print(
         "The light circles 0.5 m about its place over {} frames; milliseconds per frame, one "
         "core, medians over the frames (p95 beside the total). *First round*: what a light move "
@@ -135,7 +142,7 @@ int run() {
         kFrames, kBudget);
     fmt::print("| scene | needs | first round | {} budget |\n|---|---|---:|{}---|\n", kStageHeader,
                kStageRule);
-    for (const std::string& name : canonical_scene_names()) {
+    for (const std::string& name : stills) {
         const Scene scene = load_scene(name, paths);
         std::vector<Scene> states;
         for (int k = 0; k < kFrames; ++k)
@@ -156,10 +163,10 @@ int run() {
         std::fflush(stdout);
     }
 
-    fmt::print("\n## The canonical animations, every frame\n\n");
+    fmt::print("\n## The {} animations, every frame\n\n", real ? "real" : "canonical");
     fmt::print("| scene | route | frames | {} worst |\n|---|---|---:|{}---:|\n", kStageHeader,
                kStageRule);
-    for (const std::string& name : animated_scene_names()) {
+    for (const std::string& name : animations) {
         const Scene scene = load_scene(name, paths);
         std::vector<Scene> states;
         for (int k = 0; k < scene.animation->frame_count(); ++k)
@@ -176,6 +183,9 @@ int run() {
 
     for (const auto& [route, request] : {std::pair{"mesh route, what the hybrids need", kHybrids},
                                          std::pair{"walk route, what all four need", kWalk}}) {
+        if (real) {
+            break;
+        }
         fmt::print("\n## Scaling: a light move on multiple:N ({})\n\n", route);
         fmt::print("| N | triangles | light-facing polygons | {}\n|---:|---:|---:|{}\n",
                    kStageHeader, kStageRule);
@@ -207,10 +217,11 @@ int run() {
         "Each scene's local volumes (hulls, reduced hulls, inner boxes and their verification) "
         "computed from scratch, and read back from the disk cache by a fresh library, one "
         "core.\n\n| scene | meshes | computed ms | from disk ms |\n|---|---:|---:|---:|\n");
-    for (const std::string& name : canonical_scene_names()) {
+    for (const std::string& name : stills) {
         const Scene scene = load_scene(name, paths);
         const BoundingVolumeOptions options{.max_outer_planes = scene.bounds.max_outer_planes,
-                                            .automatic_inner = scene.bounds.automatic_inner};
+                                            .automatic_inner = scene.bounds.automatic_inner,
+                                            .pieces = scene.bounds.pieces};
         Clock::time_point start = Clock::now();
         VolumeLibrary cold(options);
         cold.set_caching(false);
@@ -238,9 +249,9 @@ int run() {
 }  // namespace
 }  // namespace sl::bt
 
-int main() {
+int main(int argc, char** argv) {
     try {
-        return sl::bt::run();
+        return sl::bt::run(argc > 1 && std::string(argv[1]) == "real");
     } catch (const std::exception& e) {
         std::fprintf(stderr, "moving_bench: %s\n", e.what());
         return 1;

@@ -1,0 +1,596 @@
+#include "beamtree/pieces.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <queue>
+#include <set>
+#include <tuple>
+
+#include <glm/geometric.hpp>
+
+#include "beamtree/bounding_volumes.h"
+
+namespace sl::bt {
+
+namespace {
+
+// The mesh's voxels: surface (touches a triangle), outside (reached from the padded border
+// without crossing a surface voxel: empty space) or enclosed.
+class Voxels {
+public:
+    enum State : uint8_t { enclosed = 0, surface = 1, outside = 2 };
+
+    Voxels(const Mesh& mesh, int resolution) {
+        const Bounds b = mesh.bounds();
+        const dvec3 lo(b.min), hi(b.max);
+        const double longest = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-30});
+        cell_ = longest / resolution;
+        // Two voxels of padding on every side: a face on the bounds touches the first (touching
+        // counts), so the outermost layer is free for the flood fill all round.
+        origin_ = lo - dvec3(2.0 * cell_);
+        for (int a = 0; a < 3; ++a) {
+            dims_[a] = int(std::ceil((hi[a] - lo[a]) / cell_)) + 5;
+        }
+        state_.assign(size_t(dims_[0]) * dims_[1] * dims_[2], enclosed);
+        const dvec3 half(0.5 * cell_ * (1.0 + 1e-9));
+        for (const glm::uvec3& t : mesh.triangles) {
+            const dvec3 a(mesh.positions[t.x]), c1(mesh.positions[t.y]), c2(mesh.positions[t.z]);
+            const glm::ivec3 from = voxel_of(glm::min(a, glm::min(c1, c2))) - 1;
+            const glm::ivec3 to = voxel_of(glm::max(a, glm::max(c1, c2))) + 1;
+            for (int z = std::max(from.z, 0); z <= std::min(to.z, dims_[2] - 1); ++z) {
+                for (int y = std::max(from.y, 0); y <= std::min(to.y, dims_[1] - 1); ++y) {
+                    for (int x = std::max(from.x, 0); x <= std::min(to.x, dims_[0] - 1); ++x) {
+                        uint8_t& s = state_[index(x, y, z)];
+                        if (s != surface &&
+                            triangle_overlaps_box(a, c1, c2, center(x, y, z), half)) {
+                            s = surface;
+                        }
+                    }
+                }
+            }
+        }
+        // Flood the outside from the corner (padding: never a surface voxel).
+        std::vector<glm::ivec3> stack(1, glm::ivec3(0));
+        state_[0] = outside;
+        while (!stack.empty()) {
+            const glm::ivec3 v = stack.back();
+            stack.pop_back();
+            for (int a = 0; a < 3; ++a) {
+                for (const int step : {-1, 1}) {
+                    glm::ivec3 n = v;
+                    n[a] += step;
+                    if (n[a] < 0 || n[a] >= dims_[a]) {
+                        continue;
+                    }
+                    uint8_t& s = state_[index(n.x, n.y, n.z)];
+                    if (s == enclosed) {
+                        s = outside;
+                        stack.push_back(n);
+                    }
+                }
+            }
+        }
+    }
+
+    double cell() const { return cell_; }
+    // The voxel at p is empty space (outside the grid counts as empty).
+    bool empty_at(const dvec3& p) const {
+        const glm::ivec3 v = voxel_of(p);
+        if (glm::any(glm::lessThan(v, glm::ivec3(0))) ||
+            glm::any(glm::greaterThanEqual(v, dims_))) {
+            return true;
+        }
+        return state_[index(v.x, v.y, v.z)] == outside;
+    }
+
+    // Voxels whose centres lie inside `hull` grown by half a voxel: {all, empty}.
+    std::pair<int, int> count_inside(const ConvexVolume& hull) const {
+        if (hull.empty()) {
+            return {0, 0};
+        }
+        dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+        for (const Polygon& face : hull.faces) {
+            for (const dvec3& v : face.vertices) {
+                lo = glm::min(lo, v);
+                hi = glm::max(hi, v);
+            }
+        }
+        const glm::ivec3 from = glm::max(voxel_of(lo - dvec3(cell_)), glm::ivec3(0));
+        const glm::ivec3 to = glm::min(voxel_of(hi + dvec3(cell_)), dims_ - 1);
+        const double margin = -0.5 * cell_;
+        int all = 0, empty = 0;
+        for (int z = from.z; z <= to.z; ++z) {
+            for (int y = from.y; y <= to.y; ++y) {
+                for (int x = from.x; x <= to.x; ++x) {
+                    if (hull.contains(center(x, y, z), margin)) {
+                        ++all;
+                        empty += state_[index(x, y, z)] == outside;
+                    }
+                }
+            }
+        }
+        return {all, empty};
+    }
+
+private:
+    size_t index(int x, int y, int z) const {
+        return (size_t(z) * size_t(dims_[1]) + size_t(y)) * size_t(dims_[0]) + size_t(x);
+    }
+    dvec3 center(int x, int y, int z) const { return origin_ + cell_ * (dvec3(x, y, z) + 0.5); }
+    glm::ivec3 voxel_of(const dvec3& p) const {
+        return glm::ivec3(glm::floor((p - origin_) / cell_));
+    }
+
+    dvec3 origin_{0.0};
+    double cell_ = 1.0;
+    glm::ivec3 dims_{1};
+    std::vector<uint8_t> state_;
+};
+
+// The polygon's part with lo <= p[axis] <= hi (Sutherland-Hodgman against two planes).
+std::vector<dvec3> clip_slab(const std::vector<dvec3>& polygon, int axis, double lo, double hi) {
+    auto clip = [&](const std::vector<dvec3>& in, double bound, double sign) {
+        std::vector<dvec3> out;
+        for (size_t i = 0; i < in.size(); ++i) {
+            const dvec3& a = in[i];
+            const dvec3& b = in[(i + 1) % in.size()];
+            const double da = sign * (a[axis] - bound), db = sign * (b[axis] - bound);
+            if (da >= 0.0) {
+                out.push_back(a);
+            }
+            if ((da >= 0.0) != (db >= 0.0)) {
+                dvec3 p = a + (b - a) * (da / (da - db));
+                p[axis] = bound;  // exactly on the cut, so that neighbours share the points
+                out.push_back(p);
+            }
+        }
+        return out;
+    };
+    std::vector<dvec3> result = polygon;
+    if (std::isfinite(lo)) {
+        result = clip(result, lo, 1.0);
+    }
+    if (result.size() >= 3 && std::isfinite(hi)) {
+        result = clip(result, hi, -1.0);
+    }
+    return result;
+}
+
+// Cut coordinates along one axis. Where the mesh has faces across the axis (a window's
+// reveals, a sill, a floor), the planes of the largest of them, so that no cut an opening needs
+// is thinned away; otherwise (a curved mesh) the distinct vertex coordinates, thinned evenly.
+// Only coordinates strictly inside the bounds count, and at most `limit`.
+std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tolerance) {
+    const Bounds b = mesh.bounds();
+    const double lo = double(b.min[axis]) + tolerance, hi = double(b.max[axis]) - tolerance;
+    std::map<double, double> area_at;  // a plane's coordinate -> area of the faces on it
+    for (const glm::uvec3& t : mesh.triangles) {
+        const dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
+        if (p0[axis] == p1[axis] && p1[axis] == p2[axis] && p0[axis] > lo && p0[axis] < hi) {
+            area_at[p0[axis]] += 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
+        }
+    }
+    std::vector<double> cuts;
+    if (!area_at.empty()) {
+        std::vector<std::pair<double, double>> planes;  // (area, coordinate)
+        for (const auto& [coordinate, area] : area_at) {
+            planes.emplace_back(area, coordinate);
+        }
+        std::sort(planes.begin(), planes.end(), [](const auto& x, const auto& y) {
+            return x.first != y.first ? x.first > y.first : x.second < y.second;
+        });
+        for (const auto& [area, coordinate] : planes) {
+            const bool near = std::any_of(cuts.begin(), cuts.end(), [&](double c) {
+                return std::abs(c - coordinate) <= tolerance;
+            });
+            if (!near && int(cuts.size()) < limit) {
+                cuts.push_back(coordinate);
+            }
+        }
+        std::sort(cuts.begin(), cuts.end());
+        return cuts;
+    }
+    std::vector<double> values;
+    for (const glm::vec3& p : mesh.positions) {
+        if (double(p[axis]) > lo && double(p[axis]) < hi) {
+            values.push_back(double(p[axis]));
+        }
+    }
+    std::sort(values.begin(), values.end());
+    std::vector<double> distinct;
+    for (const double v : values) {
+        if (distinct.empty() || v - distinct.back() > tolerance) {
+            distinct.push_back(v);
+        }
+    }
+    if (int(distinct.size()) <= limit) {
+        return distinct;
+    }
+    for (int i = 0; i < limit; ++i) {
+        cuts.push_back(distinct[size_t((i + 0.5) * double(distinct.size()) / limit)]);
+    }
+    return cuts;
+}
+
+struct Piece {
+    Mesh mesh;
+    ConvexVolume hull;
+    int all = 0;    // voxels inside the hull
+    int empty = 0;  // empty voxels inside the hull
+    int version = 0;
+    bool alive = true;
+    std::set<int> neighbours;
+};
+
+// A convex volume as a mesh (its faces fanned): the hull of two pieces is the hull of their two
+// hulls, so a piece is carried as its hull, a few dozen points however many triangles it holds.
+Mesh hull_mesh(const ConvexVolume& hull) {
+    Mesh mesh;
+    for (const Polygon& face : hull.faces) {
+        const auto base = uint32_t(mesh.positions.size());
+        for (const dvec3& v : face.vertices) {
+            mesh.positions.emplace_back(v);
+        }
+        for (uint32_t k = 1; k + 1 < face.vertices.size(); ++k) {
+            mesh.triangles.emplace_back(base, base + k, base + k + 1);
+        }
+        if (hull.flat) {
+            break;  // one side of a flat hull is all of it
+        }
+    }
+    return mesh;
+}
+
+void append(Mesh& to, const Mesh& from) {
+    const auto base = uint32_t(to.positions.size());
+    to.positions.insert(to.positions.end(), from.positions.begin(), from.positions.end());
+    for (const glm::uvec3& t : from.triangles) {
+        to.triangles.push_back(t + base);
+    }
+}
+
+}  // namespace
+
+Pieces convex_pieces(const Mesh& mesh, const PieceOptions& options) {
+    Pieces result;
+    const Voxels voxels(mesh, options.voxels);
+    auto allowed = [&](int all) {
+        return std::max(double(options.slack_voxels), options.slack * double(all));
+    };
+    const ConvexVolume whole = convex_hull(mesh, 0);
+    const auto [whole_all, whole_empty] = voxels.count_inside(whole);
+    result.empty_voxels_whole = whole_empty;
+    if (double(whole_empty) <= allowed(whole_all)) {
+        result.whole = true;
+        result.cells = 1;
+        result.empty_voxels_pieces = whole_empty;
+        result.parts.push_back(mesh);
+        return result;
+    }
+
+    // Cells between the cut planes, each with the triangles clipped to it.
+    const Bounds b = mesh.bounds();
+    const double extent =
+        std::max({double(b.extent().x), double(b.extent().y), double(b.extent().z), 1e-30});
+    std::array<std::vector<double>, 3> cuts;
+    for (int a = 0; a < 3; ++a) {
+        cuts[a] = cuts_along(mesh, a, options.max_cuts, 1e-6 * extent);
+    }
+    auto bound = [&](int a, size_t i, bool upper) {
+        const std::vector<double>& c = cuts[size_t(a)];
+        if (upper) {
+            return i < c.size() ? c[i] : std::numeric_limits<double>::infinity();
+        }
+        return i > 0 ? c[i - 1] : -std::numeric_limits<double>::infinity();
+    };
+    auto slot = [&](int a, double v) {
+        const std::vector<double>& c = cuts[size_t(a)];
+        return size_t(std::upper_bound(c.begin(), c.end(), v) - c.begin());
+    };
+    const double min_area = 1e-14 * extent * extent;
+    std::map<std::array<size_t, 3>, Mesh> cells;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const std::vector<dvec3> triangle = {dvec3(mesh.positions[t.x]), dvec3(mesh.positions[t.y]),
+                                             dvec3(mesh.positions[t.z])};
+        // Recursive over the axes, as an explicit loop: x slabs, then y, then z.
+        std::vector<std::pair<std::array<size_t, 3>, std::vector<dvec3>>> level{
+            {{0, 0, 0}, triangle}};
+        for (int a = 0; a < 3; ++a) {
+            std::vector<std::pair<std::array<size_t, 3>, std::vector<dvec3>>> next;
+            for (auto& [index, polygon] : level) {
+                double lo = std::numeric_limits<double>::max(),
+                       hi = std::numeric_limits<double>::lowest();
+                for (const dvec3& p : polygon) {
+                    lo = std::min(lo, p[a]);
+                    hi = std::max(hi, p[a]);
+                }
+                const size_t first = slot(a, lo), last = slot(a, hi);
+                for (size_t i = first; i <= last; ++i) {
+                    std::vector<dvec3> part =
+                        first == last
+                            ? polygon
+                            : clip_slab(polygon, a, bound(a, i, false), bound(a, i, true));
+                    if (part.size() >= 3) {
+                        std::array<size_t, 3> cell = index;
+                        cell[size_t(a)] = i;
+                        next.emplace_back(cell, std::move(part));
+                    }
+                }
+            }
+            level = std::move(next);
+        }
+        for (auto& [index, polygon] : level) {
+            // A polygon on its cell's lower cut plane (polygons on a cut go to the upper cell)
+            // belongs to the cell on its solid side: a window's reveal or sill would otherwise
+            // span the opening's cell. Probed at its centroid, past the voxels it touches.
+            dvec3 centre(0.0);
+            for (const dvec3& p : polygon) {
+                centre += p / double(polygon.size());
+            }
+            for (int a = 0; a < 3; ++a) {
+                const size_t i = index[size_t(a)];
+                if (i == 0 || std::any_of(polygon.begin(), polygon.end(), [&](const dvec3& p) {
+                        return p[a] != cuts[size_t(a)][i - 1];
+                    })) {
+                    continue;
+                }
+                dvec3 step(0.0);
+                step[a] = 1.5 * voxels.cell();
+                if (voxels.empty_at(centre + step) && !voxels.empty_at(centre - step)) {
+                    --index[size_t(a)];
+                }
+            }
+            Mesh& cell = cells[index];
+            const auto base = uint32_t(cell.positions.size());
+            for (const dvec3& p : polygon) {
+                cell.positions.emplace_back(p);
+            }
+            for (uint32_t k = 1; k + 1 < polygon.size(); ++k) {
+                const dvec3 n = glm::cross(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]);
+                if (0.5 * glm::length(n) > min_area) {
+                    cell.triangles.emplace_back(base, base + k, base + k + 1);
+                }
+            }
+        }
+    }
+
+    std::vector<Piece> pieces;
+    std::map<std::array<size_t, 3>, int> piece_of;
+    for (auto& [index, cell] : cells) {
+        if (cell.triangles.empty()) {
+            continue;  // slivers of no area: nothing a ray can meet
+        }
+        Piece piece;
+        piece.hull = convex_hull(cell, 0);
+        std::tie(piece.all, piece.empty) = voxels.count_inside(piece.hull);
+        piece.mesh = hull_mesh(piece.hull);
+        piece_of[index] = int(pieces.size());
+        pieces.push_back(std::move(piece));
+    }
+    result.cells = int(pieces.size());
+    for (const auto& [index, p] : piece_of) {
+        for (int a = 0; a < 3; ++a) {
+            std::array<size_t, 3> next = index;
+            ++next[size_t(a)];
+            if (const auto it = piece_of.find(next); it != piece_of.end()) {
+                pieces[size_t(p)].neighbours.insert(it->second);
+                pieces[size_t(it->second)].neighbours.insert(p);
+            }
+        }
+    }
+
+    // Greedy merging, least added empty space first (ties: fewer triangles), stale entries
+    // skipped by their versions.
+    struct Candidate {
+        int added;
+        size_t triangles;
+        int a, b, version_a, version_b;
+        bool operator>(const Candidate& o) const {
+            return std::tie(added, triangles, a, b) > std::tie(o.added, o.triangles, o.a, o.b);
+        }
+    };
+    auto merged_of = [&](int a, int c) {
+        Piece merged;
+        merged.mesh = pieces[size_t(a)].mesh;
+        append(merged.mesh, pieces[size_t(c)].mesh);
+        merged.hull = convex_hull(merged.mesh, 0);
+        std::tie(merged.all, merged.empty) = voxels.count_inside(merged.hull);
+        merged.mesh = hull_mesh(merged.hull);
+        return merged;
+    };
+    auto added = [&](const Piece& merged, int a, int c) {
+        return merged.empty - pieces[size_t(a)].empty - pieces[size_t(c)].empty;
+    };
+    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue;
+    auto consider = [&](int a, int c) {
+        const Piece merged = merged_of(a, c);
+        queue.push({added(merged, a, c), merged.mesh.triangles.size(), std::min(a, c),
+                    std::max(a, c), pieces[size_t(std::min(a, c))].version,
+                    pieces[size_t(std::max(a, c))].version});
+    };
+    for (int p = 0; p < int(pieces.size()); ++p) {
+        for (const int n : pieces[size_t(p)].neighbours) {
+            if (n > p) {
+                consider(p, n);
+            }
+        }
+    }
+    int alive = int(pieces.size());
+    auto merge = [&](int a, int c, Piece merged) {
+        merged.neighbours = pieces[size_t(a)].neighbours;
+        merged.neighbours.insert(pieces[size_t(c)].neighbours.begin(),
+                                 pieces[size_t(c)].neighbours.end());
+        merged.neighbours.erase(a);
+        merged.neighbours.erase(c);
+        merged.version = pieces[size_t(a)].version + 1;
+        pieces[size_t(c)].alive = false;
+        ++pieces[size_t(c)].version;
+        for (const int n : merged.neighbours) {
+            pieces[size_t(n)].neighbours.erase(c);
+            pieces[size_t(n)].neighbours.insert(a);
+        }
+        pieces[size_t(a)] = std::move(merged);
+        --alive;
+        for (const int n : pieces[size_t(a)].neighbours) {
+            consider(a, n);
+        }
+    };
+    while (!queue.empty()) {
+        const Candidate top = queue.top();
+        queue.pop();
+        const Piece& pa = pieces[size_t(top.a)];
+        const Piece& pb = pieces[size_t(top.b)];
+        if (!pa.alive || !pb.alive || pa.version != top.version_a || pb.version != top.version_b) {
+            continue;
+        }
+        Piece merged = merged_of(top.a, top.b);
+        if (double(added(merged, top.a, top.b)) > allowed(merged.all) &&
+            alive <= options.max_pieces) {
+            continue;  // too loose, and no need to merge it
+        }
+        merge(top.a, top.b, std::move(merged));
+    }
+    // Pieces in no contact with each other (separate parts) can still exceed the budget: the
+    // least-added-space pairs among all are merged.
+    while (alive > options.max_pieces) {
+        int best_a = -1, best_b = -1, best_added = std::numeric_limits<int>::max();
+        for (int a = 0; a < int(pieces.size()); ++a) {
+            for (int c = a + 1; c < int(pieces.size()) && pieces[size_t(a)].alive; ++c) {
+                if (pieces[size_t(c)].alive) {
+                    const int d = added(merged_of(a, c), a, c);
+                    if (d < best_added) {
+                        std::tie(best_a, best_b, best_added) = std::tie(a, c, d);
+                    }
+                }
+            }
+        }
+        merge(best_a, best_b, merged_of(best_a, best_b));
+    }
+    for (Piece& piece : pieces) {
+        if (piece.alive) {
+            result.empty_voxels_pieces += piece.empty;
+            result.parts.push_back(std::move(piece.mesh));
+        }
+    }
+    return result;
+}
+
+std::vector<int> empty_voxels_inside(const Mesh& mesh, const std::vector<ConvexVolume>& hulls,
+                                     const PieceOptions& options) {
+    const Voxels voxels(mesh, options.voxels);
+    std::vector<int> result;
+    for (const ConvexVolume& hull : hulls) {
+        result.push_back(voxels.count_inside(hull).second);
+    }
+    return result;
+}
+
+}  // namespace sl::bt
+
+namespace sl::bt {
+
+Mesh welded(const Mesh& mesh, double tolerance) {
+    Mesh out;
+    std::map<std::tuple<long long, long long, long long>, uint32_t> cells;
+    std::vector<uint32_t> map(mesh.positions.size());
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        const dvec3 p(mesh.positions[i]);
+        const auto key =
+            std::make_tuple(std::llround(p.x / tolerance), std::llround(p.y / tolerance),
+                            std::llround(p.z / tolerance));
+        const auto [it, added] = cells.try_emplace(key, uint32_t(out.positions.size()));
+        if (added) {
+            out.positions.push_back(mesh.positions[i]);
+        }
+        map[i] = it->second;
+    }
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::uvec3 w(map[t.x], map[t.y], map[t.z]);
+        if (w.x != w.y && w.y != w.z && w.z != w.x) {
+            out.triangles.push_back(w);
+        }
+    }
+    // T-junctions: the vertices of open edges that lie on another open edge split it.
+    auto edge_key = [](uint32_t a, uint32_t b) {
+        return std::pair<uint32_t, uint32_t>(std::min(a, b), std::max(a, b));
+    };
+    std::map<std::pair<uint32_t, uint32_t>, int> uses;
+    for (const glm::uvec3& t : out.triangles) {
+        for (int e = 0; e < 3; ++e) {
+            ++uses[edge_key(t[e], t[(e + 1) % 3])];
+        }
+    }
+    std::set<uint32_t> open_vertices;
+    std::vector<std::pair<uint32_t, uint32_t>> open_edges;
+    for (const auto& [edge, count] : uses) {
+        if (count == 1) {
+            open_edges.push_back(edge);
+            open_vertices.insert(edge.first);
+            open_vertices.insert(edge.second);
+        }
+    }
+    // Points on each open edge, ordered along it.
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<std::pair<double, uint32_t>>> splits;
+    constexpr size_t kMaxOpenEdges = 20000;  // beyond it the quadratic search is not worth it
+    for (const auto& [a, b] : open_edges.size() <= kMaxOpenEdges
+                                  ? open_edges
+                                  : std::vector<std::pair<uint32_t, uint32_t>>{}) {
+        const dvec3 pa(out.positions[a]), pb(out.positions[b]);
+        const dvec3 d = pb - pa;
+        const double length2 = glm::dot(d, d);
+        for (const uint32_t v : open_vertices) {
+            if (v == a || v == b) {
+                continue;
+            }
+            const dvec3 pv(out.positions[v]);
+            const double s = glm::dot(pv - pa, d) / length2;
+            if (s > 1e-9 && s < 1.0 - 1e-9 && glm::length(pa + s * d - pv) <= tolerance) {
+                splits[{a, b}].emplace_back(s, v);
+            }
+        }
+    }
+    if (splits.empty()) {
+        return out;
+    }
+    std::vector<glm::uvec3> triangles;
+    for (const glm::uvec3& t : out.triangles) {
+        std::vector<uint32_t> ring;
+        bool split = false;
+        for (int e = 0; e < 3; ++e) {
+            const uint32_t a = t[e], b = t[(e + 1) % 3];
+            ring.push_back(a);
+            const auto it = splits.find(edge_key(a, b));
+            if (it == splits.end()) {
+                continue;
+            }
+            std::vector<std::pair<double, uint32_t>> points = it->second;
+            std::sort(points.begin(), points.end());
+            if (a > b) {  // stored from the smaller index: walk it the other way
+                std::reverse(points.begin(), points.end());
+            }
+            for (const auto& point : points) {
+                ring.push_back(point.second);
+            }
+            split = true;
+        }
+        if (!split) {
+            triangles.push_back(t);
+            continue;
+        }
+        // A fan from a new centre vertex: no triangle is degenerate, every split edge is kept.
+        const glm::vec3 centre =
+            (out.positions[t.x] + out.positions[t.y] + out.positions[t.z]) / 3.0f;
+        const auto c = uint32_t(out.positions.size());
+        out.positions.push_back(centre);
+        for (size_t k = 0; k < ring.size(); ++k) {
+            triangles.emplace_back(c, ring[k], ring[(k + 1) % ring.size()]);
+        }
+    }
+    out.triangles = std::move(triangles);
+    return out;
+}
+
+}  // namespace sl::bt
