@@ -460,6 +460,32 @@ std::optional<Box> inscribed_box(const Mesh& mesh) {
 
 namespace {
 
+// A convex volume grown by `delta` along every face normal (still convex, still enclosing): the
+// hulls of neighbouring pieces share their cut faces exactly, and coincident opposite faces are
+// what the boundary extraction cannot tell apart; grown, they overlap by a sliver instead.
+ConvexVolume inflated(const ConvexVolume& volume, double delta) {
+    if (volume.flat || volume.empty()) {
+        return volume;
+    }
+    std::vector<Plane> planes = volume.planes;
+    double radius = 1.0;
+    for (const Polygon& face : volume.faces) {
+        for (const dvec3& v : face.vertices) {
+            radius = std::max(radius, 2.0 * glm::length(v) + 1.0);
+        }
+    }
+    for (Plane& plane : planes) {
+        plane.offset -= delta;
+    }
+    const Polyhedron p = polyhedron_from_planes(planes, radius, 1e-12 * radius);
+    ConvexVolume result;
+    for (const Polygon& face : p.faces) {
+        result.faces.push_back(face);
+        result.planes.push_back(plane_of(face));
+    }
+    return result;
+}
+
 // The largest box of a piece's proportions about its hull's vertex centroid that stays inside
 // the hull and touches no triangle of the mesh, with its centre inside the (closed) mesh.
 std::optional<Box> box_in_piece(const ConvexVolume& hull, const TriangleSet& triangles,
@@ -558,7 +584,7 @@ LocalVolumes VolumeLibrary::compute(const Mesh& mesh) const {
             const TriangleSet triangles(closed_mesh);
             for (const Mesh& part : pieces.parts) {
                 LocalPiece piece;
-                piece.outer = convex_hull(part, 0);
+                piece.outer = inflated(convex_hull(part, 0), 1e-4 * max_extent(mesh.bounds()));
                 if (options_.automatic_inner && volumes.closed) {
                     if (const std::optional<Box> box =
                             box_in_piece(piece.outer, triangles, closed_mesh)) {
@@ -589,7 +615,7 @@ LocalVolumes VolumeLibrary::compute(const Mesh& mesh) const {
 
 namespace {
 
-constexpr std::string_view kVolumesVersion = "shaftlab-volumes-3";
+constexpr std::string_view kVolumesVersion = "shaftlab-volumes-6";
 
 // LocalVolumes known to this process, by content key: libraries share them.
 std::mutex& process_mutex() {
