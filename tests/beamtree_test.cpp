@@ -494,6 +494,37 @@ void add_volumes(const std::vector<bt::ObjectVolumes>& volumes, const Scene& sce
     oracles.meshes.commit();
 }
 
+// One point: the tree's region, what ray casts through the volumes say (expected), and whether
+// the answer is sound against the meshes (lit: no mesh between it and the light; unlit: one).
+// Points within 10ε of a plane the answer depends on are not decided.
+struct PointCheck {
+    bool decided = false;
+    bt::Region region = bt::Region::unlit, expected = bt::Region::unlit;
+    bool sound = true;
+    double margin = 0.0;  // distance to the nearest plane the answer depended on
+};
+
+PointCheck check_point(const bt::BeamTree& tree, const Oracles& oracles, const dvec3& light,
+                       const dvec3& p) {
+    PointCheck check;
+    check.region = tree.classify(p, &check.margin);
+    if (check.margin < 10.0 * tree.epsilon()) {
+        return check;
+    }
+    check.decided = true;
+    bool inside = true;
+    for (const bt::Plane& plane : tree.influence_planes())
+        inside &= plane.distance(p) < 0.0;
+    check.expected = !inside                            ? bt::Region::unlit
+                     : !oracles.outer.blocked(light, p) ? bt::Region::lit
+                     : oracles.inner.blocked(light, p)  ? bt::Region::unlit
+                                                        : bt::Region::uncertain;
+    check.sound =
+        check.region == bt::Region::uncertain ||
+        (check.region == bt::Region::lit) == !(inside ? oracles.meshes.blocked(light, p) : true);
+    return check;
+}
+
 // On 200 random scenes and 10^4 points each, away from every plane the answer depends on (10ε):
 // classify() equals the ray-cast answer through the bounding volumes (agreement), lit points see
 // the light past every true mesh and unlit points do not (soundness), and the regions tile the
@@ -513,21 +544,12 @@ TEST(BeamTree, AgreesWithRayCastsIsSoundAndConservesVolumeOnRandomScenes) {
         std::mt19937 rng(1000 + seed);
         for (int i = 0; i < 10000; ++i) {
             const dvec3 p = random_point(rng, scene.light);
-            double margin = 0.0;
-            const bt::Region region = tree.classify(p, &margin);
-            if (margin < 10.0 * tree.epsilon()) {
+            const PointCheck check = check_point(tree, oracles, light, p);
+            if (!check.decided) {
                 continue;
             }
-            bool inside = true;
-            for (const bt::Plane& plane : tree.influence_planes())
-                inside &= plane.distance(p) < 0.0;
-            const bt::Region expected = !inside                            ? bt::Region::unlit
-                                        : !oracles.outer.blocked(light, p) ? bt::Region::lit
-                                        : oracles.inner.blocked(light, p)  ? bt::Region::unlit
-                                                                           : bt::Region::uncertain;
-            const bool sound =
-                region == bt::Region::uncertain ||
-                (region == bt::Region::lit) == !(inside ? oracles.meshes.blocked(light, p) : true);
+            const bt::Region region = check.region, expected = check.expected;
+            const bool sound = check.sound;
             ++compared;
             ++counts[size_t(region)];
             if ((region != expected || !sound) && ++failures <= 10) {
@@ -535,7 +557,7 @@ TEST(BeamTree, AgreesWithRayCastsIsSoundAndConservesVolumeOnRandomScenes) {
                               << p.x << ", " << p.y << ", " << p.z << "): tree "
                               << bt::to_string(region) << ", ray cast " << bt::to_string(expected)
                               << (sound ? "" : ", unsound against the meshes") << ", margin "
-                              << margin;
+                              << check.margin;
             }
         }
         const bt::Regions regions = bt::extract_regions(tree);
@@ -569,21 +591,12 @@ TEST(BeamTree, IsSoundOnTheHouse) {
     int failures = 0;
     for (int i = 0; i < 40000; ++i) {
         const dvec3 p = random_point(rng, scene.light);
-        double margin = 0.0;
-        const bt::Region region = tree.classify(p, &margin);
-        if (margin < 10.0 * tree.epsilon()) {
+        const PointCheck check = check_point(tree, oracles, light, p);
+        if (!check.decided) {
             continue;
         }
-        bool inside = true;
-        for (const bt::Plane& plane : tree.influence_planes())
-            inside &= plane.distance(p) < 0.0;
-        const bt::Region expected = !inside                            ? bt::Region::unlit
-                                    : !oracles.outer.blocked(light, p) ? bt::Region::lit
-                                    : oracles.inner.blocked(light, p)  ? bt::Region::unlit
-                                                                       : bt::Region::uncertain;
-        const bool sound =
-            region == bt::Region::uncertain ||
-            (region == bt::Region::lit) == !(inside ? oracles.meshes.blocked(light, p) : true);
+        const bt::Region region = check.region, expected = check.expected;
+        const bool sound = check.sound;
         ++counts[size_t(region)];
         if ((region != expected || !sound) && ++failures <= 10) {
             ADD_FAILURE() << "point (" << p.x << ", " << p.y << ", " << p.z << "): tree "
