@@ -182,7 +182,8 @@ std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tol
         std::sort(planes.begin(), planes.end(), [](const auto& x, const auto& y) {
             return x.first != y.first ? x.first > y.first : x.second < y.second;
         });
-        for (const auto& [area, coordinate] : planes) {
+        for (const auto& plane : planes) {
+            const double coordinate = plane.second;
             const bool near = std::any_of(cuts.begin(), cuts.end(), [&](double c) {
                 return std::abs(c - coordinate) <= tolerance;
             });
