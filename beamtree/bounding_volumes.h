@@ -16,25 +16,11 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "beamtree/convex_volume.h"
 #include "beamtree/geometry.h"
 #include "scenes/scene.h"
 
 namespace sl::bt {
-
-// A convex volume as outward faces and their planes. A flat volume (a convex polygon, e.g. the
-// floor) has two faces, one per orientation, and zero volume.
-struct ConvexVolume {
-    std::vector<Polygon> faces;
-    std::vector<Plane> planes;  // planes[i] is the plane of faces[i], normal outward
-    bool flat = false;
-
-    bool empty() const { return faces.empty(); }
-    // True when p is inside by more than `margin` from every face plane. A flat volume has no
-    // inside: with a negative margin, true when p is within -margin of the polygon.
-    bool contains(const dvec3& p, double margin) const;
-    ConvexVolume transformed(const glm::dmat4& transform) const;
-    double volume() const;
-};
 
 struct BoundingVolumeOptions {
     int max_outer_planes = 0;     // 0: the full convex hull; else at most this many planes (>= 8)
@@ -76,19 +62,10 @@ struct LocalVolumes {
     size_t piece_count() const { return pieces.empty() ? 1 : pieces.size(); }
 };
 
-// The hull of a mesh's vertices; max_planes > 0 keeps the 6 axis-aligned support planes plus the
-// largest hull faces, up to max_planes planes in all.
-ConvexVolume convex_hull(const Mesh& mesh, int max_planes);
-// Inside by the winding number (robust for closed meshes): |w| > 1/2, so that a consistently
-// inward (inside-out) closed mesh counts as the outward one does.
-bool point_inside_mesh(const Mesh& mesh, const dvec3& p);
-// Triangle/box overlap by the separating axis theorem; touching counts as overlapping.
-bool triangle_overlaps_box(dvec3 v0, dvec3 v1, dvec3 v2, const dvec3& center, const dvec3& half);
 // The box lies strictly inside a closed mesh: its centre is inside and no triangle touches it.
 bool box_inside_mesh(const Mesh& mesh, const Box& box);
 // An axis-aligned box strictly inside a closed mesh, grown as large as a few binary searches find.
 std::optional<Box> inscribed_box(const Mesh& mesh);
-ConvexVolume box_volume(const Box& box);
 
 // Where a mesh's LocalVolumes came from (VolumeLibrary::stats).
 struct VolumeLibraryStats {

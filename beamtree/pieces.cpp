@@ -11,8 +11,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "beamtree/bounding_volumes.h"
-
 namespace sl::bt {
 
 namespace {

@@ -14,7 +14,7 @@
 
 #include <vector>
 
-#include "beamtree/bounding_volumes.h"
+#include "beamtree/convex_volume.h"
 #include "beamtree/geometry.h"
 #include "scenes/mesh.h"
 
