@@ -525,6 +525,21 @@ PointCheck check_point(const bt::BeamTree& tree, const Oracles& oracles, const d
     return check;
 }
 
+// `count` random points around the light's cone, each checked; `on_point(p, check)` for those
+// decided.
+template <typename OnPoint>
+void for_each_decided_point(const bt::BeamTree& tree, const Oracles& oracles,
+                            const SpotLight& light, std::mt19937& rng, int count,
+                            OnPoint on_point) {
+    for (int i = 0; i < count; ++i) {
+        const dvec3 p = random_point(rng, light);
+        const PointCheck check = check_point(tree, oracles, dvec3(light.position), p);
+        if (check.decided) {
+            on_point(p, check);
+        }
+    }
+}
+
 // On 200 random scenes and 10^4 points each, away from every plane the answer depends on (10ε):
 // classify() equals the ray-cast answer through the bounding volumes (agreement), lit points see
 // the light past every true mesh and unlit points do not (soundness), and the regions tile the
@@ -540,26 +555,22 @@ TEST(BeamTree, AgreesWithRayCastsIsSoundAndConservesVolumeOnRandomScenes) {
         const bt::BeamTree tree(scene.light, volumes);
         Oracles oracles;
         add_volumes(volumes, scene, oracles);
-        const dvec3 light(scene.light.position);
         std::mt19937 rng(1000 + seed);
-        for (int i = 0; i < 10000; ++i) {
-            const dvec3 p = random_point(rng, scene.light);
-            const PointCheck check = check_point(tree, oracles, light, p);
-            if (!check.decided) {
-                continue;
-            }
-            const bt::Region region = check.region, expected = check.expected;
-            const bool sound = check.sound;
-            ++compared;
-            ++counts[size_t(region)];
-            if ((region != expected || !sound) && ++failures <= 10) {
-                ADD_FAILURE() << "scene " << seed << " (kinds " << random.kinds << ") point ("
-                              << p.x << ", " << p.y << ", " << p.z << "): tree "
-                              << bt::to_string(region) << ", ray cast " << bt::to_string(expected)
-                              << (sound ? "" : ", unsound against the meshes") << ", margin "
-                              << check.margin;
-            }
-        }
+        for_each_decided_point(
+            tree, oracles, scene.light, rng, 10000, [&](const dvec3& p, const PointCheck& check) {
+                const bt::Region region = check.region, expected = check.expected;
+                const bool sound = check.sound;
+                ++compared;
+                ++counts[size_t(region)];
+                if ((region != expected || !sound) && ++failures <= 10) {
+                    ADD_FAILURE() << "scene " << seed << " (kinds " << random.kinds << ") point ("
+                                  << p.x << ", " << p.y << ", " << p.z << "): tree "
+                                  << bt::to_string(region) << ", ray cast "
+                                  << bt::to_string(expected)
+                                  << (sound ? "" : ", unsound against the meshes") << ", margin "
+                                  << check.margin;
+                }
+            });
         const bt::Regions regions = bt::extract_regions(tree);
         const double total = regions.volume[0] + regions.volume[1] + regions.volume[2];
         EXPECT_NEAR(total / regions.influence_volume, 1.0, 1e-6)
@@ -585,25 +596,20 @@ TEST(BeamTree, IsSoundOnTheHouse) {
     const bt::BeamTree tree(scene.light, volumes);
     Oracles oracles;
     add_volumes(volumes, scene, oracles);
-    const dvec3 light(scene.light.position);
     std::mt19937 rng(37);
     size_t counts[3] = {0, 0, 0};
     int failures = 0;
-    for (int i = 0; i < 40000; ++i) {
-        const dvec3 p = random_point(rng, scene.light);
-        const PointCheck check = check_point(tree, oracles, light, p);
-        if (!check.decided) {
-            continue;
-        }
-        const bt::Region region = check.region, expected = check.expected;
-        const bool sound = check.sound;
-        ++counts[size_t(region)];
-        if ((region != expected || !sound) && ++failures <= 10) {
-            ADD_FAILURE() << "point (" << p.x << ", " << p.y << ", " << p.z << "): tree "
-                          << bt::to_string(region) << ", ray cast " << bt::to_string(expected)
-                          << (sound ? "" : ", unsound against the meshes");
-        }
-    }
+    for_each_decided_point(
+        tree, oracles, scene.light, rng, 40000, [&](const dvec3& p, const PointCheck& check) {
+            const bt::Region region = check.region, expected = check.expected;
+            const bool sound = check.sound;
+            ++counts[size_t(region)];
+            if ((region != expected || !sound) && ++failures <= 10) {
+                ADD_FAILURE() << "point (" << p.x << ", " << p.y << ", " << p.z << "): tree "
+                              << bt::to_string(region) << ", ray cast " << bt::to_string(expected)
+                              << (sound ? "" : ", unsound against the meshes");
+            }
+        });
     EXPECT_EQ(failures, 0);
     for (const size_t count : counts) {
         EXPECT_GT(count, 300u) << "every region type must be exercised";
