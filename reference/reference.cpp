@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -24,8 +25,11 @@ ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
     }
     // Two scenes: everything for the camera's rays, the shadow casters for the light's (glass,
     // Material::casts_shadow = false, is seen but lets the light through).
+    // Without glass the two are one scene, built once.
+    const bool glass = std::any_of(scene.objects.begin(), scene.objects.end(),
+                                   [&](const Object& o) { return !scene.casts_shadow(o); });
     rtc_scene_ = rtcNewScene(device_);
-    shadow_scene_ = rtcNewScene(device_);
+    shadow_scene_ = glass ? rtcNewScene(device_) : rtc_scene_;
     for (RTCScene target : {rtc_scene_, shadow_scene_}) {
         rtcSetSceneFlags(target, RTC_SCENE_FLAG_ROBUST);
         rtcSetSceneBuildQuality(target, RTC_BUILD_QUALITY_HIGH);
@@ -48,17 +52,21 @@ ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
         std::memcpy(indices, mesh.triangles.data(), mesh.triangles.size() * 3 * sizeof(unsigned));
         rtcCommitGeometry(geometry);
         rtcAttachGeometry(rtc_scene_, geometry);  // ids follow the objects' indices
-        if (scene.casts_shadow(object)) {
+        if (glass && scene.casts_shadow(object)) {
             rtcAttachGeometry(shadow_scene_, geometry);
         }
         rtcReleaseGeometry(geometry);
     }
     rtcCommitScene(rtc_scene_);
-    rtcCommitScene(shadow_scene_);
+    if (glass) {
+        rtcCommitScene(shadow_scene_);
+    }
 }
 
 ReferenceRenderer::~ReferenceRenderer() {
-    rtcReleaseScene(shadow_scene_);
+    if (shadow_scene_ != rtc_scene_) {
+        rtcReleaseScene(shadow_scene_);
+    }
     rtcReleaseScene(rtc_scene_);
     rtcReleaseDevice(device_);
 }

@@ -54,7 +54,7 @@ private:
     const Scene& scene_;
     RTCDevice device_ = nullptr;
     RTCScene rtc_scene_ = nullptr;
-    RTCScene shadow_scene_ = nullptr;  // the shadow casters only
+    RTCScene shadow_scene_ = nullptr;  // the shadow casters only (rtc_scene_ when all are)
 };
 
 // A 64-bit hash of everything the reference image depends on (scene geometry, camera, light,
