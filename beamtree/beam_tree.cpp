@@ -226,9 +226,16 @@ void BeamTree::attach_nearer(int32_t index, const Polygon& fragment, const Plane
         case Side::front:
             attach(index, fragment, inside, outside);
             break;
-        case Side::straddling:
-            attach(index, split(fragment, current, epsilon_).front, inside, outside);
+        case Side::straddling: {
+            // The part nearer than the current plane. A sliver of it is left out, as insert()
+            // leaves slivers out: its edges are shorter than ε, and attach() skips those, so its
+            // beam would stay open across the whole leaf.
+            const Polygon front = split(fragment, current, epsilon_).front;
+            if (area(front) > epsilon_ * epsilon_) {
+                attach(index, front, inside, outside);
+            }
             break;
+        }
         case Side::back:
         case Side::coplanar:
             break;  // hidden behind, or on, what the leaf already has
