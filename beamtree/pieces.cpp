@@ -161,16 +161,51 @@ std::vector<dvec3> clip_slab(const std::vector<dvec3>& polygon, int axis, double
 // reveals, a sill, a floor), the planes of the largest of them, so that no cut an opening needs
 // is thinned away; otherwise (a curved mesh) the distinct vertex coordinates, thinned evenly.
 // Only coordinates strictly inside the bounds count, and at most `limit`.
-std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tolerance) {
+// A shell (a room, an open box, a thin panel on the bounds) has its largest faces on the bounds,
+// where no cut separates them: a face on the bounds with empty space behind it (probed 1.5
+// voxels inward at its largest triangle) adds a cut one voxel inside, so that each such face
+// becomes a slab of its own and the room's empty middle is left out.
+std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tolerance,
+                               const Voxels& voxels) {
     const Bounds b = mesh.bounds();
     const double lo = double(b.min[axis]) + tolerance, hi = double(b.max[axis]) - tolerance;
     std::map<double, double> area_at;  // a plane's coordinate -> area of the faces on it
+    std::array<std::pair<double, dvec3>, 2> on_bounds{};  // per side: largest area, its centre
     for (const glm::uvec3& t : mesh.triangles) {
         const dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
-        if (p0[axis] == p1[axis] && p1[axis] == p2[axis] && p0[axis] > lo && p0[axis] < hi) {
-            area_at[p0[axis]] += 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
+        if (p0[axis] != p1[axis] || p1[axis] != p2[axis]) {
+            continue;
+        }
+        const double area = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
+        if (p0[axis] > lo && p0[axis] < hi) {
+            area_at[p0[axis]] += area;
+        } else if (auto& side = on_bounds[p0[axis] >= hi ? 1 : 0]; area > side.first) {
+            side = {area, (p0 + p1 + p2) / 3.0};
         }
     }
+    std::vector<double> shell_cuts;
+    for (int side = 0; side < 2; ++side) {
+        if (on_bounds[size_t(side)].first <= 0.0 || hi - lo <= 3.0 * voxels.cell()) {
+            continue;
+        }
+        dvec3 probe = on_bounds[size_t(side)].second;
+        probe[axis] += (side ? -1.5 : 1.5) * voxels.cell();
+        if (voxels.empty_at(probe)) {
+            shell_cuts.push_back(side ? double(b.max[axis]) - voxels.cell()
+                                      : double(b.min[axis]) + voxels.cell());
+        }
+    }
+    auto add_shell_cuts = [&](std::vector<double>& cuts) {
+        for (const double c : shell_cuts) {
+            const bool near = std::any_of(cuts.begin(), cuts.end(), [&](double other) {
+                return std::abs(other - c) <= 0.5 * voxels.cell();
+            });
+            if (!near && int(cuts.size()) < limit) {
+                cuts.push_back(c);
+            }
+        }
+        std::sort(cuts.begin(), cuts.end());
+    };
     std::vector<double> cuts;
     if (!area_at.empty()) {
         std::vector<std::pair<double, double>> planes;  // (area, coordinate)
@@ -185,11 +220,11 @@ std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tol
             const bool near = std::any_of(cuts.begin(), cuts.end(), [&](double c) {
                 return std::abs(c - coordinate) <= tolerance;
             });
-            if (!near && int(cuts.size()) < limit) {
+            if (!near && int(cuts.size()) < limit - int(shell_cuts.size())) {
                 cuts.push_back(coordinate);
             }
         }
-        std::sort(cuts.begin(), cuts.end());
+        add_shell_cuts(cuts);
         return cuts;
     }
     std::vector<double> values;
@@ -205,12 +240,15 @@ std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tol
             distinct.push_back(v);
         }
     }
-    if (int(distinct.size()) <= limit) {
-        return distinct;
+    const int slots = limit - int(shell_cuts.size());
+    if (int(distinct.size()) <= slots) {
+        cuts = std::move(distinct);
+    } else {
+        for (int i = 0; i < slots; ++i) {
+            cuts.push_back(distinct[size_t((i + 0.5) * double(distinct.size()) / slots)]);
+        }
     }
-    for (int i = 0; i < limit; ++i) {
-        cuts.push_back(distinct[size_t((i + 0.5) * double(distinct.size()) / limit)]);
-    }
+    add_shell_cuts(cuts);
     return cuts;
 }
 
@@ -276,7 +314,7 @@ Pieces convex_pieces(const Mesh& mesh, const PieceOptions& options) {
         std::max({double(b.extent().x), double(b.extent().y), double(b.extent().z), 1e-30});
     std::array<std::vector<double>, 3> cuts;
     for (int a = 0; a < 3; ++a) {
-        cuts[a] = cuts_along(mesh, a, options.max_cuts, 1e-6 * extent);
+        cuts[a] = cuts_along(mesh, a, options.max_cuts, 1e-6 * extent, voxels);
     }
     auto bound = [&](int a, size_t i, bool upper) {
         const std::vector<double>& c = cuts[size_t(a)];
