@@ -5,7 +5,10 @@
 #include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -126,43 +129,16 @@ Plane plane_of_corners(const std::vector<dvec3>& corners, const Plane& hint) {
 
 }  // namespace
 
-ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
-    const Bounds bounds = mesh.bounds();
-    const double extent = max_extent(bounds);
-    const double tolerance = 1e-9 * extent;
-    std::vector<dvec3> points(mesh.positions.begin(), mesh.positions.end());
+namespace {
 
-    // A flat mesh (all vertices on one plane) has a polygon for its hull.
-    size_t largest = 0;
-    double largest_area = 0.0;
-    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
-        const glm::uvec3 t = mesh.triangles[i];
-        const double a =
-            glm::length(glm::cross(points[t.y] - points[t.x], points[t.z] - points[t.x]));
-        if (a > largest_area) {
-            largest_area = a;
-            largest = i;
-        }
-    }
-    Plane support;
-    const glm::uvec3 t = mesh.triangles[largest];
-    if (!Plane::through(points[t.x], points[t.y], points[t.z], support)) {
-        fail("mesh has no triangle of non-zero area");
-    }
-    const bool flat = std::all_of(points.begin(), points.end(), [&](const dvec3& p) {
-        return std::abs(support.distance(p)) <= tolerance;
-    });
-    ConvexVolume volume;
-    if (flat) {
-        Polygon up = convex_polygon_on_plane(points, support, tolerance);
-        std::vector<dvec3> reversed(up.vertices.rbegin(), up.vertices.rend());
-        Polygon down(std::move(reversed));
-        volume.flat = true;
-        volume.faces = {up, down};
-        volume.planes = {plane_of(up), plane_of(down)};
-        return volume;
-    }
+// The faces of the convex hull of `points` (CGAL), coplanar facets merged, in a canonical order.
+struct Merged {
+    std::vector<dvec3> corners;  // sorted, distinct
+    Plane plane;
+    Polygon face;
+};
 
+std::vector<Merged> hull_faces(const std::vector<dvec3>& points, double tolerance) {
     using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
     using Point = Kernel::Point_3;
     std::vector<Point> cgal_points;
@@ -219,11 +195,6 @@ ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
     // of those sets: CGAL triangulates a coplanar region (a box side, a flat cap) one way or
     // another from build to build, so the first facet's plane, the summed facet areas and the
     // order of first appearance were not functions of the mesh.
-    struct Merged {
-        std::vector<dvec3> corners;  // sorted, distinct
-        Plane plane;
-        Polygon face;
-    };
     std::vector<Merged> merged(planes.size());
     for (size_t i = 0; i < planes.size(); ++i) {
         Merged& m = merged[i];
@@ -238,6 +209,49 @@ ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
                                             b.corners.end(), lexicographic_less);
     });
 
+    return merged;
+}
+
+}  // namespace
+
+ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
+    const Bounds bounds = mesh.bounds();
+    const double extent = max_extent(bounds);
+    const double tolerance = 1e-9 * extent;
+    std::vector<dvec3> points(mesh.positions.begin(), mesh.positions.end());
+
+    // A flat mesh (all vertices on one plane) has a polygon for its hull.
+    size_t largest = 0;
+    double largest_area = 0.0;
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+        const glm::uvec3 t = mesh.triangles[i];
+        const double a =
+            glm::length(glm::cross(points[t.y] - points[t.x], points[t.z] - points[t.x]));
+        if (a > largest_area) {
+            largest_area = a;
+            largest = i;
+        }
+    }
+    Plane support;
+    const glm::uvec3 t = mesh.triangles[largest];
+    if (!Plane::through(points[t.x], points[t.y], points[t.z], support)) {
+        fail("mesh has no triangle of non-zero area");
+    }
+    const bool flat = std::all_of(points.begin(), points.end(), [&](const dvec3& p) {
+        return std::abs(support.distance(p)) <= tolerance;
+    });
+    ConvexVolume volume;
+    if (flat) {
+        Polygon up = convex_polygon_on_plane(points, support, tolerance);
+        std::vector<dvec3> reversed(up.vertices.rbegin(), up.vertices.rend());
+        Polygon down(std::move(reversed));
+        volume.flat = true;
+        volume.faces = {up, down};
+        volume.planes = {plane_of(up), plane_of(down)};
+        return volume;
+    }
+
+    std::vector<Merged> merged = hull_faces(points, tolerance);
     if (max_planes <= 0 || int(merged.size()) <= max_planes) {
         // The full hull: each face is the convex polygon of its facets' corners.
         for (Merged& m : merged) {
@@ -334,21 +348,29 @@ ConvexVolume inflated(const ConvexVolume& volume, double delta) {
     if (volume.flat || volume.empty()) {
         return volume;
     }
-    std::vector<Plane> planes = volume.planes;
-    double radius = 1.0;
+    // The hull of every vertex moved to the 8 corners of a cube of half-size delta: the volume's
+    // Minkowski sum with the cube, which holds it and stays within delta·√3 of it. Offsetting the
+    // face planes instead carries a sharp edge delta / sin(angle / 2) away (52 times the part's
+    // size, on a thin piece of the engine).
+    std::vector<dvec3> points;
+    dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
     for (const Polygon& face : volume.faces) {
         for (const dvec3& v : face.vertices) {
-            radius = std::max(radius, 2.0 * glm::length(v) + 1.0);
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+            for (int corner = 0; corner < 8; ++corner) {
+                points.push_back(v + delta * dvec3(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1,
+                                                   corner & 4 ? 1 : -1));
+            }
         }
     }
-    for (Plane& plane : planes) {
-        plane.offset -= delta;
-    }
-    const Polyhedron p = polyhedron_from_planes(planes, radius, 1e-12 * radius);
+    const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) + 2.0 * delta;
     ConvexVolume result;
-    for (const Polygon& face : p.faces) {
-        result.faces.push_back(face);
-        result.planes.push_back(plane_of(face));
+    for (Merged& m : hull_faces(points, 1e-9 * extent)) {
+        if (!m.face.empty()) {
+            result.faces.push_back(std::move(m.face));
+            result.planes.push_back(m.plane);
+        }
     }
     return result;
 }

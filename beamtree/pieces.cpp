@@ -163,10 +163,10 @@ std::vector<dvec3> clip_slab(const std::vector<dvec3>& polygon, int axis, double
 // Only coordinates strictly inside the bounds count, and at most `limit`.
 // A shell (a room, an open box, a thin panel on the bounds) has its largest faces on the bounds,
 // where no cut separates them: a face on the bounds with empty space behind it (probed 1.5
-// voxels inward at its largest triangle) adds a cut one voxel inside, so that each such face
-// becomes a slab of its own and the room's empty middle is left out.
+// voxels inward at its largest triangle) adds a cut one voxel inside (with `shells`), so that
+// each such face becomes a slab of its own and the room's empty middle is left out.
 std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tolerance,
-                               const Voxels& voxels) {
+                               const Voxels& voxels, bool shells) {
     const Bounds b = mesh.bounds();
     const double lo = double(b.min[axis]) + tolerance, hi = double(b.max[axis]) - tolerance;
     std::map<double, double> area_at;  // a plane's coordinate -> area of the faces on it
@@ -185,7 +185,7 @@ std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tol
     }
     std::vector<double> shell_cuts;
     for (int side = 0; side < 2; ++side) {
-        if (on_bounds[size_t(side)].first <= 0.0 || hi - lo <= 3.0 * voxels.cell()) {
+        if (!shells || on_bounds[size_t(side)].first <= 0.0 || hi - lo <= 3.0 * voxels.cell()) {
             continue;
         }
         dvec3 probe = on_bounds[size_t(side)].second;
@@ -289,33 +289,13 @@ void append(Mesh& to, const Mesh& from) {
     }
 }
 
-}  // namespace
-
-Pieces convex_pieces(const Mesh& mesh, const PieceOptions& options) {
+// Cells between the cut planes, each with the triangles clipped to it, merged.
+Pieces cut_and_merge(const Mesh& mesh, const Voxels& voxels, const PieceOptions& options,
+                     const std::array<std::vector<double>, 3>& cuts, double extent) {
     Pieces result;
-    const Voxels voxels(mesh, options.voxels);
     auto allowed = [&](int all) {
         return std::max(double(options.slack_voxels), options.slack * double(all));
     };
-    const ConvexVolume whole = convex_hull(mesh, 0);
-    const auto [whole_all, whole_empty] = voxels.count_inside(whole);
-    result.empty_voxels_whole = whole_empty;
-    if (double(whole_empty) <= allowed(whole_all)) {
-        result.whole = true;
-        result.cells = 1;
-        result.empty_voxels_pieces = whole_empty;
-        result.parts.push_back(mesh);
-        return result;
-    }
-
-    // Cells between the cut planes, each with the triangles clipped to it.
-    const Bounds b = mesh.bounds();
-    const double extent =
-        std::max({double(b.extent().x), double(b.extent().y), double(b.extent().z), 1e-30});
-    std::array<std::vector<double>, 3> cuts;
-    for (int a = 0; a < 3; ++a) {
-        cuts[a] = cuts_along(mesh, a, options.max_cuts, 1e-6 * extent, voxels);
-    }
     auto bound = [&](int a, size_t i, bool upper) {
         const std::vector<double>& c = cuts[size_t(a)];
         if (upper) {
@@ -513,6 +493,48 @@ Pieces convex_pieces(const Mesh& mesh, const PieceOptions& options) {
         }
     }
     return result;
+}
+
+}  // namespace
+
+Pieces convex_pieces(const Mesh& mesh, const PieceOptions& options) {
+    Pieces result;
+    const Voxels voxels(mesh, options.voxels);
+    auto allowed = [&](int all) {
+        return std::max(double(options.slack_voxels), options.slack * double(all));
+    };
+    const ConvexVolume whole = convex_hull(mesh, 0);
+    const auto [whole_all, whole_empty] = voxels.count_inside(whole);
+    result.empty_voxels_whole = whole_empty;
+    if (double(whole_empty) <= allowed(whole_all)) {
+        result.whole = true;
+        result.cells = 1;
+        result.empty_voxels_pieces = whole_empty;
+        result.parts.push_back(mesh);
+        return result;
+    }
+
+    const Bounds b = mesh.bounds();
+    const double extent =
+        std::max({double(b.extent().x), double(b.extent().y), double(b.extent().z), 1e-30});
+    std::array<std::vector<double>, 3> cuts, shell_cuts;
+    for (int a = 0; a < 3; ++a) {
+        cuts[size_t(a)] = cuts_along(mesh, a, options.max_cuts, 1e-6 * extent, voxels, false);
+        shell_cuts[size_t(a)] = cuts_along(mesh, a, options.max_cuts, 1e-6 * extent, voxels, true);
+    }
+    Pieces pieces = cut_and_merge(mesh, voxels, options, cuts, extent);
+    if (shell_cuts != cuts) {
+        // The shell cuts help rooms and open boxes, and can hurt a part whose cells then exceed
+        // the piece budget: the decomposition with less empty space in its hulls is kept.
+        Pieces shells = cut_and_merge(mesh, voxels, options, shell_cuts, extent);
+        if (shells.empty_voxels_pieces < pieces.empty_voxels_pieces ||
+            (shells.empty_voxels_pieces == pieces.empty_voxels_pieces &&
+             shells.parts.size() < pieces.parts.size())) {
+            pieces = std::move(shells);
+        }
+    }
+    pieces.empty_voxels_whole = whole_empty;
+    return pieces;
 }
 
 std::vector<int> empty_voxels_inside(const Mesh& mesh, const std::vector<ConvexVolume>& hulls,

@@ -100,5 +100,37 @@ TEST(Pieces, ConvexMeshesStayWholeAndATorusIsCoveredByItsPieces) {
     expect_pieces_cover_and_stay_inside(torus, hulls);
 }
 
+// A piece's hull is grown by a small delta (beamtree/bounding_volumes.cpp), so that neighbouring
+// pieces do not share faces. Offsetting the planes alone carries a sharp edge delta / sin(angle/2)
+// away: for a wedge of 0.005 rad, 400 delta (found on the engine's thin pieces, 52 times the part's
+// size). Grown, the volume still holds the wedge and stays within its box grown by 2 delta.
+TEST(Pieces, GrownHullsOfSharpWedgesStayNearThem) {
+    Mesh wedge;
+    for (const float z : {0.0f, 1.0f}) {
+        for (const glm::vec3 p :
+             {glm::vec3(0, 0, z), glm::vec3(1, 0, z), glm::vec3(1, 0.005f, z)}) {
+            wedge.positions.push_back(p);
+        }
+    }
+    wedge.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3},
+                       {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+    const bt::ConvexVolume hull = bt::convex_hull(wedge, 0);
+    const double delta = 1e-4;
+    const bt::ConvexVolume grown = bt::inflated(hull, delta);
+    ASSERT_FALSE(grown.empty());
+    for (const glm::vec3& p : wedge.positions) {
+        EXPECT_TRUE(grown.contains(glm::dvec3(p), 0.5 * delta)) << p.x << " " << p.y << " " << p.z;
+    }
+    const glm::dvec3 lo(0.0, 0.0, 0.0), hi(1.0, 0.005, 1.0);
+    for (const bt::Polygon& face : grown.faces) {
+        for (const glm::dvec3& v : face.vertices) {
+            for (int a = 0; a < 3; ++a) {
+                EXPECT_GE(v[a], lo[a] - 2.0 * delta) << "axis " << a;
+                EXPECT_LE(v[a], hi[a] + 2.0 * delta) << "axis " << a;
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace sl::test

@@ -726,8 +726,9 @@ void for_each_decided_point(const bt::BeamTree& tree, const Oracles& oracles,
 // On `seeds` random scenes and 10^4 points each, away from every plane the answer depends on
 // (10ε): classify() equals the ray-cast answer through the bounding volumes (agreement), lit
 // points see the light past every true mesh and unlit points do not (soundness), and the regions
-// tile the influence volume (conservation). Returns how many scenes had the light inside the hull
-// of a whole object (which only its pieces allow).
+// tile the influence volume (conservation); and no convex piece reaches outside its mesh's hull
+// by more than 10^-3 of its size (tightness). Returns how many scenes had the light inside the
+// hull of a whole object (which only its pieces allow).
 int check_random_scenes(Shapes kinds, bt::BoundingVolumeOptions options, int seeds) {
     bt::VolumeLibrary library(options);
     library.set_caching(false);  // random meshes: nothing to share with the disk
@@ -736,6 +737,22 @@ int check_random_scenes(Shapes kinds, bt::BoundingVolumeOptions options, int see
     for (int seed = 1; seed <= seeds; ++seed) {
         const RandomScene random = random_scene(seed, library, kinds);
         const Scene& scene = random.scene;
+        // Tightness: no piece, grown as it is for the tree, reaches more than 10^-3 of the
+        // mesh's size outside the mesh's own hull.
+        for (const Object& object : scene.objects) {
+            const bt::LocalVolumes& local = library.local(object.mesh);
+            const double extent = glm::length(object.mesh->bounds().extent());
+            for (const bt::LocalPiece& piece : local.pieces) {
+                for (const bt::Polygon& face : piece.outer.faces) {
+                    for (const dvec3& v : face.vertices) {
+                        for (const bt::Plane& plane : local.outer.planes) {
+                            EXPECT_LE(plane.distance(v), 1e-3 * extent)
+                                << "scene " << seed << ": a piece of " << object.name;
+                        }
+                    }
+                }
+            }
+        }
         for (const Object& object : scene.objects) {
             if (library.local(object.mesh)
                     .outer.transformed(glm::dmat4(object.transform))
