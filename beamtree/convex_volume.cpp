@@ -348,24 +348,55 @@ ConvexVolume inflated(const ConvexVolume& volume, double delta) {
     if (volume.flat || volume.empty()) {
         return volume;
     }
-    // The hull of every vertex moved to the 8 corners of a cube of half-size delta: the volume's
-    // Minkowski sum with the cube, which holds it and stays within delta·√3 of it. Offsetting the
-    // face planes instead carries a sharp edge delta / sin(angle / 2) away (52 times the part's
-    // size, on a thin piece of the engine).
-    std::vector<dvec3> points;
-    dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+    // The face planes pushed out by delta: the same faces, each delta further out.
+    std::vector<Plane> planes = volume.planes;
+    double radius = 1.0;
+    std::vector<dvec3> corners;
     for (const Polygon& face : volume.faces) {
         for (const dvec3& v : face.vertices) {
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-            for (int corner = 0; corner < 8; ++corner) {
-                points.push_back(v + delta * dvec3(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1,
-                                                   corner & 4 ? 1 : -1));
+            radius = std::max(radius, 2.0 * glm::length(v) + 1.0);
+            corners.push_back(v);
+        }
+    }
+    for (Plane& plane : planes) {
+        plane.offset -= delta;
+    }
+    const Polyhedron offset = polyhedron_from_planes(planes, radius, 1e-12 * radius);
+    // At a sharp edge the offset runs delta / sin(angle / 2) away (52 times the part's size, on a
+    // thin piece of the engine). Where a corner of the offset lies more than 3 delta from every
+    // corner of the volume, the volume is grown instead as the hull of each corner moved to the
+    // 8 corners of a cube of half-size delta (its Minkowski sum with the cube, within delta·√3):
+    // tight everywhere, but with a small face at every edge and corner, which the boundary
+    // meshes of the regions (§9) handle worse, so only there.
+    bool runs_off = false;
+    for (const Polygon& face : offset.faces) {
+        for (const dvec3& w : face.vertices) {
+            double nearest = std::numeric_limits<double>::max();
+            for (const dvec3& v : corners) {
+                nearest = std::min(nearest, glm::length(w - v));
             }
+            runs_off |= nearest > 3.0 * delta;
+        }
+    }
+    ConvexVolume result;
+    if (!runs_off) {
+        for (const Polygon& face : offset.faces) {
+            result.faces.push_back(face);
+            result.planes.push_back(plane_of(face));
+        }
+        return result;
+    }
+    std::vector<dvec3> points;
+    dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+    for (const dvec3& v : corners) {
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+        for (int corner = 0; corner < 8; ++corner) {
+            points.push_back(
+                v + delta * dvec3(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1, corner & 4 ? 1 : -1));
         }
     }
     const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) + 2.0 * delta;
-    ConvexVolume result;
     for (Merged& m : hull_faces(points, 1e-9 * extent)) {
         if (!m.face.empty()) {
             result.faces.push_back(std::move(m.face));

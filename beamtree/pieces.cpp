@@ -524,8 +524,8 @@ Pieces convex_pieces(const Mesh& mesh, const PieceOptions& options) {
     }
     Pieces pieces = cut_and_merge(mesh, voxels, options, cuts, extent);
     if (shell_cuts != cuts) {
-        // The shell cuts help rooms and open boxes, and can hurt a part whose cells then exceed
-        // the piece budget: the decomposition with less empty space in its hulls is kept.
+        // The shell cuts help rooms and open boxes; where they do not, the extra cells only
+        // cost: the decomposition with less empty space in its hulls is kept.
         Pieces shells = cut_and_merge(mesh, voxels, options, shell_cuts, extent);
         if (shells.empty_voxels_pieces < pieces.empty_voxels_pieces ||
             (shells.empty_voxels_pieces == pieces.empty_voxels_pieces &&
