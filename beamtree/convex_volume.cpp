@@ -363,11 +363,12 @@ ConvexVolume inflated(const ConvexVolume& volume, double delta) {
     }
     const Polyhedron offset = polyhedron_from_planes(planes, radius, 1e-12 * radius);
     // At a sharp edge the offset runs delta / sin(angle / 2) away (52 times the part's size, on a
-    // thin piece of the engine). Where a corner of the offset lies more than 3 delta from every
+    // thin piece of the engine). Where a corner of the offset lies more than 8 delta from every
     // corner of the volume, the volume is grown instead as the hull of each corner moved to the
     // 8 corners of a cube of half-size delta (its Minkowski sum with the cube, within delta·√3):
     // tight everywhere, but with a small face at every edge and corner, which the boundary
-    // meshes of the regions (§9) handle worse, so only there.
+    // meshes of the regions (§9) handle worse (on house-sweep's worst frame: 4.8 % off the
+    // reference from 3 delta on, 2.5 % from 8 delta, 1.9 % never), so only there.
     bool runs_off = false;
     for (const Polygon& face : offset.faces) {
         for (const dvec3& w : face.vertices) {
@@ -375,7 +376,7 @@ ConvexVolume inflated(const ConvexVolume& volume, double delta) {
             for (const dvec3& v : corners) {
                 nearest = std::min(nearest, glm::length(w - v));
             }
-            runs_off |= nearest > 3.0 * delta;
+            runs_off |= nearest > 8.0 * delta;
         }
     }
     ConvexVolume result;

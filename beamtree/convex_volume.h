@@ -38,7 +38,7 @@ bool point_inside_mesh(const Mesh& mesh, const dvec3& p);
 bool triangle_overlaps_box(dvec3 v0, dvec3 v1, dvec3 v2, const dvec3& center, const dvec3& half);
 ConvexVolume box_volume(const Box& box);
 // The volume grown by `delta`: its face planes pushed out by delta, or, where that carries a sharp
-// edge more than 3 delta away, its Minkowski sum with a cube of half-size delta. Still convex and
+// edge more than 8 delta away, its Minkowski sum with a cube of half-size delta. Still convex and
 // enclosing it; a flat volume is returned as it is.
 ConvexVolume inflated(const ConvexVolume& volume, double delta);
 
