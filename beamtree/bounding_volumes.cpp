@@ -26,15 +26,6 @@ namespace sl::bt {
 
 namespace {
 
-double max_extent(const Bounds& b) {
-    const glm::vec3 e = b.extent();
-    return std::max({double(e.x), double(e.y), double(e.z), 1e-30});
-}
-
-}  // namespace
-
-namespace {
-
 // A mesh's triangles in double precision with their bounding boxes, for many box queries.
 class TriangleSet {
 public:

@@ -25,12 +25,22 @@ Plane plane_of(const Polygon& face) {
     return {n, -glm::dot(n, centroid(face))};
 }
 
+// A polyhedron's faces with their planes.
+ConvexVolume volume_of(const Polyhedron& polyhedron) {
+    ConvexVolume volume;
+    for (const Polygon& face : polyhedron.faces) {
+        volume.faces.push_back(face);
+        volume.planes.push_back(plane_of(face));
+    }
+    return volume;
+}
+
+}  // namespace
+
 double max_extent(const Bounds& b) {
     const glm::vec3 e = b.extent();
     return std::max({double(e.x), double(e.y), double(e.z), 1e-30});
 }
-
-}  // namespace
 
 bool ConvexVolume::contains(const dvec3& p, double margin) const {
     if (planes.empty()) {
@@ -87,17 +97,11 @@ double ConvexVolume::volume() const {
 }
 
 ConvexVolume box_volume(const Box& box) {
-    ConvexVolume volume;
     const dvec3 lo(box.min), hi(box.max);
     std::vector<Plane> planes = {{{1, 0, 0}, -hi.x}, {{-1, 0, 0}, lo.x}, {{0, 1, 0}, -hi.y},
                                  {{0, -1, 0}, lo.y}, {{0, 0, 1}, -hi.z}, {{0, 0, -1}, lo.z}};
     const double radius = 2.0 * std::max(glm::length(lo), glm::length(hi)) + 1.0;
-    const Polyhedron p = polyhedron_from_planes(planes, radius, 1e-12 * radius);
-    for (const Polygon& face : p.faces) {
-        volume.faces.push_back(face);
-        volume.planes.push_back(plane_of(face));
-    }
-    return volume;
+    return volume_of(polyhedron_from_planes(planes, radius, 1e-12 * radius));
 }
 
 namespace {
@@ -126,10 +130,6 @@ Plane plane_of_corners(const std::vector<dvec3>& corners, const Plane& hint) {
     }
     return glm::dot(plane.normal, hint.normal) < 0.0 ? plane.flipped() : plane;
 }
-
-}  // namespace
-
-namespace {
 
 // The faces of the convex hull of `points` (CGAL), coplanar facets merged, in a canonical order.
 struct Merged {
@@ -283,12 +283,7 @@ ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
     }
     const double radius =
         2.0 * std::max(glm::length(dvec3(bounds.min)), glm::length(dvec3(bounds.max))) + extent;
-    const Polyhedron polyhedron = polyhedron_from_planes(chosen, radius, 1e-12 * radius);
-    for (const Polygon& face : polyhedron.faces) {
-        volume.faces.push_back(face);
-        volume.planes.push_back(plane_of(face));
-    }
-    return volume;
+    return volume_of(polyhedron_from_planes(chosen, radius, 1e-12 * radius));
 }
 
 bool point_inside_mesh(const Mesh& mesh, const dvec3& p) {
@@ -351,13 +346,15 @@ ConvexVolume inflated(const ConvexVolume& volume, double delta) {
     // The face planes pushed out by delta: the same faces, each delta further out.
     std::vector<Plane> planes = volume.planes;
     double radius = 1.0;
-    std::vector<dvec3> corners;
+    std::vector<dvec3> corners;  // distinct: each is on several faces
     for (const Polygon& face : volume.faces) {
         for (const dvec3& v : face.vertices) {
             radius = std::max(radius, 2.0 * glm::length(v) + 1.0);
             corners.push_back(v);
         }
     }
+    std::sort(corners.begin(), corners.end(), lexicographic_less);
+    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
     for (Plane& plane : planes) {
         plane.offset -= delta;
     }
@@ -379,13 +376,8 @@ ConvexVolume inflated(const ConvexVolume& volume, double delta) {
             runs_off |= nearest > 8.0 * delta;
         }
     }
-    ConvexVolume result;
     if (!runs_off) {
-        for (const Polygon& face : offset.faces) {
-            result.faces.push_back(face);
-            result.planes.push_back(plane_of(face));
-        }
-        return result;
+        return volume_of(offset);
     }
     std::vector<dvec3> points;
     dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
@@ -398,6 +390,7 @@ ConvexVolume inflated(const ConvexVolume& volume, double delta) {
         }
     }
     const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) + 2.0 * delta;
+    ConvexVolume result;
     for (Merged& m : hull_faces(points, 1e-9 * extent)) {
         if (!m.face.empty()) {
             result.faces.push_back(std::move(m.face));

@@ -37,6 +37,8 @@ bool point_inside_mesh(const Mesh& mesh, const dvec3& p);
 // Triangle/box overlap by the separating axis theorem; touching counts as overlapping.
 bool triangle_overlaps_box(dvec3 v0, dvec3 v1, dvec3 v2, const dvec3& center, const dvec3& half);
 ConvexVolume box_volume(const Box& box);
+// The largest side of the bounds (at least 1e-30): the size tolerances are taken relative to.
+double max_extent(const Bounds& bounds);
 // The volume grown by `delta`: its face planes pushed out by delta, or, where that carries a sharp
 // edge more than 8 delta away, its Minkowski sum with a cube of half-size delta. Still convex and
 // enclosing it; a flat volume is returned as it is.

@@ -514,9 +514,7 @@ Pieces convex_pieces(const Mesh& mesh, const PieceOptions& options) {
         return result;
     }
 
-    const Bounds b = mesh.bounds();
-    const double extent =
-        std::max({double(b.extent().x), double(b.extent().y), double(b.extent().z), 1e-30});
+    const double extent = max_extent(mesh.bounds());
     std::array<std::vector<double>, 3> cuts, shell_cuts;
     for (int a = 0; a < 3; ++a) {
         cuts[size_t(a)] = cuts_along(mesh, a, options.max_cuts, 1e-6 * extent, voxels, false);
