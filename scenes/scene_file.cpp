@@ -877,7 +877,7 @@ std::vector<std::string> effect_scene_names() {
 }
 
 std::vector<std::string> real_scene_names() {
-    return {"house", "house-sweep", "engine"};
+    return {"house", "house-sweep", "engine", "engine-orbit"};
 }
 
 std::vector<std::string> named_scene_names() {

@@ -81,7 +81,7 @@ std::vector<std::string> animated_scene_names();
 // The effect scenes (IBL, SSS), loadable by name like the canonical ones.
 std::vector<std::string> effect_scene_names();
 // Real models read through assimp (house: the FZK-Haus IFC; house-sweep: its light moving;
-// engine: a glTF mechanical assembly).
+// engine: a glTF mechanical assembly; engine-orbit: its light circling above it).
 std::vector<std::string> real_scene_names();
 // Every scene that loads by name from scenes/: the canonical, the animated and the effect scenes,
 // in that order (`shaftlab scenes` lists them; the generated families are not among them).
