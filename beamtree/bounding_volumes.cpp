@@ -272,7 +272,7 @@ LocalVolumes VolumeLibrary::compute(const Mesh& mesh) const {
 
 namespace {
 
-constexpr std::string_view kVolumesVersion = "shaftlab-volumes-12";
+constexpr std::string_view kVolumesVersion = "shaftlab-volumes-13";
 
 // LocalVolumes known to this process, by content key: libraries share them.
 std::mutex& process_mutex() {
@@ -455,10 +455,11 @@ void VolumeLibrary::forget_process_volumes() {
 
 VolumeLibrary& VolumeLibrary::shared(BoundingVolumeOptions options) {
     static std::mutex mutex;
-    static std::map<std::pair<int, bool>, std::unique_ptr<VolumeLibrary>> libraries;
+    // Keyed by every option: a library made for one set computes its volumes with that set.
+    static std::map<std::tuple<int, bool, bool>, std::unique_ptr<VolumeLibrary>> libraries;
     const std::lock_guard lock(mutex);
     std::unique_ptr<VolumeLibrary>& library =
-        libraries[{options.max_outer_planes, options.automatic_inner}];
+        libraries[{options.max_outer_planes, options.automatic_inner, options.pieces}];
     if (!library) {
         library = std::make_unique<VolumeLibrary>(options);
     }
