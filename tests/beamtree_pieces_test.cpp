@@ -83,6 +83,19 @@ TEST(Pieces, AWallWithAWindowIsCutAndThePiecesCoverIt) {
     expect_pieces_cover_and_stay_inside(wall, hulls);
 }
 
+// The process's shared libraries (what the methods build with) are one per option set, pieces
+// included: the wall gets its pieces from the library of a scene that asks for them, even after
+// the library with the same hull options and no pieces has been made. (Keyed without `pieces`,
+// the house rendered after a scene without pieces got whole hulls: no lit region in the room.)
+TEST(Pieces, SharedLibrariesAreOnePerOptionSetPiecesIncluded) {
+    const auto wall = std::make_shared<const Mesh>(wall_with_window());
+    bt::VolumeLibrary& whole = bt::VolumeLibrary::shared({.pieces = false});
+    bt::VolumeLibrary& cut = bt::VolumeLibrary::shared({.pieces = true});
+    EXPECT_NE(&whole, &cut);
+    EXPECT_TRUE(whole.local(wall).pieces.empty());
+    EXPECT_GE(cut.local(wall).pieces.size(), 2u);
+}
+
 // A convex mesh stays one piece (its hull is tight); a torus is cut, and its pieces cover it.
 TEST(Pieces, ConvexMeshesStayWholeAndATorusIsCoveredByItsPieces) {
     EXPECT_TRUE(bt::convex_pieces(make_box(glm::vec3(1.0f, 2.0f, 0.5f))).whole);
@@ -103,8 +116,35 @@ TEST(Pieces, ConvexMeshesStayWholeAndATorusIsCoveredByItsPieces) {
 // A piece's hull is grown by a small delta (beamtree/bounding_volumes.cpp), so that neighbouring
 // pieces do not share faces. Offsetting the planes alone carries a sharp edge delta / sin(angle/2)
 // away: for a wedge of 0.005 rad, 400 delta (found on the engine's thin pieces, 52 times the part's
-// size). Grown, the volume still holds the wedge and stays within its box grown by 2 delta.
-TEST(Pieces, GrownHullsOfSharpWedgesStayNearThem) {
+// size), and a needle's tip likewise. Grown, each volume still holds its corners by delta / 2,
+// every corner of it lies within 8 delta of one of the mesh's, and only the sharp places get a
+// bevel face: a Minkowski sum with a cube, tight too, has a small face at every edge and corner,
+// which the regions' boundary meshes draw badly seen edge-on (docs/design.md §15).
+void expect_grown_tightly(const Mesh& mesh, size_t most_faces, const char* what) {
+    const bt::ConvexVolume hull = bt::convex_hull(mesh, 0);
+    const double delta = 1e-4;
+    const bt::ConvexVolume grown = bt::inflated(hull, delta);
+    ASSERT_FALSE(grown.empty()) << what;
+    for (const glm::vec3& p : mesh.positions) {
+        EXPECT_TRUE(grown.contains(glm::dvec3(p), 0.5 * delta))
+            << what << ": " << p.x << " " << p.y << " " << p.z;
+    }
+    for (const bt::Polygon& face : grown.faces) {
+        for (const glm::dvec3& v : face.vertices) {
+            double nearest = 1e30;
+            for (const glm::vec3& p : mesh.positions) {
+                nearest = std::min(nearest, glm::length(v - glm::dvec3(p)));
+            }
+            EXPECT_LE(nearest, 8.0 * delta)
+                << what << ": a corner runs " << nearest / delta << " delta off";
+        }
+    }
+    EXPECT_GT(grown.faces.size(), hull.faces.size()) << what << ": no bevel";
+    EXPECT_LE(grown.faces.size(), most_faces) << what << ": more than the sharp places bevelled";
+}
+
+TEST(Pieces, GrownHullsOfSharpWedgesAndNeedlesStayNearThem) {
+    // A prism over a triangle with a 0.29 degree corner: one sharp edge, one bevel.
     Mesh wedge;
     for (const float z : {0.0f, 1.0f}) {
         for (const glm::vec3 p :
@@ -114,22 +154,13 @@ TEST(Pieces, GrownHullsOfSharpWedgesStayNearThem) {
     }
     wedge.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3},
                        {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
-    const bt::ConvexVolume hull = bt::convex_hull(wedge, 0);
-    const double delta = 1e-4;
-    const bt::ConvexVolume grown = bt::inflated(hull, delta);
-    ASSERT_FALSE(grown.empty());
-    for (const glm::vec3& p : wedge.positions) {
-        EXPECT_TRUE(grown.contains(glm::dvec3(p), 0.5 * delta)) << p.x << " " << p.y << " " << p.z;
-    }
-    const glm::dvec3 lo(0.0, 0.0, 0.0), hi(1.0, 0.005, 1.0);
-    for (const bt::Polygon& face : grown.faces) {
-        for (const glm::dvec3& v : face.vertices) {
-            for (int a = 0; a < 3; ++a) {
-                EXPECT_GE(v[a], lo[a] - 2.0 * delta) << "axis " << a;
-                EXPECT_LE(v[a], hi[a] + 2.0 * delta) << "axis " << a;
-            }
-        }
-    }
+    expect_grown_tightly(wedge, 5 + 1, "wedge");
+    // A tetrahedron 10 long on a base of 0.1: no edge sharper than 30 degrees, but a tip the
+    // offset carries 100 delta away; one bevel at the tip (two at most).
+    Mesh needle;
+    needle.positions = {{0, 0, 0}, {0.1f, 0, 0}, {0.05f, 0.0866f, 0}, {0.05f, 0.0289f, 10}};
+    needle.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+    expect_grown_tightly(needle, 4 + 2, "needle");
 }
 
 }  // namespace
