@@ -21,8 +21,8 @@ void RegionLists::upload(const bt::RegionMesh& lit, const bt::RegionMesh& uncert
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
                                        {GL_FRAGMENT_SHADER, "analytic/shaders/region_lists.frag"}});
     }
-    meshes_[0] = gl::create_triangle_mesh(lit.positions, lit.triangles);
-    meshes_[1] = gl::create_triangle_mesh(uncertain.positions, uncertain.triangles);
+    meshes_[0] = create_region_faces(lit.positions, lit.triangles);
+    meshes_[1] = create_region_faces(uncertain.positions, uncertain.triangles);
 }
 
 void RegionLists::begin_build(const frame::VolumeInputs& inputs, bool mark_stencil) {
@@ -66,7 +66,7 @@ void RegionLists::build(const frame::VolumeInputs& inputs, bool mark_stencil) {
     GL.Enable(GL_DEPTH_CLAMP);  // faces in front of the near plane still cross the ray
     GL.UseProgram(program_.id());
     for (int s = 0; s < 2; ++s) {
-        if (meshes_[s].index_count == 0) {
+        if (meshes_[s].index_count() == 0) {
             continue;
         }
         if (mark_stencil) {
@@ -75,8 +75,8 @@ void RegionLists::build(const frame::VolumeInputs& inputs, bool mark_stencil) {
             GL.StencilMask(bit);
         }
         GL.ProgramUniform1i(program_.id(), 0, s);
-        GL.BindVertexArray(meshes_[s].vertex_array.id());
-        GL.DrawElements(GL_TRIANGLES, meshes_[s].index_count, GL_UNSIGNED_INT, nullptr);
+        meshes_[s].bind();
+        GL.DrawElements(GL_TRIANGLES, meshes_[s].index_count(), GL_UNSIGNED_INT, nullptr);
     }
     GL.Disable(GL_DEPTH_CLAMP);
     end_build(mark_stencil);

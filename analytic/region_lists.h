@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "analytic/gpu_tree.h"
+#include "analytic/region_faces.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
 #include "frame/volume_method.h"
@@ -52,7 +53,7 @@ public:
     };
     // Pixels whose list of a surface overflowed in the last build (reads the counts back).
     size_t overflows() const;
-    size_t triangle_count(int surface) const { return size_t(meshes_[surface].index_count) / 3; }
+    size_t triangle_count(int surface) const { return size_t(meshes_[surface].index_count()) / 3; }
 
 private:
     // The build's common half: the lists sized for the view and cleared, bound, colour writes
@@ -60,7 +61,7 @@ private:
     void begin_build(const frame::VolumeInputs& inputs, bool mark_stencil);
     void end_build(bool mark_stencil);
 
-    gl::TriangleMesh meshes_[2];  // lit, uncertain
+    RegionFaces meshes_[2];  // lit, uncertain
     gl::Program program_;
     gl::Program walk_program_;
     gl::VertexArray empty_vertex_array_;

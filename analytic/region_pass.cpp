@@ -70,12 +70,12 @@ double winding_number(const std::vector<glm::vec3>& positions,
 
 void AnalyticRegionPass::upload_mesh(const std::vector<glm::vec3>& positions,
                                      const std::vector<glm::uvec3>& triangles) {
-    mesh_ = gl::create_triangle_mesh(positions, triangles);
+    faces_ = create_region_faces(positions, triangles);
     positions_ = positions;
     triangles_ = triangles;
     windings_eye_.reset();
-    if (mesh_.index_count > 0) {
-        mesh_.vertex_array.label("lit regions");
+    if (faces_.index_count() > 0) {
+        faces_.mesh.vertex_array.label("lit regions");
     }  // else no lit region (or only slivers): draw() adds nothing
 }
 
@@ -112,9 +112,11 @@ SignedDrawScope::~SignedDrawScope() {
 
 void AnalyticRegionPass::set_scene(const Scene& scene) {
     if (closed_form_.set_scene(scene)) {
+        std::vector<std::string> defines = closed_form_defines(scene);
+        defines.push_back("SL_FACE_CORNERS 1");  // z from faces_.corners
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
                                        {GL_FRAGMENT_SHADER, "analytic/shaders/regions.frag"}},
-                                      closed_form_defines(scene));
+                                      defines);
         eye_program_ =
             gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                 {GL_FRAGMENT_SHADER, "analytic/shaders/regions_eye.frag"}},
@@ -156,14 +158,14 @@ std::unique_ptr<frame::FrameWork> region_frame_work(const Scene& scene, const Sc
 
 void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     walked_ = false;
-    if (mesh_.index_count == 0)
+    if (faces_.index_count() == 0)
         return;
     const SignedDrawScope scope(inputs, closed_form_);
     GL.UseProgram(program_.id());
-    GL.BindVertexArray(mesh_.vertex_array.id());
+    faces_.bind();
     GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
     GL.BeginQuery(GL_SAMPLES_PASSED, rasterized_.id());
-    GL.DrawElements(GL_TRIANGLES, mesh_.index_count, GL_UNSIGNED_INT, nullptr);
+    GL.DrawElements(GL_TRIANGLES, faces_.index_count(), GL_UNSIGNED_INT, nullptr);
     // The eye inside the regions: every ray's missing front face at z = 0.
     const glm::vec3 eye = inputs.scene.camera.position;
     if (windings_eye_ != eye) {
@@ -194,7 +196,7 @@ void AnalyticRegionPass::draw_walk(const VolumeInputs& inputs, const GpuTreeBuff
 }
 
 double AnalyticRegionPass::count(const Query& query) const {
-    if (mesh_.index_count == 0 && !walked_)
+    if (faces_.index_count() == 0 && !walked_)
         return 0.0;
     GLuint64 value = 0;
     GL.GetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &value);

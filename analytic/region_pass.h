@@ -11,6 +11,7 @@
 #include <glm/vec4.hpp>
 
 #include "analytic/gpu_tree.h"
+#include "analytic/region_faces.h"
 #include "beamtree/frame_regions.h"
 
 #include "frame/volume_method.h"
@@ -96,7 +97,7 @@ public:
     // mesh. (Walking and integrating in one pass costs more on a software rasterizer: every lane
     // of a SIMD group pays for each G evaluation inside the walk's loop.)
     void draw_walk(const VolumeInputs& inputs, const GpuTreeBuffers& tree) const;
-    size_t triangle_count() const { return size_t(mesh_.index_count) / 3; }
+    size_t triangle_count() const { return size_t(faces_.index_count()) / 3; }
     // Its lookup tables, named "<owner>/...".
     TextureViews textures(const std::string& owner) const;
     // Fragment-shader invocations of the last draw (waits for it): what the rasterizer shaded,
@@ -109,7 +110,7 @@ public:
 private:
     double count(const Query& query) const;  // the last draw's result (0 without a mesh)
 
-    gl::TriangleMesh mesh_;
+    RegionFaces faces_;
     std::vector<glm::vec3> positions_;  // the mesh, for the eye's winding number
     std::vector<glm::uvec3> triangles_;
     // The regions about the eye (the winding number rounded), for the eye it was taken at: taken

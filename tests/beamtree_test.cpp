@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "core/metrics.h"
 #include "frame/renderer.h"
+#include "scenes/animation.h"
 #include "scenes/scene_file.h"
 #include "tests/embree_oracle.h"
 #include "tests/support.h"
@@ -1389,6 +1390,16 @@ TEST(Boundary, IsClosedOutwardAndIntegratesLikeTheCells) {
     EXPECT_LT(unmerged_planes * 100, merged_planes) << "nearly every plane should merge";
 }
 
+// Pixels more than 5% (and 1e-3 of the peak) apart.
+size_t pixels_off(const Image& image, const Image& against, double peak) {
+    size_t off = 0;
+    for (size_t i = 0; i < against.rgb.size(); ++i) {
+        const double o = against.rgb[i], b = image.rgb[i];
+        off += std::abs(b - o) > 0.05 * o + 1e-3 * peak ? 1 : 0;
+    }
+    return off;
+}
+
 // beamtree's image on the CPU: per pixel, the closed form of ∫e over the lit intervals of the
 // tree's own walk along the eye ray (trace()), up to the frame's surface.
 Image lit_integral(const Scene& scene, const frame::Frame& frame, int width, int height) {
@@ -1455,15 +1466,6 @@ TEST_F(BoundaryOnTheGpu, IntegratesLikeTheTreePixelByPixel) {
     double worst_merged = 0.0, worst_canonical = 0.0, worst_pixels = 0.0;
     double worst_walk = 0.0, worst_walk_exact = 0.0, worst_walk_pixels = 0.0;
     size_t compared = 0;
-    // Pixels more than 5% (and 1e-3 of the peak) apart, and how many the oracle calls lit.
-    auto pixels_off = [](const Image& image, const Image& against, double peak) {
-        size_t off = 0;
-        for (size_t i = 0; i < against.rgb.size(); ++i) {
-            const double o = against.rgb[i], b = image.rgb[i];
-            off += std::abs(b - o) > 0.05 * o + 1e-3 * peak ? 1 : 0;
-        }
-        return off;
-    };
     const std::vector<std::pair<std::string, std::string>> by_mesh = {{"route", "mesh"}};
     const std::vector<std::pair<std::string, std::string>> by_walk = {{"route", "walk"}};
     for (const BoundaryCase& c : cases) {
@@ -1544,6 +1546,44 @@ TEST_F(BoundaryOnTheGpu, IntegratesLikeTheTreePixelByPixel) {
         compared, worst_merged, worst_canonical, worst_pixels, worst_walk, worst_walk_exact,
         worst_walk_pixels);
     EXPECT_GE(compared, 20u);
+}
+
+// On the real building, in the frame where the mesh route was found off (house-sweep at
+// t = 0.6667 s, 640x360, walls in convex pieces): its boundary meshes hold triangles that are
+// degenerate in float (three collinear corners at a T-vertex), which the rasterizer still gives
+// a pixel now and then, with an interpolated position far off or infinite; 4 pixels were 0.03 to
+// 0.08 off (2.3 % of the image against the walk route) while the crossings' distances came from
+// the interpolated position. From the triangles' corners (analytic/region_faces.h,
+// face_distance.glsl) the mesh route is the walk route but for float round-off, in beamtree's
+// signed pass and in the region lists the hybrids march.
+TEST_F(BoundaryOnTheGpu, OnTheHouseTheMeshRouteIsTheWalkRoute) {
+    const Scene scene = scene_at(load_canonical("house-sweep"), 0.6667);
+    for (const char* method : {"beamtree", "hybrid3"}) {
+        const frame::Frame mesh = render_method(scene, method, 640, 360, {{"route", "mesh"}});
+        const frame::Frame walk = render_method(scene, method, 640, 360, {{"route", "walk"}});
+        const double peak = image_peak(walk.in_scattering);
+        ASSERT_GT(peak, 0.01) << method << ": the shafts are in view";
+        size_t lit = 0;
+        for (const float v : walk.in_scattering.rgb) {
+            lit += v > 0.0f ? 1 : 0;
+        }
+        const ErrorMetrics e = compare_images(mesh.in_scattering, walk.in_scattering);
+        const size_t off = pixels_off(mesh.in_scattering, walk.in_scattering, peak);
+        std::printf(
+            "house-sweep, %s: mesh route against walk route %.2e, max_abs %.2e of the "
+            "peak, %zu of %zu values off\n",
+            method, e.rel_rmse, e.max_abs / peak, off, lit);
+        // beamtree: 3.2e-4, max_abs 2.6% of the peak, no pixel 5% off (interpolated: 2.3e-2,
+        // 147% of the peak). hybrid3 marches the uncertain intervals between crossings that
+        // differ in the last float bits, so its samples move: 1.9e-3, 2.7% (interpolated:
+        // 2.3e-2, 147%).
+        const bool beamtree = std::string(method) == "beamtree";
+        EXPECT_LT(e.rel_rmse, beamtree ? 1e-3 : 5e-3) << method;
+        EXPECT_LT(e.max_abs, 0.05 * peak) << method;
+        if (beamtree) {
+            EXPECT_EQ(off, 0u);
+        }
+    }
 }
 
 // The GPU's walk (beamtree/shaders/walk.glsl, the walk route of docs/design.md §14) along random
