@@ -272,7 +272,7 @@ LocalVolumes VolumeLibrary::compute(const Mesh& mesh) const {
 
 namespace {
 
-constexpr std::string_view kVolumesVersion = "shaftlab-volumes-13";
+constexpr std::string_view kVolumesVersion = "shaftlab-volumes-12";
 
 // LocalVolumes known to this process, by content key: libraries share them.
 std::mutex& process_mutex() {

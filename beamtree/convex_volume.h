@@ -39,11 +39,9 @@ bool triangle_overlaps_box(dvec3 v0, dvec3 v1, dvec3 v2, const dvec3& center, co
 ConvexVolume box_volume(const Box& box);
 // The largest side of the bounds (at least 1e-30): the size tolerances are taken relative to.
 double max_extent(const Bounds& bounds);
-// The volume grown by `delta`: its face planes pushed out by delta; where that carries a corner
-// more than 8 delta away, a bevel (a supporting plane pushed out by delta) at each edge sharper
-// than 29 degrees and then at the corners still running off; what the bevels do not hold in, its
-// Minkowski sum with a cube of half-size delta. Still convex and enclosing it, every corner within
-// 8 delta of one of the volume's; a flat volume is returned as it is.
+// The volume grown by `delta`: its face planes pushed out by delta, or, where that carries a sharp
+// edge more than 8 delta away, its Minkowski sum with a cube of half-size delta. Still convex and
+// enclosing it; a flat volume is returned as it is.
 ConvexVolume inflated(const ConvexVolume& volume, double delta);
 
 }  // namespace sl::bt
