@@ -363,9 +363,9 @@ ConvexVolume inflated(const ConvexVolume& volume, double delta) {
     // thin piece of the engine). Where a corner of the offset lies more than 8 delta from every
     // corner of the volume, the volume is grown instead as the hull of each corner moved to the
     // 8 corners of a cube of half-size delta (its Minkowski sum with the cube, within delta·√3):
-    // tight everywhere, but with a small face at every edge and corner, which the boundary
-    // meshes of the regions (§9) handle worse (on house-sweep's worst frame: 4.8 % off the
-    // reference from 3 delta on, 2.5 % from 8 delta, 1.9 % never), so only there.
+    // tight everywhere, but with a small face at every edge and corner, which cost the tree
+    // beams and the boundary meshes faces, so only there. (The boundary meshes' errors once
+    // blamed on those faces were the analytic pass's interpolated crossings, docs/design.md §9.)
     bool runs_off = false;
     for (const Polygon& face : offset.faces) {
         for (const dvec3& w : face.vertices) {

@@ -219,7 +219,8 @@ TEST(Cli, ScenesListsEverySceneThatLoadsByName) {
     ASSERT_EQ(run.exit_code, 0) << run.output;
     EXPECT_EQ(run.output,
               "toplight\nparallel\nmultiple\ntoplight-orbit\nparallel-walk\nmultiple-moving\n"
-              "ibl-spheres\nsss-bunny\nsss-dragon\nsss-shaft\nhouse\nhouse-sweep\nengine\nengine-orbit\n");
+              "ibl-spheres\nsss-bunny\nsss-dragon\nsss-shaft\n"
+              "house\nhouse-sweep\nengine\nengine-orbit\n");
     const CommandResult listing = run_shaftlab("scenes");
     ASSERT_EQ(listing.exit_code, 0) << listing.output;
     for (const std::string& name : named_scene_names()) {
