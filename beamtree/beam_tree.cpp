@@ -245,18 +245,72 @@ void BeamTree::attach_nearer(int32_t index, const Polygon& fragment, const Plane
 void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside,
                       const Leaf& outside) {
     // Planes through L and each edge of the fragment that does not already lie on a plane of
-    // the path, oriented with the fragment behind (appendix B attachPolygon).
-    const dvec3 center = centroid(fragment);
-    thread_local std::vector<Plane> edges;  // allocated once per thread
-    edges.clear();
-    const size_t n = fragment.size();
+    // the path, oriented with the fragment behind (appendix B attachPolygon). The leaf becomes
+    // the fragment's beam, so the planes must bound it.
+    // Corners closer than 1e-3 ε (clipping's near-duplicates) are one corner: the plane through
+    // L and an edge of length l at distance D from L is good to about 1e-16 D / l radians, which
+    // such an edge would not be.
+    const double coincident = 1e-3 * epsilon_;
+    thread_local std::vector<dvec3> corners;  // allocated once per thread
+    thread_local std::vector<char> on_split;  // the edge leaving corners[i] lies on a path plane
+    corners.clear();
+    on_split.clear();
+    for (size_t i = 0; i < fragment.size(); ++i) {
+        const dvec3& v = fragment.vertices[i];
+        if (corners.empty() || glm::length(v - corners.back()) > coincident) {
+            corners.push_back(v);
+            on_split.push_back(fragment.edge_on_split_plane(i));
+        } else {
+            on_split.back() = fragment.edge_on_split_plane(i);  // the merged edge leaves from v
+        }
+    }
+    while (corners.size() > 1 && glm::length(corners.front() - corners.back()) <= coincident) {
+        corners.pop_back();  // merged into the first corner; the closing edge leaves from it
+        on_split.pop_back();
+    }
+    const size_t n = corners.size();
+    if (n < 3) {
+        return;  // no area
+    }
+    // An edge shorter than ε gets no plane of its own (Nilsson §4.3: the planes are ε thick)
+    // only where its neighbours' planes meet within 4ε beyond it, so that the beam grows by no
+    // more than that. Where they part (a sliver's tip cut off by a nearer occluder), the edge gets
+    // its plane, or the beam would run on across the rest of the leaf, which would then take the
+    // new occluder where the fragment is not.
+    dvec3 normal(0.0), center(0.0);  // Newell's area vector, and the corners' centroid
     for (size_t i = 0; i < n; ++i) {
-        if (fragment.edge_on_split_plane(i)) {
+        normal += glm::cross(corners[i] - corners[0], corners[(i + 1) % n] - corners[0]);
+        center += corners[i] / double(n);
+    }
+    auto closes_near = [&](size_t i) {
+        const dvec3& a = corners[i];
+        const dvec3& b = corners[(i + 1) % n];
+        const dvec3 before = a - corners[(i + n - 1) % n];  // runs on past a
+        const dvec3 after = b - corners[(i + 2) % n];       // runs on past b
+        const double length = glm::length(b - a);
+        if (!(glm::length(normal) > 0.0)) {
+            return true;  // no area: nothing for a plane to bound
+        }
+        const dvec3 along = (b - a) / length;
+        const dvec3 out = glm::normalize(glm::cross(along, normal));  // away from the fragment
+        const double rise_a = glm::dot(before, out), rise_b = glm::dot(after, out);
+        if (!(rise_a > 0.0) || !(rise_b > 0.0)) {
+            return false;
+        }
+        // Beyond the edge at height h, the neighbours are at a + h·cot_a and b + h·cot_b
+        // along it: they meet where h (cot_a - cot_b) = length.
+        const double closing = glm::dot(before, along) / rise_a - glm::dot(after, along) / rise_b;
+        return closing > 0.0 && length <= 4.0 * epsilon_ * closing;
+    };
+    thread_local std::vector<Plane> edges;
+    edges.clear();
+    for (size_t i = 0; i < n; ++i) {
+        if (on_split[i]) {
             continue;
         }
-        const dvec3& a = fragment.vertices[i];
-        const dvec3& b = fragment.vertices[(i + 1) % n];
-        if (glm::length(b - a) <= epsilon_) {
+        const dvec3& a = corners[i];
+        const dvec3& b = corners[(i + 1) % n];
+        if (glm::length(b - a) <= epsilon_ && closes_near(i)) {
             continue;
         }
         Plane plane;
