@@ -273,12 +273,12 @@ Scene scene_at(const Scene& scene, const Animation& a, double time) {
     const char* bad = nullptr;
     if (!all_finite) {
         bad = "an interpolated value is not finite (keys too far apart for float)";
-    } else if (glm::length(s.camera.target - s.camera.position) <= 0.0f) {
+    } else if (!distinct_in_float(s.camera.position, s.camera.target)) {
         bad = "the camera's target is on its position";
     } else if (glm::length(glm::cross(s.camera.target - s.camera.position, s.camera.up)) <=
                1e-6f * glm::length(s.camera.up)) {
         bad = "the camera looks along its up vector";
-    } else if (glm::length(s.light.target - s.light.position) <= 0.0f) {
+    } else if (!distinct_in_float(s.light.position, s.light.target)) {
         bad = "the light's target is on its position";
     } else if (!(s.light.cone_half_angle_degrees > 0.0f &&
                  s.light.cone_half_angle_degrees < 89.0f)) {

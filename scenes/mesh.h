@@ -36,6 +36,9 @@ struct Mesh {
 // scene that needs more should be split, or decimated first).
 constexpr long long kMaxMeshVertices = 1 << 24;
 constexpr long long kMaxMeshTriangles = 1 << 25;
+// What a procedural shape of a scene file may hold (a sphere of 1024 segments): the hulls, inner
+// boxes and reference of a finer one take minutes, and a model file is the way to bring one.
+constexpr long long kMaxShapeTriangles = 1 << 20;
 // An OFF face is fanned when convex and ear-clipped otherwise (quadratic or worse in its size):
 // polygons larger than this are not faces of a mesh but damage.
 constexpr long long kMaxFaceVertices = 1024;

@@ -16,6 +16,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/error.h"
+#include "scenes/model_checks.h"
 
 namespace sl {
 
@@ -85,91 +86,6 @@ std::string lower_extension(const fs::path& path) {
     return extension;
 }
 
-// The face, line and point indices of an OBJ file, checked before assimp reads it: a position
-// index must name one of the file's `v` lines (1..n, or -1..-k for the k read so far), likewise
-// texture coordinates (`vt`) and normals (`vn`). assimp 5.2.5 (Debian 12) refuses such a file
-// too, but names no line, and its OBJ importer leaks the mesh it was building when it throws
-// (assimp issue #4131, fixed in 5.4.2; tests/fuzz/lsan.supp covers the cases its parser reads
-// differently from this one). Two passes: the counts, then the indices. Tokens that are not
-// integers are left to assimp's parser.
-void check_obj_indices(const fs::path& path) {
-    enum Kind { kPosition, kTexture, kNormal };
-    static constexpr const char* keywords[3] = {"v", "vt", "vn"};
-    static constexpr const char* names[3] = {"vertex", "texture coordinate", "normal"};
-    // Calls visit(line number, keyword, rest of the line) for each logical line ('\\' continues).
-    auto for_each_line = [&](auto&& visit) {
-        std::ifstream in(path, std::ios::binary);
-        if (!in) {
-            fail("{}: cannot open model file", path.string());
-        }
-        std::string text, line;
-        int number = 0, first = 0;
-        while (std::getline(in, text)) {
-            ++number;
-            first = line.empty() ? number : first;
-            const bool continued = !text.empty() && text.back() == '\\';
-            line.append(text, 0, text.size() - (continued ? 1 : 0));
-            if (continued) {
-                line += ' ';
-                continue;
-            }
-            std::string_view rest(line);
-            rest.remove_prefix(std::min(rest.size(), rest.find_first_not_of(" \t")));
-            const std::string_view keyword = rest.substr(0, rest.find_first_of(" \t\r"));
-            visit(first, keyword, rest.substr(keyword.size()));
-            line.clear();
-        }
-    };
-    auto kind_of = [](std::string_view keyword) {
-        for (int kind = kPosition; kind <= kNormal; ++kind) {
-            if (keyword == keywords[kind]) {
-                return kind;
-            }
-        }
-        return -1;
-    };
-    long long totals[3] = {0, 0, 0};
-    for_each_line([&](int, std::string_view keyword, std::string_view) {
-        if (const int kind = kind_of(keyword); kind >= 0) {
-            ++totals[kind];
-        }
-    });
-    long long so_far[3] = {0, 0, 0};
-    for_each_line([&](int number, std::string_view keyword, std::string_view rest) {
-        if (const int kind = kind_of(keyword); kind >= 0) {
-            ++so_far[kind];
-            return;
-        }
-        if (keyword != "f" && keyword != "l" && keyword != "p") {
-            return;
-        }
-        auto check = [&](int kind, std::string_view token) {
-            long long index = 0;
-            const auto [end, error] =
-                std::from_chars(token.data(), token.data() + token.size(), index);
-            if (error != std::errc() || end == token.data()) {
-                return;  // not an integer (or an empty v//vn slot): assimp's parser decides
-            }
-            if (index == 0 || (index > 0 ? index > totals[kind] : -index > so_far[kind])) {
-                fail("{}:{}: {} index {} out of range (the file has {} '{}' lines{})",
-                     path.string(), number, names[kind], index, totals[kind], keywords[kind],
-                     index < 0 ? fmt::format(", {} before this one", so_far[kind]) : "");
-            }
-        };
-        for (size_t start = rest.find_first_not_of(" \t\r"); start != std::string_view::npos;) {
-            const size_t end = std::min(rest.size(), rest.find_first_of(" \t\r", start));
-            std::string_view corner = rest.substr(start, end - start);  // v, v/vt, v//vn, v/vt/vn
-            for (int kind = kPosition; kind <= kNormal && !corner.empty(); ++kind) {
-                const size_t slash = corner.find('/');
-                check(kind, corner.substr(0, slash));
-                corner =
-                    slash == std::string_view::npos ? std::string_view() : corner.substr(slash + 1);
-            }
-            start = rest.find_first_not_of(" \t\r", end);
-        }
-    });
-}
-
 }  // namespace
 
 Model load_model(const fs::path& path) {
@@ -177,8 +93,10 @@ Model load_model(const fs::path& path) {
     if (!fs::is_regular_file(path, ec)) {
         fail("{}: cannot open model file", path.string());
     }
-    if (lower_extension(path) == ".obj") {
+    if (const std::string extension = lower_extension(path); extension == ".obj") {
         check_obj_indices(path);
+    } else if (extension == ".ply") {
+        check_ply_header(path);
     }
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,

@@ -102,6 +102,12 @@ glm::vec3 Medium::light_falloff(float r) const {
     return transmittance(r) / (r * r);
 }
 
+bool distinct_in_float(glm::vec3 from, glm::vec3 to) {
+    const glm::dvec3 a(from), b(to);
+    const double scale = std::max({1.0, glm::length(a), glm::length(b)});
+    return glm::length(b - a) > 1e-5 * scale;
+}
+
 size_t Scene::triangle_count() const {
     size_t count = 0;
     for (const Object& object : objects) {

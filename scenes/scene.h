@@ -224,6 +224,10 @@ struct Scene {
     bool casts_shadow(const Object& object) const;
 };
 
+// Two points far enough apart for float32 to give the direction between them (a camera's or a
+// light's position and target): more than 1e-5 of their magnitude, at least 1e-5.
+bool distinct_in_float(glm::vec3 from, glm::vec3 to);
+
 const char* to_string(PhaseFunction phase);
 const char* to_string(MediumModel model);
 const char* to_string(DiffusionModel model);

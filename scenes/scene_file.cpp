@@ -82,17 +82,22 @@ Camera read_camera(TableReader r) {
     c.near = float(r.number_in("near", c.near, 0.0, 1e9, true));
     c.far = float(r.number_in("far", c.far, c.near, 1e9, true));
     c.exposure = float(r.number_in("exposure", c.exposure, 0.0, 1e9, true));
-    if (glm::length(c.target - c.position) <= 0.0f) {
-        r.error("target", "camera target equals its position");
+    if (!distinct_in_float(c.position, c.target)) {
+        r.error("target",
+                "camera target equals its position (or is too near it for float32 to "
+                "give a view direction)");
     }
     if (c.up == glm::vec3(0.0f)) {
         r.error("up", "up vector must not be [0, 0, 0]");
     }
-    // In double, on unit vectors: any finite up of any length is judged by its direction alone.
+    // In double, on unit vectors: any finite up of any length is judged by its direction alone,
+    // and kept as that direction, so that GLM's float32 lookAt never sees a tiny vector.
     const glm::dvec3 view = glm::normalize(glm::dvec3(c.target) - glm::dvec3(c.position));
-    if (glm::length(glm::cross(view, glm::normalize(glm::dvec3(c.up)))) <= 1e-6) {
+    const glm::dvec3 up = glm::normalize(glm::dvec3(c.up));
+    if (glm::length(glm::cross(view, up)) <= 1e-6) {
         r.error("up", "up vector is parallel to the view direction");
     }
+    c.up = glm::vec3(up);
     r.finish();
     return c;
 }
@@ -108,8 +113,10 @@ SpotLight read_light(TableReader r) {
     l.far = float(r.number_in("far", l.far, l.near, 1e9, true));
     l.intensity = r.non_negative_vec3("intensity", l.intensity);
     l.falloff_degrees = float(r.number_in("falloff", 0.0, 0.0, l.cone_half_angle_degrees));
-    if (glm::length(l.target - l.position) <= 0.0f) {
-        r.error("target", "light target equals its position");
+    if (!distinct_in_float(l.position, l.target)) {
+        r.error("target",
+                "light target equals its position (or is too near it for float32 to "
+                "give a direction)");
     }
     r.finish();
     return l;
@@ -368,10 +375,12 @@ std::shared_ptr<const Mesh> read_shape(TableReader& r, const fs::path& base_dir,
     if (shape == "box") {
         return std::make_shared<const Mesh>(make_box(positive_vec3("size", glm::vec3(1.0f))));
     }
+    // Procedural shapes stay within kMaxShapeTriangles; finer ones are a mesh file's job.
     if (shape == "sphere") {
         const float radius = positive("radius", 0.5);
+        // segments × segments / 2 quads: 1024 segments make 2^20 triangles.
         return std::make_shared<const Mesh>(
-            make_sphere(radius, r.integer_in("segments", 32, 4, 4096)));
+            make_sphere(radius, r.integer_in("segments", 32, 4, 1024)));
     }
     if (shape == "cylinder") {
         const float radius = positive("radius", 0.5);
@@ -387,6 +396,13 @@ std::shared_ptr<const Mesh> read_shape(TableReader& r, const fs::path& base_dir,
         }
         const int major_segments = r.integer_in("major_segments", 48, 3, 4096);
         const int minor_segments = r.integer_in("minor_segments", 24, 3, 4096);
+        if (2LL * major_segments * minor_segments > kMaxShapeTriangles) {
+            r.error("minor_segments",
+                    fmt::format("major_segments × minor_segments = {} × {} makes {} triangles, "
+                                "at most {} for a procedural shape (use a mesh file)",
+                                major_segments, minor_segments,
+                                2LL * major_segments * minor_segments, kMaxShapeTriangles));
+        }
         return std::make_shared<const Mesh>(
             make_torus(major, minor, major_segments, minor_segments));
     }

@@ -21,6 +21,9 @@ namespace sl {
 // degrees, coefficients, intensities): the GPU computes in float32, whose 7 digits leave nothing
 // of a scene laid out beyond it, and whose range a product of two such values must not leave.
 inline constexpr double kMaxSceneValue = 1e6;
+// The smallest non-zero magnitude: float32's smallest normal number. Below it a value is a
+// subnormal on the GPU and in GLM, where a direction made from it normalises to NaN.
+inline constexpr double kMinSceneValue = 1.1754943508222875e-38;
 
 // `text` as a TOML basic string literal, quotes and backslashes escaped (for files we write).
 inline std::string toml_quoted(const std::string& text) {
@@ -63,6 +66,11 @@ public:
         }
         if (!std::isfinite(*value)) {
             error(key, fmt::format("value {} is not finite", *value));
+        }
+        if (*value != 0.0 && std::abs(*value) < kMinSceneValue) {
+            error(key, fmt::format("value {:g} is below float32's smallest normal number ({:g}): "
+                                   "write 0 or a larger value",
+                                   *value, kMinSceneValue));
         }
         return *value;
     }
@@ -109,6 +117,11 @@ public:
             }
             if (!std::isfinite(*c)) {
                 error(key, fmt::format("component {} is not finite", i));
+            }
+            if (*c != 0.0 && std::abs(*c) < kMinSceneValue) {
+                error(key, fmt::format("component {} is {:g}: below float32's smallest normal "
+                                       "number ({:g}); write 0 or a larger value",
+                                       i, *c, kMinSceneValue));
             }
             if (std::abs(*c) > kMaxSceneValue) {
                 error(key, fmt::format("component {} is {}: must be within ±{:g} (the GPU computes "

@@ -56,6 +56,36 @@ TEST(Cli, RenderWritesPngExrAndJson) {
     EXPECT_TRUE(std::filesystem::exists(out / "multiple-6.none.exr"));
 }
 
+// A tiny but normal camera up (1e-20: its square is below float32's range) renders exactly as
+// the unit up does, with and without the beam tree and its Embree-cast region statistics: the
+// scene file keeps the up's direction alone (a black-box fuzz's subnormal up aborted in Embree).
+TEST(Cli, ATinyCameraUpRendersAsTheUnitOne) {
+    TempDir scenes, out;
+    const std::string scene =
+        "[camera]\nposition = [0.0, 2.0, 6.0]\ntarget = [0.0, 0.5, 0.0]\nUP\n"
+        "[light]\nposition = [0.5, 5.0, 0.5]\ntarget = [0.0, 0.0, 0.0]\n"
+        "[medium]\nsigma_s = [0.1, 0.1, 0.1]\n"
+        "[[objects]]\nshape = \"box\"\n[[objects]]\nshape = \"plane\"\n";
+    auto with_up = [&](const std::string& up) {
+        std::string text = scene;
+        return text.replace(text.find("UP"), 2, "up = " + up);
+    };
+    write_text(scenes / "tiny.toml", with_up("[0.0, 1e-20, 0.0]"));
+    write_text(scenes / "unit.toml", with_up("[0.0, 1.0, 0.0]"));
+    for (const char* method : {"none", "beamtree"}) {
+        for (const char* name : {"tiny", "unit"}) {
+            const CommandResult run = run_shaftlab(fmt::format(
+                "render --scene {} --method {} --size 64x36 --warmup 0 --frames 1 --out {}",
+                (scenes / (std::string(name) + ".toml")).string(), method, out.path().string()));
+            ASSERT_EQ(run.exit_code, 0) << name << " " << method << ": " << run.output;
+        }
+        const Image tiny = read_exr(out / fmt::format("tiny.{}.exr", method));
+        const Image unit = read_exr(out / fmt::format("unit.{}.exr", method));
+        ASSERT_EQ(tiny.rgb.size(), unit.rgb.size());
+        EXPECT_TRUE(tiny.rgb == unit.rgb) << method;
+    }
+}
+
 // `render --method reference` computes the reference once, caches it, and composites it.
 TEST(Cli, ReferenceIsCachedAndComposited) {
     TempDir cache, out;

@@ -2,6 +2,7 @@
 // malformed files.
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -159,6 +160,66 @@ TEST(Mesh, ObjFilesLoadAndBadOnesFail) {
             const std::string message = e.what();
             EXPECT_NE(message.find(expected), std::string::npos) << message;
             EXPECT_NE(message.find("bad.obj"), std::string::npos) << message;
+            EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+        }
+    }
+}
+
+// PLY headers are checked before assimp reads the data: a count beyond the mesh limits (assimp
+// reserves it first: a bad_alloc for 4e9 faces), more data than the file holds, an unknown type
+// or format each give one line naming the file, the header line and what is wrong; a well-formed
+// binary file with 16-bit list counts loads.
+TEST(Mesh, PlyHeadersAreCheckedBeforeAssimpReadsTheData) {
+    TempDir dir;
+    auto binary = [](const std::string& header, int faces_written) {
+        std::string data = header;
+        const float vertices[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+        data.append(reinterpret_cast<const char*>(vertices), sizeof(vertices));
+        const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+        for (int f = 0; f < faces_written; ++f) {
+            const uint16_t count = 3;  // little-endian on every machine this builds on
+            data.append(reinterpret_cast<const char*>(&count), sizeof(count));
+            data.append(reinterpret_cast<const char*>(faces[f]), sizeof(faces[f]));
+        }
+        return data;
+    };
+    auto header = [](const std::string& vertices, const std::string& faces,
+                     const std::string& list = "ushort int") {
+        return "ply\nformat binary_little_endian 1.0\nelement vertex " + vertices +
+               "\nproperty float x\nproperty float y\nproperty float z\nelement face " + faces +
+               "\nproperty list " + list + " vertex_indices\nend_header\n";
+    };
+    write_text(dir / "tetra.ply", binary(header("4", "4"), 4));
+    EXPECT_EQ(load_mesh(dir / "tetra.ply").triangles.size(), 4u);
+    const std::pair<std::string, std::string> cases[] = {
+        {binary(header("4", "4000000000"), 4),
+         "bad.ply:7: element 'face' declares 4000000000 items, at most 33554432"},
+        {binary(header("4000000000", "4"), 4),
+         "bad.ply:3: element 'vertex' declares 4000000000 items, at most 16777216"},
+        {binary(header("4", "20000000"), 4),
+         "bad.ply:9: the data ends in element 'face' item 5 of 20000000 (line 7)"},
+        {binary(header("4", "4"), 2), "the data ends in element 'face' item 3 of 4 (line 7)"},
+        {binary(header("4", "4", "half int"), 4), "bad.ply:8: unknown list type 'half'"},
+        {binary(header("4", "4", "float int"), 4),
+         "bad.ply:8: a list's count must be an integer type"},
+        {binary(header("4", "-1"), 4), "bad.ply:7: element 'face': count '-1' is not"},
+        {"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+         "end_header\n0 0 0\n1 0 0\n",
+         "which need at least 10 numbers, but 6 follow"},
+        {"ply\nformat binary_middle_endian 1.0\nend_header\n",
+         "bad.ply:2: unknown format 'binary_middle_endian'"},
+        {"ply\nformat ascii 1.0\nelement vertex 3\n", "no end_header line"},
+    };
+    for (const auto& [text, expected] : cases) {
+        write_text(dir / "bad.ply", text);
+        try {
+            load_mesh(dir / "bad.ply");
+            ADD_FAILURE() << "no error; expected " << expected;
+        } catch (const Error& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find(expected), std::string::npos) << message;
+            EXPECT_NE(message.find("bad.ply"), std::string::npos) << message;
             EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
         }
     }
