@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -71,8 +72,8 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     }
     for (int i = 0; i < 4; ++i) {
         const int32_t out = add_leaf({Kind::out, {}, -1});
-        nodes_[size_t(i)].front = out;
-        nodes_[size_t(i)].back = i < 3 ? i + 1 : add_leaf({Kind::open, {}, -1});
+        at(i).front = out;
+        at(i).back = i < 3 ? i + 1 : add_leaf({Kind::open, {}, -1});
     }
 
     for (const ObjectVolumes& object : volumes) {
@@ -122,7 +123,7 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
 }
 
 void BeamTree::set_leaf(int32_t index, const Leaf& leaf) {
-    Node& node = nodes_[size_t(index)];
+    Node& node = at(index);
     node.kind = leaf.kind;
     node.plane = leaf.occluder;
     node.front = -1;
@@ -161,8 +162,8 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
         auto [index, fragment] = std::move(stack.back());
         stack.pop_back();
         // Descend while the fragment lies on one side: no copies on the way down.
-        while (nodes_[size_t(index)].kind == Kind::split) {
-            const Node& node = nodes_[size_t(index)];
+        while (at(index).kind == Kind::split) {
+            const Node& node = at(index);
             Polygon front, back;
             const Side where = split_straddling(fragment, node.plane, epsilon_, true, front, back);
             if (where == Side::coplanar) {
@@ -187,7 +188,7 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
         if (index < 0) {
             continue;
         }
-        const Node node = nodes_[size_t(index)];
+        const Node node = at(index);
         switch (node.kind) {
             case Kind::split:
                 break;
@@ -329,7 +330,7 @@ void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside
     for (const Plane& plane : edges) {
         const int32_t front = add_leaf(outside);
         const int32_t back = add_leaf(outside);
-        Node& node = nodes_[size_t(current)];
+        Node& node = at(current);
         node.kind = Kind::split;
         node.plane = plane;
         node.front = front;
@@ -351,13 +352,13 @@ Region BeamTree::classify(const dvec3& p, double* margin) const {
     }
     if (inside) {
         int32_t index = 0;
-        while (nodes_[size_t(index)].kind == Kind::split) {
-            const Node& node = nodes_[size_t(index)];
+        while (at(index).kind == Kind::split) {
+            const Node& node = at(index);
             const double distance = node.plane.distance(p);
             record(distance);
             index = distance >= 0.0 ? node.front : node.back;  // Nilsson Program 2
         }
-        const Node& leaf = nodes_[size_t(index)];
+        const Node& leaf = at(index);
         region = leaf_region(leaf, p);
         if (leaf.kind == Kind::solid) {
             record(leaf.plane.distance(p));
@@ -438,7 +439,7 @@ void BeamTree::trace(const dvec3& origin, const dvec3& direction, double t0, dou
     stack.clear();
     Piece piece{0, inside0, inside1};
     for (;;) {
-        const Node& node = nodes_[size_t(piece.node)];
+        const Node& node = at(piece.node);
         if (node.kind == Kind::split) {
             double a = 0.0, b = 0.0;
             crossing(node.plane, a, b);
@@ -499,8 +500,8 @@ BeamTree::FacePlane BeamTree::face_plane(const dvec3& interior, const Polygon& f
     const bool oriented = length > tolerance * tolerance;
     const dvec3 normal = oriented ? area / length : dvec3(0.0);
     int32_t index = 0;
-    while (nodes_[size_t(index)].kind == Kind::split) {
-        const Node& node = nodes_[size_t(index)];
+    while (at(index).kind == Kind::split) {
+        const Node& node = at(index);
         bool on_plane = !oriented || std::abs(glm::dot(normal, node.plane.normal)) > 1.0 - 1e-9;
         for (const dvec3& v : face.vertices) {
             on_plane = on_plane && std::abs(node.plane.distance(v)) <= tolerance;
@@ -543,7 +544,7 @@ BeamTree::Partition BeamTree::partition(const Polygon& polygon) const {
     while (!stack.empty()) {
         auto [index, piece] = std::move(stack.back());
         stack.pop_back();
-        const Node& node = nodes_[size_t(index)];
+        const Node& node = at(index);
         switch (node.kind) {
             case Kind::split: {
                 Split parts = split(piece, node.plane, epsilon_);
@@ -605,7 +606,7 @@ void BeamTree::split_cells(int32_t index, Polyhedron cell, double epsilon, int d
         out.push_back({std::move(part), beam});
     };
     while (depth < kParallelDepth) {
-        const Node& node = nodes_[size_t(index)];
+        const Node& node = at(index);
         if (node.kind != Kind::split) {
             emit_leaf(node, std::move(cell));
             return;
@@ -632,7 +633,7 @@ void BeamTree::split_cells(int32_t index, Polyhedron cell, double epsilon, int d
     while (!stack.empty()) {
         auto [node_index, part] = std::move(stack.back());
         stack.pop_back();
-        const Node& node = nodes_[size_t(node_index)];
+        const Node& node = at(node_index);
         if (node.kind == Kind::split) {
             Polyhedron front = clip(part, node.plane.flipped(), epsilon);
             Polyhedron back = clip(part, node.plane, epsilon);
@@ -652,6 +653,9 @@ GpuTree BeamTree::gpu_tree() const {
     auto relative = [&](const Plane& plane) {
         return glm::vec4(glm::vec3(plane.normal), float(plane.distance(apex_)));
     };
+    // The GPU links are 32-bit: a tree past that is a bug in the build, not in the scene.
+    SL_CHECK(nodes_.size() < size_t(std::numeric_limits<int32_t>::max()));
+    SL_CHECK(stoppers_.size() + 2 < size_t(std::numeric_limits<int32_t>::max()));
     GpuTree gpu;
     gpu.planes = {relative(influence_[4]), relative(influence_[5])};
     for (const Plane& stopper : stoppers_) {
@@ -679,7 +683,7 @@ BeamTreeStats BeamTree::stats() const {
         const auto [index, depth] = stack.back();
         stack.pop_back();
         stats.max_depth = std::max(stats.max_depth, depth);
-        const Node& node = nodes_[size_t(index)];
+        const Node& node = at(index);
         switch (node.kind) {
             case Kind::split:
                 stack.emplace_back(node.front, depth + 1);

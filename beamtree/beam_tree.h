@@ -25,6 +25,7 @@
 
 #include "beamtree/bounding_volumes.h"
 #include "beamtree/geometry.h"
+#include "core/check.h"
 #include "scenes/scene.h"
 
 namespace sl::bt {
@@ -104,7 +105,7 @@ public:
         bool piece_in_front = false;  // the piece lies on that plane's front side
         Plane plane;                  // that node's plane
     };
-    const Plane& node_plane(int32_t node) const { return nodes_[size_t(node)].plane; }
+    const Plane& node_plane(int32_t index) const { return at(index).plane; }
     // The highest split node on the path to the leaf holding `interior` (a point strictly inside
     // a piece) whose plane holds every vertex of `face` within `tolerance`.
     FacePlane face_plane(const dvec3& interior, const Polygon& face, double tolerance) const;
@@ -140,7 +141,20 @@ private:
         Plane occluder;
         int32_t stopper = -1;  // index into stoppers_
     };
-    const Plane& stopper_of(const Node& node) const { return stoppers_[size_t(node.back)]; }
+    // The node at `index`, checked in debug builds (the descent is the hot path).
+    const Node& at(int32_t index) const {
+        SL_DCHECK_INDEX(index, nodes_.size());
+        return nodes_[size_t(index)];
+    }
+    Node& at(int32_t index) {
+        SL_DCHECK_INDEX(index, nodes_.size());
+        return nodes_[size_t(index)];
+    }
+    const Plane& stopper_of(const Node& leaf) const {
+        SL_DCHECK(leaf.kind == Kind::blocker);
+        SL_DCHECK_INDEX(leaf.back, stoppers_.size());
+        return stoppers_[size_t(leaf.back)];
+    }
     void split_cells(int32_t node, Polyhedron cell, double epsilon, int depth,
                      std::vector<LeafCell>& out) const;
     // classify()'s answer at a point inside the near and far ranges that reached `leaf`.

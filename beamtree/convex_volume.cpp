@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace sl::bt {
@@ -232,8 +233,12 @@ ConvexVolume convex_hull(const Mesh& mesh, int max_planes) {
             largest = i;
         }
     }
+    // Every mesh was validated when it was made (scenes/mesh.h: at least one triangle, indices in
+    // range); the pieces are hulls of clipped triangles of such meshes.
+    SL_CHECK(!mesh.triangles.empty());
     Plane support;
     const glm::uvec3 t = mesh.triangles[largest];
+    SL_DCHECK(t.x < points.size() && t.y < points.size() && t.z < points.size());
     if (!Plane::through(points[t.x], points[t.y], points[t.z], support)) {
         fail("mesh has no triangle of non-zero area");
     }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <exception>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace sl {
@@ -49,11 +50,15 @@ void require_finite(const Image& image, std::string_view buffer) {
 }
 
 glm::vec3 Image::at(int x, int y) const {
+    SL_DCHECK_INDEX(x, width);
+    SL_DCHECK_INDEX(y, height);
     const size_t i = (static_cast<size_t>(y) * width + x) * 3;
     return {rgb[i], rgb[i + 1], rgb[i + 2]};
 }
 
 void Image::set(int x, int y, glm::vec3 value) {
+    SL_DCHECK_INDEX(x, width);
+    SL_DCHECK_INDEX(y, height);
     const size_t i = (static_cast<size_t>(y) * width + x) * 3;
     rgb[i] = value.r;
     rgb[i + 1] = value.g;
