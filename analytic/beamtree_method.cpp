@@ -6,6 +6,7 @@
 #include "beamtree/beam_tree.h"
 #include "beamtree/boundary.h"
 #include "beamtree/regions.h"
+#include "frame/method_registry.h"
 #include "gl/platform.h"
 
 namespace sl::analytic {
@@ -17,19 +18,15 @@ enum class Surfaces { boundary, cells, fragments };
 
 class BeamTreeMethod final : public frame::VolumeMethod {
 public:
-    BeamTreeMethod() {
-        declare({.name = "surfaces",
-                 .type = frame::Parameter::Type::choice,
-                 .default_value = 0,
-                 .description =
-                     "boundary: the lit union's boundary, each plane's faces merged "
-                     "into maximal polygons (docs/design.md §9); cells: every lit cell's "
-                     "faces (the first round's mesh); fragments: the boundary's faces "
-                     "fanned one by one (same integral in all three)",
-                 .choices = {"boundary", "cells", "fragments"}});
-        declare(region_route_parameter());
+    BeamTreeMethod() : VolumeMethod("beamtree") {
+        surfaces_ = declare_choice(
+            "surfaces", {"boundary", "cells", "fragments"}, Surfaces::boundary,
+            "boundary: the lit union's boundary, each plane's faces merged into maximal polygons "
+            "(docs/design.md §9); cells: every lit cell's faces (the first round's mesh); "
+            "fragments: the boundary's faces fanned one by one (same integral in all three)");
+        route_ = declare_choice("route", region_route_choices(), RegionRoute::automatic,
+                                region_route_description());
     }
-    std::string name() const override { return "beamtree"; }
     std::string accepts() const override { return AnalyticRegionPass::accepts(); }
     void prepare(const Scene& scene) override {
         software_ = gl::current_renderer_is_software();  // for route = auto
@@ -39,10 +36,10 @@ public:
     std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
                                                  const SceneChange& change) const override {
         AnalyticRegionPass::require_closed_form(scene, name());
-        if (walks(choice<RegionRoute>("route"), scene, software_)) {
+        if (walks(*route_, scene, software_)) {
             return region_frame_work(scene, change, {.gpu_tree = true}, built_, true);
         }
-        const auto surfaces = choice<Surfaces>("surfaces");
+        const Surfaces surfaces = *surfaces_;
         return region_frame_work(
             scene, change,
             {.lit = true,
@@ -83,6 +80,8 @@ public:
     }
 
 private:
+    frame::Param<Surfaces> surfaces_;
+    frame::Param<RegionRoute> route_;
     AnalyticRegionPass pass_;
     GpuTreeBuffers tree_;  // the walk route's tree
     RegionLists lists_;    // and the lit intervals it finds
@@ -94,8 +93,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<frame::VolumeMethod> create_beamtree_method() {
-    return std::make_unique<BeamTreeMethod>();
+void register_methods(frame::MethodRegistry& registry) {
+    registry.add("beamtree", 10, [] { return std::make_unique<BeamTreeMethod>(); });
 }
 
 }  // namespace sl::analytic

@@ -9,8 +9,13 @@
 
 #include "frame/volume_method.h"
 
+namespace sl::frame {
+class MethodRegistry;
+}
+
 namespace sl::analytic {
 
-std::unique_ptr<frame::VolumeMethod> create_beamtree_method();
+// Registers `beamtree` (frame/method_registry.h).
+void register_methods(frame::MethodRegistry& registry);
 
 }  // namespace sl::analytic

@@ -1,8 +1,8 @@
 #pragma once
 // The lookup table of the light model's GLSL twin (analytic/shaders/in_scattering.glsl), made on
 // the CPU from the same integrands as the closed forms of analytic/in_scattering.cpp. One 2D table
-// per medium, RG32F, bound at kMediumTableUnit; the second channel anchors G at the ray's far end
-// (analytic/in_scattering.h, "Conditioning"):
+// per medium, RG32F, bound at SL_MEDIUM_TABLE_UNIT (analytic/shaders/analytic_interface.h); the
+// second channel anchors G at the ray's far end (analytic/in_scattering.h, "Conditioning"):
 //   physical:   R: H(s, v) = (1 + u) F_p(u, v), F_p(u, v) = ∫_0^v exp(-u tan ζ) p(cos 2ζ) dζ, on
 //               s = u / (1 + u) in [0, 1] (x; s = 1 is u = ∞, where H = p(1) for v > 0) and
 //               v in [0, π/2] (y). The scale (1 + u) keeps H bounded (F_p <= p_max / u) so that
@@ -24,7 +24,6 @@
 
 namespace sl::analytic {
 
-constexpr GLuint kMediumTableUnit = 7;
 // Samples per axis; results/analytic_media.md measures the GPU integral's error against C++ per
 // resolution: 512² is as accurate as 1024² (both at float32's floor) and builds in under 0.2 s.
 constexpr int kMediumTableSize = 512;

@@ -1,12 +1,11 @@
 #include "analytic/gpu_tree.h"
 
+#include "beamtree/shaders/classify_interface.h"
 #include "gl/functions.h"
 
 namespace sl::analytic {
 
-namespace {
-constexpr GLuint kTreeNodesBinding = 1, kTreePlanesBinding = 2;  // classify.glsl
-}  // namespace
+namespace {}  // namespace
 
 void GpuTreeBuffers::upload(const bt::GpuTree& tree) {
     nodes_ = gl::create_buffer(tree.nodes.data(), tree.nodes.size() * sizeof(tree.nodes[0]));
@@ -14,22 +13,21 @@ void GpuTreeBuffers::upload(const bt::GpuTree& tree) {
 }
 
 void GpuTreeBuffers::bind() const {
-    gl::GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreeNodesBinding, nodes_.id());
-    gl::GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTreePlanesBinding, planes_.id());
+    gl::GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_TREE_NODES_BINDING, nodes_.id());
+    gl::GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_TREE_PLANES_BINDING, planes_.id());
 }
 
-frame::Parameter region_route_parameter() {
-    return {.name = "route",
-            .type = frame::Parameter::Type::choice,
-            .default_value = 0,
-            .description =
-                "walk: each eye ray walks the beam tree on the GPU, the CPU builds "
-                "only the tree per change; mesh: the CPU builds the region pieces "
-                "and boundary meshes, the GPU rasterizes them (same image, "
-                "docs/design.md §14); auto: walk when the scene is animated and the GL "
-                "is a GPU, mesh when it is still or the GL is a software rasterizer "
-                "(llvmpipe)",
-            .choices = {"auto", "walk", "mesh"}};
+const std::vector<std::string>& region_route_choices() {
+    static const std::vector<std::string> choices = {"auto", "walk", "mesh"};
+    return choices;
+}
+
+const char* region_route_description() {
+    return "walk: each eye ray walks the beam tree on the GPU, the CPU builds only the tree per "
+           "change; mesh: the CPU builds the region pieces and boundary meshes, the GPU "
+           "rasterizes them (same image, docs/design.md §14); auto: walk when the scene is "
+           "animated and the GL is a GPU, mesh when it is still or the GL is a software "
+           "rasterizer (llvmpipe)";
 }
 
 bool walks(RegionRoute route, const Scene& scene, bool software) {

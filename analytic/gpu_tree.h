@@ -5,7 +5,7 @@
 //   walk  the GPU walks the tree per eye ray; the CPU builds the tree and nothing else;
 //   mesh  the CPU extracts the region pieces and the lit and uncertain boundary meshes, which the
 //         GPU rasterizes (Nilsson §3.2.2 for the lit integral, the per-pixel region lists).
-// Both give the same image (tests/beamtree_test.cpp, BoundaryOnTheGpu).
+// Both give the same image (tests/beamtree_boundary_gpu_test.cpp, BoundaryOnTheGpu).
 
 #include "beamtree/beam_tree.h"
 #include "frame/volume_method.h"
@@ -28,8 +28,9 @@ private:
 // times the tree every frame, more than a GPU's walk, but on a software rasterizer the
 // full-screen walk costs more than that (results/moving.md, results/animated).
 enum class RegionRoute { automatic, walk, mesh };
-// The `route` parameter of the region methods.
-frame::Parameter region_route_parameter();
+// The `route` parameter of the region methods: its choices and description.
+const std::vector<std::string>& region_route_choices();
+const char* region_route_description();
 // Whether `route` walks the tree for `scene`; `software`: the GL is a software rasterizer
 // (gl::current_renderer_is_software(), asked on the GL thread).
 bool walks(RegionRoute route, const Scene& scene, bool software);

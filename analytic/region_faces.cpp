@@ -2,12 +2,13 @@
 
 #include <glm/vec4.hpp>
 
+#include "analytic/shaders/analytic_interface.h"
 #include "gl/functions.h"
 
 namespace sl::analytic {
 
 void RegionFaces::bind() const {
-    gl::GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kFaceCornersBinding, corners.id());
+    gl::GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_FACE_CORNERS_BINDING, corners.id());
     gl::GL.BindVertexArray(mesh.vertex_array.id());
 }
 

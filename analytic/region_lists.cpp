@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "analytic/shaders/analytic_interface.h"
+#include "beamtree/shaders/region_lists_interface.h"
 #include "gl/functions.h"
 #include "gl/shaders.h"
 
@@ -10,9 +12,6 @@ namespace sl::analytic {
 namespace {
 
 using gl::GL;
-
-constexpr GLuint kCountsBinding = 3, kCrossingsBinding = 4;  // region_lists.glsl
-constexpr int kListSize = 16;                                // REGION_LIST_SIZE
 
 }  // namespace
 
@@ -31,15 +30,15 @@ void RegionLists::begin_build(const frame::VolumeInputs& inputs, bool mark_stenc
         height_ = inputs.height;
         const size_t slots = size_t(width_) * height_ * 2;
         region_counts_ = gl::create_buffer(nullptr, slots * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT);
-        crossings_ =
-            gl::create_buffer(nullptr, slots * kListSize * sizeof(float), GL_DYNAMIC_STORAGE_BIT);
+        crossings_ = gl::create_buffer(nullptr, slots * SL_REGION_LIST_SIZE * sizeof(float),
+                                       GL_DYNAMIC_STORAGE_BIT);
         region_counts_.label("region list counts");
         crossings_.label("region list crossings");
     }
     const GLuint zero = 0;
     GL.ClearNamedBufferData(region_counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding, region_counts_.id());
-    GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossingsBinding, crossings_.id());
+    GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_REGION_COUNTS_BINDING, region_counts_.id());
+    GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_REGION_CROSSINGS_BINDING, crossings_.id());
     GL.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     GL.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     GL.Disable(GL_BLEND);
@@ -74,7 +73,7 @@ void RegionLists::build(const frame::VolumeInputs& inputs, bool mark_stencil) {
             GL.StencilFunc(GL_ALWAYS, GLint(bit), bit);
             GL.StencilMask(bit);
         }
-        GL.ProgramUniform1i(program_.id(), 0, s);
+        GL.ProgramUniform1i(program_.id(), SL_REGION_LISTS_SURFACE, s);
         meshes_[s].bind();
         GL.DrawElements(GL_TRIANGLES, meshes_[s].index_count(), GL_UNSIGNED_INT, nullptr);
     }
@@ -97,11 +96,11 @@ void RegionLists::walk(const frame::VolumeInputs& inputs, const GpuTreeBuffers& 
         GL.StencilMask(both);
     }
     tree.bind();
-    GL.BindTextureUnit(0, inputs.surface_depth);
+    GL.BindTextureUnit(SL_ANALYTIC_SURFACE_DEPTH_UNIT, inputs.surface_depth);
     GL.UseProgram(walk_program_.id());
     // region_lists_walk.frag's mark_surfaces: bit 0 lit, bit 1 uncertain, as the stencil's bits.
     static_assert(kLitStencilBit == 1 && kUncertainStencilBit == 2);
-    GL.ProgramUniform1i(walk_program_.id(), 0, GLint(mark_bits));
+    GL.ProgramUniform1i(walk_program_.id(), SL_REGION_LISTS_MARK_SURFACES, GLint(mark_bits));
     GL.BindVertexArray(empty_vertex_array_.id());
     GL.DrawArrays(GL_TRIANGLES, 0, 3);
     end_build(mark_stencil);
@@ -132,7 +131,7 @@ size_t RegionLists::overflows() const {
     GL.GetNamedBufferSubData(region_counts_.id(), 0, GLsizeiptr(counts.size() * sizeof(GLuint)),
                              counts.data());
     return size_t(std::count_if(counts.begin(), counts.end(),
-                                [](GLuint n) { return n > GLuint(kListSize); }));
+                                [](GLuint n) { return n > GLuint(SL_REGION_LIST_SIZE); }));
 }
 
 }  // namespace sl::analytic

@@ -8,6 +8,7 @@
 
 #include "analytic/gpu_tables.h"
 #include "analytic/in_scattering.h"
+#include "analytic/shaders/analytic_interface.h"
 #include "core/error.h"
 #include "gl/shaders.h"
 
@@ -98,8 +99,8 @@ TextureViews ClosedFormScene::textures(const std::string& owner) const {
 }
 
 SignedDrawScope::SignedDrawScope(const VolumeInputs& inputs, const ClosedFormScene& closed_form) {
-    GL.BindTextureUnit(0, inputs.surface_depth);
-    GL.BindTextureUnit(kMediumTableUnit, closed_form.medium_table());
+    GL.BindTextureUnit(SL_ANALYTIC_SURFACE_DEPTH_UNIT, inputs.surface_depth);
+    GL.BindTextureUnit(SL_MEDIUM_TABLE_UNIT, closed_form.medium_table());
     GL.Enable(GL_BLEND);
     GL.BlendFunc(GL_ONE, GL_ONE);
     GL.Enable(GL_DEPTH_CLAMP);
@@ -174,7 +175,7 @@ void AnalyticRegionPass::draw(const VolumeInputs& inputs) const {
     }
     if (eye_windings_ != 0) {
         GL.UseProgram(eye_program_.id());
-        GL.ProgramUniform1f(eye_program_.id(), 0, float(eye_windings_));
+        GL.ProgramUniform1f(eye_program_.id(), SL_REGIONS_EYE_WINDINGS, float(eye_windings_));
         GL.BindVertexArray(eye_vertex_array_.id());
         GL.DrawArrays(GL_TRIANGLES, 0, 3);
     }

@@ -57,7 +57,7 @@ private:
 };
 
 // The GL state of a signed draw of region faces, for its scope: the surface depth at unit 0 and
-// the medium table at kMediumTableUnit bound, additive blending (signed sums in the float
+// the medium table at SL_MEDIUM_TABLE_UNIT bound, additive blending (signed sums in the float
 // target), depth clamp (faces in front of the near plane still count).
 class SignedDrawScope {
 public:

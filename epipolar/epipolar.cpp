@@ -6,8 +6,11 @@
 
 #include "analytic/gpu_tables.h"
 #include "analytic/region_pass.h"
+#include "analytic/shaders/analytic_interface.h"
 #include "core/error.h"
 #include "epipolar/geometry.h"
+#include "epipolar/shaders/epipolar_interface.h"
+#include "frame/method_registry.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
@@ -16,22 +19,11 @@ namespace sl::epipolar {
 
 namespace {
 
-using frame::Parameter;
 using gl::GL;
 
 // The choices, in the order declared.
 enum class LitIntegral { closed_form, samples };
 
-// Uniform locations of shaders/epipolar.glsl (every pass but minmax.comp and interpolate.comp).
-namespace uniform {
-constexpr GLint grid = 0, light_screen = 1, arc = 2, map_texels = 3, depth_threshold = 4,
-                max_step = 5, samples = 6, minmax_levels = 7, direct = 8;
-}
-// Units and bindings. Units 4 and 5 hold the frame's shadow map and moments, 7 the medium table.
-constexpr GLuint kSurfaceDepthUnit = 0, kCoordinatesUnit = 1, kTreeUnit = 2, kScatteringUnit = 2,
-                 kLightDepthUnit = 3, kMarksUnit = 6;
-constexpr GLuint kCoordinatesImage = 0, kMarksImage = 1, kTreeImage = 2, kScatteringImage = 3;
-constexpr GLuint kSlicesBinding = 0, kCountersBinding = 1, kMarchedListBinding = 2;
 constexpr int kMaxStep = 256;
 constexpr int kMaxSamples = 1 << 22;  // slices x samples_per_slice: 64 MiB per RGBA32F texture
 
@@ -44,50 +36,44 @@ struct Counters {
 
 class EpipolarMethod final : public frame::VolumeMethod {
 public:
-    EpipolarMethod() {
-        declare({.name = "slices",
-                 .type = Parameter::Type::integer,
-                 .default_value = 512,
-                 .min = 1,
-                 .max = 8192,
-                 .description = "epipolar lines from the light's screen position to the border"});
-        declare({.name = "samples_per_slice",
-                 .type = Parameter::Type::integer,
-                 .default_value = 256,
-                 .min = 2,
-                 .max = 8192,
-                 .description = "samples on each line, evenly from its entry to its exit"});
-        declare({.name = "max_step",
-                 .type = Parameter::Type::integer,
-                 .default_value = 16,
-                 .min = 1,
-                 .max = kMaxStep,
-                 .description = "samples between two marched ones at most (more are marched at "
-                                "depth discontinuities)"});
-        declare({.name = "depth_threshold",
-                 .default_value = 0.03,
-                 .min = 0.0,
-                 .max = 1e3,
-                 .description = "view depths further apart than this fraction of the nearer are "
-                                "a discontinuity (refinement and the bilateral unwarp)"});
-        declare({.name = "samples",
-                 .type = Parameter::Type::integer,
-                 .default_value = 64,
-                 .min = 1,
-                 .max = 4096,
-                 .description = "steps per marched eye ray over its interval in the cone"});
-        declare_choice("lit_integral", {"closed_form", "samples"}, 0,
-                       "closed_form: a lit run of steps adds G(z1) - G(z0) (Chen et al.); "
-                       "samples: its steps' densities (any medium)");
-        declare_flag("minmax", true,
-                     "on: the 1D min-max tree skips lit and dark runs; off: every step tests the "
-                     "rectified line");
-        declare_flag("interpolation", true,
-                     "off: every pixel is marched directly through the shadow map (= march)");
+    EpipolarMethod() : VolumeMethod("epipolar") {
+        slices_ = declare_integer("slices", 512, 1, 8192,
+                                  "epipolar lines from the light's screen position to the border");
+        samples_per_slice_ =
+            declare_integer("samples_per_slice", 256, 2, 8192,
+                            "samples on each line, evenly from its entry to its exit");
+        max_step_ = declare_integer("max_step", 16, 1, kMaxStep,
+                                    "samples between two marched ones at most (more are marched "
+                                    "at depth discontinuities)");
+        depth_threshold_ = declare_real("depth_threshold", 0.03, 0.0, 1e3,
+                                        "view depths further apart than this fraction of the "
+                                        "nearer are a discontinuity (refinement and the bilateral "
+                                        "unwarp)");
+        samples_ = declare_integer("samples", 64, 1, 4096,
+                                   "steps per marched eye ray over its interval in the cone");
+        lit_integral_ =
+            declare_choice("lit_integral", {"closed_form", "samples"}, LitIntegral::closed_form,
+                           "closed_form: a lit run of steps adds G(z1) - G(z0) (Chen "
+                           "et al.); samples: its steps' densities (any medium)");
+        minmax_ = declare_flag("minmax", true,
+                               "on: the 1D min-max tree skips lit and dark runs; off: every step "
+                               "tests the rectified line");
+        interpolation_ =
+            declare_flag("interpolation", true,
+                         "off: every pixel is marched directly through the shadow map (= march)");
         declare_shadow_parameters(frame::ShadowFilter::hard);
     }
+    void validate() const override {
+        const double samples = double(*slices_) * double(*samples_per_slice_);
+        if (samples > double(kMaxSamples)) {
+            fail(
+                "epipolar: slices x samples_per_slice = {} x {} = {} samples, more than the {} "
+                "it keeps (four RGBA32F textures of that size); lower slices or "
+                "samples_per_slice",
+                *slices_, *samples_per_slice_, samples, kMaxSamples);
+        }
+    }
 
-    std::string name() const override { return "epipolar"; }
     std::string accepts() const override {
         return "every medium and light with lit_integral = samples; with closed_form (the "
                "default): " +
@@ -121,7 +107,7 @@ public:
 
     std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
                                                  const SceneChange&) const override {
-        if (choice<LitIntegral>("lit_integral") == LitIntegral::closed_form) {
+        if (*lit_integral_ == LitIntegral::closed_form) {
             analytic::AnalyticRegionPass::require_closed_form(scene, name());
         }
         return nullptr;  // the slice table is made per frame in render(), from the frame's views
@@ -136,19 +122,13 @@ public:
         GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
         const Counters zero;
         GL.NamedBufferSubData(counters_.id(), 0, sizeof(zero), &zero);
-        const bool direct = !flag("interpolation");
+        const bool direct = !*interpolation_;
         int map_size = 0;
         GL.GetTextureLevelParameteriv(inputs.shadow_map, 0, GL_TEXTURE_WIDTH, &map_size);
         const int texels = map_texels(map_size);
-        const int levels = flag("minmax") ? int(std::round(std::log2(double(texels)))) : 0;
-        const glm::ivec2 grid(int(number("samples_per_slice")), int(number("slices")));
-        if (double(grid.x) * grid.y > double(kMaxSamples)) {
-            fail(
-                "epipolar: slices x samples_per_slice = {} x {} = {} samples, more than the {} "
-                "it keeps (four RGBA32F textures of that size); lower slices or "
-                "samples_per_slice",
-                grid.y, grid.x, double(grid.x) * grid.y, kMaxSamples);
-        }
+        const int levels = *minmax_ ? int(std::round(std::log2(double(texels)))) : 0;
+        validate();  // the viewer may hold a combination that failed it
+        const glm::ivec2 grid(*samples_per_slice_, *slices_);
         const Views views{
             .view_projection = glm::dmat4(inputs.uniforms.view_projection),
             .light_view_projection = glm::dmat4(inputs.uniforms.light_view_projection),
@@ -162,57 +142,63 @@ public:
         for (const gl::Program* program : {&coordinates_program_, &refine_program_,
                                            &rectify_program_, &march_program_, &apply_program_}) {
             const GLuint id = program->id();
-            GL.ProgramUniform2i(id, uniform::grid, grid.x, grid.y);
-            GL.ProgramUniform2f(id, uniform::light_screen, float(screen.x), float(screen.y));
-            GL.ProgramUniform3f(id, uniform::arc, float(arc.start), float(arc.length),
+            GL.ProgramUniform2i(id, SL_EPIPOLAR_GRID, grid.x, grid.y);
+            GL.ProgramUniform2f(id, SL_EPIPOLAR_LIGHT_SCREEN, float(screen.x), float(screen.y));
+            GL.ProgramUniform3f(id, SL_EPIPOLAR_ARC, float(arc.start), float(arc.length),
                                 arc.periodic ? 1.0f : 0.0f);
-            GL.ProgramUniform1i(id, uniform::map_texels, texels);
-            GL.ProgramUniform1f(id, uniform::depth_threshold, float(number("depth_threshold")));
-            GL.ProgramUniform1i(id, uniform::max_step, int(number("max_step")));
-            GL.ProgramUniform1i(id, uniform::samples, int(number("samples")));
-            GL.ProgramUniform1i(id, uniform::minmax_levels, levels);
-            GL.ProgramUniform1i(id, uniform::direct, direct ? 1 : 0);
+            GL.ProgramUniform1i(id, SL_EPIPOLAR_MAP_TEXELS, texels);
+            GL.ProgramUniform1f(id, SL_EPIPOLAR_DEPTH_THRESHOLD, float(*depth_threshold_));
+            GL.ProgramUniform1i(id, SL_EPIPOLAR_MAX_STEP, *max_step_);
+            GL.ProgramUniform1i(id, SL_EPIPOLAR_SAMPLES, *samples_);
+            GL.ProgramUniform1i(id, SL_EPIPOLAR_MINMAX_LEVELS, levels);
+            GL.ProgramUniform1i(id, SL_EPIPOLAR_DIRECT, direct ? 1 : 0);
         }
-        GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountersBinding, counters_.id());
+        GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_EPIPOLAR_COUNTERS_BINDING, counters_.id());
         valid_slices_ = 0;
         if (!direct) {
             inputs.timeline.section("slices");
-            GL.BindTextureUnit(kLightDepthUnit, inputs.shadow_map);
-            GL.BindSampler(kLightDepthUnit, plain_sampler_.id());  // depths, not comparisons
+            GL.BindTextureUnit(SL_EPIPOLAR_LIGHT_DEPTH_UNIT, inputs.shadow_map);
+            GL.BindSampler(SL_EPIPOLAR_LIGHT_DEPTH_UNIT,
+                           plain_sampler_.id());  // depths, not comparisons
             upload_slices(make_slices(views, grid.y, texels));
             allocate(grid, texels);
-            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kMarchedListBinding, marched_list_.id());
-            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlicesBinding, slices_buffer_.id());
+            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_EPIPOLAR_MARCHED_LIST_BINDING,
+                              marched_list_.id());
+            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_EPIPOLAR_SLICES_BINDING,
+                              slices_buffer_.id());
 
             inputs.timeline.section("coordinates");
             GL.UseProgram(coordinates_program_.id());
-            GL.BindTextureUnit(kSurfaceDepthUnit, inputs.surface_depth);
-            GL.BindImageTexture(kCoordinatesImage, coordinates_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                                GL_RGBA32F);
+            GL.BindTextureUnit(SL_EPIPOLAR_SURFACE_DEPTH_UNIT, inputs.surface_depth);
+            GL.BindImageTexture(SL_EPIPOLAR_COORDINATES_IMAGE, coordinates_.id(), 0, GL_FALSE, 0,
+                                GL_WRITE_ONLY, GL_RGBA32F);
             gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
 
             inputs.timeline.section("refine");
             GL.UseProgram(refine_program_.id());
-            GL.BindTextureUnit(kCoordinatesUnit, coordinates_.id());
-            GL.BindImageTexture(kMarksImage, marks_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32I);
+            GL.BindTextureUnit(SL_EPIPOLAR_COORDINATES_UNIT, coordinates_.id());
+            GL.BindImageTexture(SL_EPIPOLAR_MARKS_IMAGE, marks_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                                GL_R32I);
             gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
 
             inputs.timeline.section("min-max trees");
             GL.UseProgram(rectify_program_.id());
-            GL.BindImageTexture(kTreeImage, tree_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
+            GL.BindImageTexture(SL_EPIPOLAR_TREE_IMAGE, tree_.id(), 0, GL_FALSE, 0, GL_READ_WRITE,
+                                GL_RG32F);
             gl::dispatch_compute({texels / 64, grid.y, 1}, {64, 1, 1});
             if (levels > 6) {  // 1 to 6 by rectify.comp
                 GL.UseProgram(minmax_program_.id());
-                GL.ProgramUniform3i(minmax_program_.id(), 0, levels, texels, grid.y);
+                GL.ProgramUniform3i(minmax_program_.id(), SL_EPIPOLAR_TREE_LEVELS, levels, texels,
+                                    grid.y);
                 gl::dispatch_compute({grid.y, 1, 1}, {64, 1, 1});
             }
 
             inputs.timeline.section("march");
             GL.UseProgram(march_program_.id());
-            GL.BindTextureUnit(kTreeUnit, tree_.id());
-            GL.BindTextureUnit(analytic::kMediumTableUnit, closed_form_.medium_table());
-            GL.BindImageTexture(kScatteringImage, scattering_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                                GL_RGBA32F);
+            GL.BindTextureUnit(SL_EPIPOLAR_TREE_UNIT, tree_.id());
+            GL.BindTextureUnit(SL_MEDIUM_TABLE_UNIT, closed_form_.medium_table());
+            GL.BindImageTexture(SL_EPIPOLAR_SCATTERING_IMAGE, scattering_.id(), 0, GL_FALSE, 0,
+                                GL_WRITE_ONLY, GL_RGBA32F);
             GL.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, counters_.id());
             GL.DispatchComputeIndirect(0);  // refine.comp's count of marched samples
             GL.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -221,26 +207,26 @@ public:
 
             inputs.timeline.section("interpolate");
             GL.UseProgram(interpolate_program_.id());
-            GL.BindTextureUnit(kMarksUnit, marks_.id());
-            GL.ProgramUniform2i(interpolate_program_.id(), uniform::grid, grid.x, grid.y);
-            GL.BindImageTexture(kScatteringImage, scattering_.id(), 0, GL_FALSE, 0, GL_READ_WRITE,
-                                GL_RGBA32F);
+            GL.BindTextureUnit(SL_EPIPOLAR_MARKS_UNIT, marks_.id());
+            GL.ProgramUniform2i(interpolate_program_.id(), SL_EPIPOLAR_GRID, grid.x, grid.y);
+            GL.BindImageTexture(SL_EPIPOLAR_SCATTERING_IMAGE, scattering_.id(), 0, GL_FALSE, 0,
+                                GL_READ_WRITE, GL_RGBA32F);
             gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
         }
 
         inputs.timeline.section("apply");
         GL.UseProgram(apply_program_.id());
-        GL.BindTextureUnit(kSurfaceDepthUnit, inputs.surface_depth);
+        GL.BindTextureUnit(SL_EPIPOLAR_SURFACE_DEPTH_UNIT, inputs.surface_depth);
         if (!direct) {
-            GL.BindTextureUnit(kCoordinatesUnit, coordinates_.id());
-            GL.BindTextureUnit(kScatteringUnit, scattering_.id());
+            GL.BindTextureUnit(SL_EPIPOLAR_COORDINATES_UNIT, coordinates_.id());
+            GL.BindTextureUnit(SL_EPIPOLAR_SCATTERING_UNIT, scattering_.id());
         }
         GL.BindVertexArray(empty_vertex_array_.id());
         GL.Enable(GL_BLEND);
         GL.BlendFunc(GL_ONE, GL_ONE);
         GL.DrawArrays(GL_TRIANGLES, 0, 3);
         GL.Disable(GL_BLEND);
-        GL.BindSampler(kLightDepthUnit, 0);
+        GL.BindSampler(SL_EPIPOLAR_LIGHT_DEPTH_UNIT, 0);
         GL.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         frame_pixels_ = double(inputs.width) * inputs.height;
         drawn_grid_ = direct ? glm::ivec2(0) : grid;
@@ -283,8 +269,16 @@ public:
     }
 
 private:
+    frame::Param<int> slices_;
+    frame::Param<int> samples_per_slice_;
+    frame::Param<int> max_step_;
+    frame::Param<double> depth_threshold_;
+    frame::Param<int> samples_;
+    frame::Param<LitIntegral> lit_integral_;
+    frame::Param<bool> minmax_;
+    frame::Param<bool> interpolation_;
     void make_march_program(const Scene& scene) {
-        const bool closed = choice<LitIntegral>("lit_integral") == LitIntegral::closed_form;
+        const bool closed = *lit_integral_ == LitIntegral::closed_form;
         if (closed) {
             analytic::AnalyticRegionPass::require_closed_form(scene, name());
         }
@@ -335,9 +329,9 @@ private:
     void draw_overlay(const frame::VolumeInputs& inputs) {
         overlay_.bind_cleared(inputs.width, inputs.height, "epipolar samples");
         GL.UseProgram(overlay_program_.id());
-        GL.ProgramUniform2i(overlay_program_.id(), 0, grid_.x, grid_.y);
-        GL.BindTextureUnit(kCoordinatesUnit, coordinates_.id());
-        GL.BindTextureUnit(kMarksUnit, marks_.id());
+        GL.ProgramUniform2i(overlay_program_.id(), SL_EPIPOLAR_GRID, grid_.x, grid_.y);
+        GL.BindTextureUnit(SL_EPIPOLAR_COORDINATES_UNIT, coordinates_.id());
+        GL.BindTextureUnit(SL_EPIPOLAR_MARKS_UNIT, marks_.id());
         GL.DrawArrays(GL_POINTS, 0, grid_.x * grid_.y);
     }
 
@@ -360,8 +354,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<frame::VolumeMethod> create_epipolar_method() {
-    return std::make_unique<EpipolarMethod>();
+void register_methods(frame::MethodRegistry& registry) {
+    registry.add("epipolar", 60, [] { return std::make_unique<EpipolarMethod>(); });
 }
 
 }  // namespace sl::epipolar

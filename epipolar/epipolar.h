@@ -33,8 +33,13 @@
 
 #include "frame/volume_method.h"
 
+namespace sl::frame {
+class MethodRegistry;
+}
+
 namespace sl::epipolar {
 
-std::unique_ptr<frame::VolumeMethod> create_epipolar_method();
+// Registers `epipolar` (frame/method_registry.h).
+void register_methods(frame::MethodRegistry& registry);
 
 }  // namespace sl::epipolar

@@ -134,6 +134,29 @@ CellSetup set_up(const Experiment& x, const Cell& cell, Caches& caches) {
     return s;
 }
 
+// Each cell's method configured as it will be measured, without a GL context: a combination
+// of parameters a method refuses (VolumeMethod::validate) stops the run before its first frame,
+// naming the cell.
+void validate_cells(const Experiment& x) {
+    const frame::ShadowSettings shadow{.filter = frame::parse_shadow_filter(x.render.shadow),
+                                       .map_size = x.render.shadow_map_size,
+                                       .radius = x.render.pcf_radius};
+    for (const Cell& cell : x.cells()) {
+        methods::Settings settings;
+        for (const Setting& setting : cell.settings) {
+            if (!is_scene_variation(setting.name)) {
+                settings.emplace_back(setting.name, setting.value);
+            }
+        }
+        try {
+            methods::create_configured_method(cell.method, shadow, settings);
+        } catch (const Error& e) {
+            fail("{}: cell {} {} {}: {}", x.source.string(), cell.scene, cell.method,
+                 cell.settings_text(), e.what());
+        }
+    }
+}
+
 // A fresh GL context and a renderer for `scene`, with the method prepared for it, timed.
 struct CellContext {
     std::unique_ptr<gl::Platform> platform;
@@ -478,6 +501,7 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
     if (x.cells().empty()) {
         fail("{}: the sweep is empty (every cell excluded)", x.source.string());
     }
+    validate_cells(x);
     claim_directory(x, out);
     Caches caches;
     const auto started = Clock::now();

@@ -9,22 +9,16 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/error.h"
+#include "frame/shaders/frame_interface.h"
 #include "gl/debug.h"
 #include "gl/shaders.h"
+#include "gl/shaders/object_uniforms.h"
 
 namespace sl::frame {
 
 using gl::GL;
 
 namespace {
-
-// Uniform locations fixed in the shaders (layout(location = N)).
-constexpr GLint kModelLocation = 0;
-constexpr GLint kNormalMatrixLocation = 1;
-constexpr GLint kAlbedoLocation = 2;
-constexpr GLint kRoughnessLocation = 3;
-constexpr GLint kF0Location = 4;
-constexpr GLint kTranslucentLocation = 5;
 
 // Normal offset of shadow lookups, in shadow-map texels at the receiver's distance.
 constexpr float kShadowNormalOffsetTexels = 1.5f;
@@ -318,16 +312,16 @@ void SceneRenderer::draw_objects(GLuint program, bool with_normals) {
 
 void SceneRenderer::draw_object(size_t index, GLuint program, bool with_normals) {
     const Object& object = scene_.objects[index];
-    GL.ProgramUniformMatrix4fv(program, kModelLocation, 1, GL_FALSE,
+    GL.ProgramUniformMatrix4fv(program, SL_OBJECT_MODEL, 1, GL_FALSE,
                                glm::value_ptr(object.transform));
     if (with_normals) {
         const glm::mat4 normal_matrix = glm::inverseTranspose(object.transform);
-        GL.ProgramUniformMatrix4fv(program, kNormalMatrixLocation, 1, GL_FALSE,
+        GL.ProgramUniformMatrix4fv(program, SL_OBJECT_NORMAL_MATRIX, 1, GL_FALSE,
                                    glm::value_ptr(normal_matrix));
     }
     if (program == surface_program_.id()) {
         const Material& material = scene_.materials[size_t(object.material)];
-        GL.ProgramUniform1f(program, kRoughnessLocation, material.roughness);
+        GL.ProgramUniform1f(program, SL_SURFACE_ROUGHNESS, material.roughness);
         const sss::SubsurfaceMaterial* translucent =
             subsurface_ ? subsurface_->material_of(object.material) : nullptr;
         if (translucent) {
@@ -337,14 +331,15 @@ void SceneRenderer::draw_object(size_t index, GLuint program, bool with_normals)
             const double eta = material.translucency->medium.eta;
             const float f0 = float((eta - 1.0) * (eta - 1.0) / ((eta + 1.0) * (eta + 1.0)));
             const glm::vec3 black(0.0f), f0s(f0);
-            GL.ProgramUniform3fv(program, kAlbedoLocation, 1, glm::value_ptr(black));
-            GL.ProgramUniform3fv(program, kF0Location, 1, glm::value_ptr(f0s));
-            GL.ProgramUniform4fv(program, kTranslucentLocation, 1,
+            GL.ProgramUniform3fv(program, SL_SURFACE_ALBEDO, 1, glm::value_ptr(black));
+            GL.ProgramUniform3fv(program, SL_SURFACE_F0, 1, glm::value_ptr(f0s));
+            GL.ProgramUniform4fv(program, SL_SURFACE_TRANSLUCENT, 1,
                                  glm::value_ptr(glm::vec4(1.0f, translucent->total_reflectance)));
         } else {
-            GL.ProgramUniform3fv(program, kAlbedoLocation, 1, glm::value_ptr(material.albedo));
-            GL.ProgramUniform3fv(program, kF0Location, 1, glm::value_ptr(material.f0));
-            GL.ProgramUniform4fv(program, kTranslucentLocation, 1, glm::value_ptr(glm::vec4(0.0f)));
+            GL.ProgramUniform3fv(program, SL_SURFACE_ALBEDO, 1, glm::value_ptr(material.albedo));
+            GL.ProgramUniform3fv(program, SL_SURFACE_F0, 1, glm::value_ptr(material.f0));
+            GL.ProgramUniform4fv(program, SL_SURFACE_TRANSLUCENT, 1,
+                                 glm::value_ptr(glm::vec4(0.0f)));
         }
     }
     const GpuMesh& mesh = meshes_.at(object.mesh.get());
@@ -402,13 +397,14 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
             // Separable Gaussian: moments -> scratch (x), scratch -> moments (y).
             GL.Disable(GL_DEPTH_TEST);
             GL.UseProgram(shadow_blur_program_.id());
-            GL.ProgramUniform1i(shadow_blur_program_.id(), 1, shadow_.radius);
+            GL.ProgramUniform1i(shadow_blur_program_.id(), SL_SHADOW_BLUR_RADIUS, shadow_.radius);
             GL.BindVertexArray(empty_vertex_array_.id());
             const GLuint sources[2] = {shadow_moments_.id(), shadow_scratch_.id()};
             for (int i = 0; i < 2; ++i) {
                 GL.BindFramebuffer(GL_FRAMEBUFFER, shadow_blur_framebuffer_[i].id());
-                GL.ProgramUniform2i(shadow_blur_program_.id(), 0, i == 0, i == 1);
-                GL.BindTextureUnit(0, sources[i]);
+                GL.ProgramUniform2i(shadow_blur_program_.id(), SL_SHADOW_BLUR_DIRECTION, i == 0,
+                                    i == 1);
+                GL.BindTextureUnit(SL_SHADOW_BLUR_SOURCE_UNIT, sources[i]);
                 GL.DrawArrays(GL_TRIANGLES, 0, 3);
             }
             GL.Enable(GL_DEPTH_TEST);
@@ -470,8 +466,8 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         GL.Disable(GL_DEPTH_TEST);
         GL.Disable(GL_BLEND);
         GL.UseProgram(composite_program_.id());
-        GL.BindTextureUnit(0, surface_color_.id());
-        GL.BindTextureUnit(1, in_scattering_.id());
+        GL.BindTextureUnit(SL_COMPOSITE_SURFACE_UNIT, surface_color_.id());
+        GL.BindTextureUnit(SL_COMPOSITE_IN_SCATTERING_UNIT, in_scattering_.id());
         GL.BindVertexArray(empty_vertex_array_.id());
         GL.DrawArrays(GL_TRIANGLES, 0, 3);
     }

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "frame/parameters.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders/frame_uniforms.h"
@@ -58,30 +59,6 @@ struct VolumeInputs {
 // A named per-frame counter a method reports (slices, pieces, fragments, CPU time of a stage).
 using MethodStatistics = std::vector<std::pair<std::string, double>>;
 
-// A parameter a method declares (Mitsuba style: documented where it is read), settable from the
-// command line (`--set name=value`), configs and the viewer, and written back by name:
-//   integer, real  a number in [min, max];
-//   boolean        true or false (also written on and off, or the old spellings 1 and 0);
-//   choice         an enumeration: the index of one of `choices`, set and written by its name.
-// Methods read them typed: number(), flag(), choice<Enum>() (the enum's values in the order of
-// `choices`) or choice_name().
-struct Parameter {
-    enum class Type { integer, real, boolean, choice };
-    std::string name;
-    Type type = Type::real;
-    double value = 0.0;
-    double default_value = 0.0;
-    double min = 0.0;
-    double max = 0.0;
-    std::string description{};
-    std::vector<std::string> choices{};
-
-    // The value as text: a number, true or false, or the chosen name.
-    std::string text() const;
-    // The type's name as `shaftlab methods` prints it: integer, real, bool or enum.
-    const char* type_name() const;
-};
-
 // What a method's per-frame update computed on the CPU (a beam tree and its meshes), handed from
 // cpu_update() to apply_update(); methods define their own.
 struct FrameWork {
@@ -91,23 +68,27 @@ struct FrameWork {
 class VolumeMethod {
 public:
     virtual ~VolumeMethod() = default;
-    const std::vector<Parameter>& parameters() const { return parameters_; }
-    // The value of a number parameter (integer or real); throws sl::Error for a flag or a choice,
-    // which are read with flag() and choice().
-    double number(const std::string& name) const;
-    bool flag(const std::string& name) const;
-    // The chosen name, or the choice as the enum whose values follow `choices`.
-    const std::string& choice_name(const std::string& name) const;
-    template <class Enum>
-    Enum choice(const std::string& name) const {
-        return Enum(choice_index(name));
-    }
+    VolumeMethod(const VolumeMethod&) = delete;
+    VolumeMethod& operator=(const VolumeMethod&) = delete;
+
+    // The name it is registered, configured and reported under.
+    const std::string& name() const { return name_; }
+
+    // Its parameters by name, as configs, the command line and the viewer set them
+    // (frame/parameters.h); the method itself reads them through the typed handles it declared.
+    const std::vector<Parameter>& parameters() const { return parameters_.all(); }
+    bool has_parameter(const std::string& name) const { return parameters_.has(name); }
     // The parameter as declared, with its current value; throws sl::Error naming the known ones.
-    const Parameter& find(const std::string& name) const;
+    const Parameter& find(const std::string& name) const { return parameters_.find(name); }
     // Parses and sets one parameter; throws sl::Error naming the method and the parameter when
-    // the name is unknown, the text is not a number of its type, or it is out of range.
-    void set(const std::string& name, const std::string& text);
-    virtual std::string name() const = 0;
+    // the name is unknown, the text is not a value of its type, or it is out of range.
+    void set(const std::string& name, const std::string& text) { parameters_.set(name, text); }
+    // Checks what one parameter's range cannot say (a combination of parameters); throws
+    // sl::Error naming the parameters. Called once a method is configured
+    // (methods/configured_method.h) and whenever the viewer changes a value, so that bad input
+    // fails before a frame is drawn.
+    virtual void validate() const {}
+
     // The media and lights the method integrates (`shaftlab methods`, docs/methods.md): every one
     // the scene format allows unless it says otherwise; prepare() refuses the others by name.
     virtual std::string accepts() const {
@@ -119,8 +100,8 @@ public:
 
     // The per-frame update (docs/design.md §10): `scene` is the frame's scene, `change` what
     // differs from the scene of the last prepare() or update(). In two halves, so that the
-    // pipelined frame loop (gl/frame_loop.h) can run the CPU half on a worker thread while the GPU
-    // draws the previous frame with this method:
+    // pipelined frame loop (frame/frame_loop.h) can run the CPU half on a worker thread while the
+    // GPU draws the previous frame with this method:
     //   cpu_update    no GL and no state that render() reads (it may run during render());
     //                 returns what apply_update() installs, or null when nothing is needed;
     //   apply_update  on the GL thread between frames: uploads, tables, programs.
@@ -141,26 +122,42 @@ public:
     // The method's own textures of the last frame (render targets, lookup tables).
     virtual gl::TextureViews textures() const { return {}; }
     // The shadow map the method asks for: `frame` with the filter and the size replaced by the
-    // method's `shadow` and `shadow_size` parameters, each where it declared it.
+    // method's `shadow` and `shadow_size` parameters, where it declared them.
     ShadowSettings shadow_settings(ShadowSettings frame) const;
-    bool has_parameter(const std::string& name) const;
 
 protected:
-    void declare(Parameter parameter);
-    // Shorthands of declare() for the two typed kinds.
-    void declare_flag(std::string name, bool default_value, std::string description);
-    void declare_choice(std::string name, std::vector<std::string> choices, size_t default_index,
-                        std::string description);
-    // Declares `shadow` (hard, pcf, vsm; `filter` by default) and `shadow_size`, read by
-    // shadow_settings().
+    explicit VolumeMethod(std::string name) : name_(name), parameters_(std::move(name)) {}
+
+    // Declarations, in the constructor: each returns the handle the method reads the value with.
+    Param<int> declare_integer(std::string name, int default_value, int min, int max,
+                               std::string description) {
+        return parameters_.integer(std::move(name), default_value, min, max,
+                                   std::move(description));
+    }
+    Param<double> declare_real(std::string name, double default_value, double min, double max,
+                               std::string description) {
+        return parameters_.real(std::move(name), default_value, min, max, std::move(description));
+    }
+    Param<bool> declare_flag(std::string name, bool default_value, std::string description) {
+        return parameters_.flag(std::move(name), default_value, std::move(description));
+    }
+    template <class Enum>
+    Param<Enum> declare_choice(std::string name, std::vector<std::string> choices,
+                               Enum default_value, std::string description) {
+        return parameters_.choice(std::move(name), std::move(choices), default_value,
+                                  std::move(description));
+    }
+    // Declares `shadow` (hard, pcf, vsm; `filter` by default) and `shadow_size`, which
+    // shadow_settings() reads.
     void declare_shadow_parameters(ShadowFilter filter = ShadowFilter::pcf);
+    // Declares `shadow_size` alone (a method that takes the frame's filter as it is).
+    void declare_shadow_size(std::string description);
 
 private:
-    size_t choice_index(const std::string& name) const;
-    const Parameter& typed(const std::string& name, std::initializer_list<Parameter::Type> types,
-                           const char* reader) const;
-
-    std::vector<Parameter> parameters_;
+    std::string name_;
+    ParameterSet parameters_;
+    Param<ShadowFilter> shadow_filter_;
+    Param<int> shadow_size_;
 };
 
 // `none`: no participating medium is rendered, I_s = 0; the frame is the surfaces alone

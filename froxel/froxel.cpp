@@ -9,6 +9,8 @@
 #include <glm/matrix.hpp>
 
 #include "core/error.h"
+#include "frame/method_registry.h"
+#include "froxel/shaders/froxel_interface.h"
 #include "gl/functions.h"
 #include "gl/shaders.h"
 
@@ -16,28 +18,15 @@ namespace sl::froxel {
 
 namespace {
 
-using frame::Parameter;
 using gl::GL;
-
-// Uniform locations of shaders/grid.glsl and the passes.
-namespace grid_uniform {
-constexpr GLint size = 20, depth = 21;
-}
-namespace inject_uniform {
-constexpr GLint samples = 0, jitter = 1, frame_offset = 2;
-}
-namespace temporal_uniform {
-constexpr GLint history = 3, previous_view_projection = 4, previous_camera = 5,
-                previous_forward = 6, previous_depth = 7;
-}
 
 constexpr int kMaxSide = 2048;           // GL 4.5's least GL_MAX_3D_TEXTURE_SIZE
 constexpr double kMaxFroxels = 1 << 26;  // 1 GiB per RGBA32F volume
 constexpr int kJitterPeriod = 16;        // frames of the Halton sequence
 
 void set_grid_uniforms(GLuint program, const FroxelGrid& grid) {
-    GL.ProgramUniform3i(program, grid_uniform::size, grid.size.x, grid.size.y, grid.size.z);
-    GL.ProgramUniform2f(program, grid_uniform::depth, grid.depth_extent, grid.linear_depth);
+    GL.ProgramUniform3i(program, SL_FROXEL_GRID_SIZE, grid.size.x, grid.size.y, grid.size.z);
+    GL.ProgramUniform2f(program, SL_FROXEL_GRID_DEPTH, grid.depth_extent, grid.linear_depth);
 }
 
 // The radical inverse of i in base 2 (Halton's first dimension).
@@ -105,8 +94,9 @@ void FroxelIntegrator::integrate(const FroxelGrid& grid, GLuint densities,
     }
     set_grid_uniforms(program_.id(), grid);
     GL.UseProgram(program_.id());
-    GL.BindTextureUnit(0, densities);
-    GL.BindImageTexture(0, integrated, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    GL.BindTextureUnit(SL_FROXEL_INTEGRATE_DENSITIES_UNIT, densities);
+    GL.BindImageTexture(SL_FROXEL_INTEGRATE_IMAGE, integrated, 0, GL_TRUE, 0, GL_WRITE_ONLY,
+                        GL_RGBA32F);
     gl::dispatch_compute({grid.size.x, grid.size.y, 1}, {8, 8, 1});
 }
 
@@ -114,51 +104,30 @@ namespace {
 
 class FroxelMethod final : public frame::VolumeMethod {
 public:
-    FroxelMethod() {
-        declare({.name = "grid_scale",
-                 .default_value = 1.0,
-                 .min = 0.05,
-                 .max = 16.0,
-                 .description = "the grid relative to 160 x 90 columns at 1280 x 720 (scaled "
-                                "with the image) and `slices` slices, on every axis"});
-        declare({.name = "slices",
-                 .type = Parameter::Type::integer,
-                 .default_value = 64,
-                 .min = 1,
-                 .max = 2048,
-                 .description = "depth slices at grid_scale 1"});
-        declare({.name = "depth_extent",
-                 .default_value = 0.0,
-                 .min = 0.0,
-                 .max = 1e6,
-                 .description = "metres of view depth the grid covers (0: the farthest point of "
-                                "the light's influence volume, within the camera's far plane)"});
-        declare({.name = "linear_depth",
-                 .default_value = 0.0,
-                 .min = 0.0,
-                 .max = 1e6,
-                 .description = "metres: slices are linear in depth well within it and "
-                                "exponential beyond (0: an eighth of depth_extent)"});
-        declare({.name = "samples",
-                 .type = Parameter::Type::integer,
-                 .default_value = 1,
-                 .min = 1,
-                 .max = 64,
-                 .description = "points per froxel, stratified along its depth span"});
-        declare_flag("jitter", false,
-                     "on: the points move within their strata every frame (per-froxel "
-                     "noise plus a Halton step), for the temporal filter");
-        declare_flag("temporal", false,
-                     "on: reprojection into the last frame's grid with an exponential "
-                     "history, clamped to the current neighbourhood");
-        declare({.name = "history",
-                 .default_value = 0.9,
-                 .min = 0.0,
-                 .max = 0.99,
-                 .description = "the history's weight in each frame's blend (temporal = 1)"});
+    FroxelMethod() : VolumeMethod("froxel") {
+        grid_scale_ = declare_real("grid_scale", 1.0, 0.05, 16.0,
+                                   "the grid relative to 160 x 90 columns at 1280 x 720 (scaled "
+                                   "with the image) and `slices` slices, on every axis");
+        slices_ = declare_integer("slices", 64, 1, 2048, "depth slices at grid_scale 1");
+        depth_extent_ = declare_real("depth_extent", 0.0, 0.0, 1e6,
+                                     "metres of view depth the grid covers (0: the farthest "
+                                     "point of the light's influence volume, within the camera's "
+                                     "far plane)");
+        linear_depth_ = declare_real("linear_depth", 0.0, 0.0, 1e6,
+                                     "metres: slices are linear in depth well within it and "
+                                     "exponential beyond (0: an eighth of depth_extent)");
+        samples_ = declare_integer("samples", 1, 1, 64,
+                                   "points per froxel, stratified along its depth span");
+        jitter_ = declare_flag("jitter", false,
+                               "on: the points move within their strata every frame (per-froxel "
+                               "noise plus a Halton step), for the temporal filter");
+        temporal_ = declare_flag("temporal", false,
+                                 "on: reprojection into the last frame's grid with an exponential "
+                                 "history, clamped to the current neighbourhood");
+        history_weight_ = declare_real("history", 0.9, 0.0, 0.99,
+                                       "the history's weight in each frame's blend (temporal = 1)");
         declare_shadow_parameters();
     }
-    std::string name() const override { return "froxel"; }
 
     void prepare(const Scene& scene) override {
         if (!inject_program_) {
@@ -183,11 +152,10 @@ public:
                       std::unique_ptr<frame::FrameWork>) override {}
 
     void render(const frame::VolumeInputs& inputs) override {
-        const FroxelGrid grid =
-            make_grid(inputs.scene, inputs.width, inputs.height, number("grid_scale"),
-                      int(number("slices")), number("depth_extent"), number("linear_depth"));
+        const FroxelGrid grid = make_grid(inputs.scene, inputs.width, inputs.height, *grid_scale_,
+                                          *slices_, *depth_extent_, *linear_depth_);
         allocate(grid);
-        const bool temporal = flag("temporal");
+        const bool temporal = *temporal_;
         if (!temporal) {
             previous_.reset();  // a history resumes from scratch, not from a stale frame
         }
@@ -195,12 +163,13 @@ public:
         inputs.timeline.section("inject");
         GLuint program = inject_program_.id();
         set_grid_uniforms(program, grid);
-        GL.ProgramUniform1i(program, inject_uniform::samples, int(number("samples")));
-        GL.ProgramUniform1i(program, inject_uniform::jitter, int(flag("jitter")));
-        GL.ProgramUniform1f(program, inject_uniform::frame_offset,
+        GL.ProgramUniform1i(program, SL_FROXEL_INJECT_SAMPLES, *samples_);
+        GL.ProgramUniform1i(program, SL_FROXEL_INJECT_JITTER, int(*jitter_));
+        GL.ProgramUniform1f(program, SL_FROXEL_INJECT_FRAME_OFFSET,
                             halton2(frame_index_ % kJitterPeriod + 1));
         GL.UseProgram(program);
-        GL.BindImageTexture(0, injected_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        GL.BindImageTexture(SL_FROXEL_INJECT_IMAGE, injected_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY,
+                            GL_RGBA32F);
         gl::dispatch_compute(grid.size, {4, 4, 4});
 
         GLuint densities = injected_.id();
@@ -211,18 +180,19 @@ public:
             program = temporal_program_.id();
             set_grid_uniforms(program, grid);
             // Without a previous frame of this grid, the history's weight is 0.
-            GL.ProgramUniform1f(program, temporal_uniform::history,
-                                previous_ ? float(number("history")) : 0.0f);
+            GL.ProgramUniform1f(program, SL_FROXEL_TEMPORAL_HISTORY,
+                                previous_ ? float(*history_weight_) : 0.0f);
             const Previous p = previous_.value_or(Previous{});
-            GL.ProgramUniformMatrix4fv(program, temporal_uniform::previous_view_projection, 1,
+            GL.ProgramUniformMatrix4fv(program, SL_FROXEL_TEMPORAL_PREVIOUS_VIEW_PROJECTION, 1,
                                        GL_FALSE, &p.view_projection[0][0]);
-            GL.ProgramUniform4fv(program, temporal_uniform::previous_camera, 1, &p.camera[0]);
-            GL.ProgramUniform4fv(program, temporal_uniform::previous_forward, 1, &p.forward[0]);
-            GL.ProgramUniform2f(program, temporal_uniform::previous_depth, p.depth.x, p.depth.y);
+            GL.ProgramUniform4fv(program, SL_FROXEL_TEMPORAL_PREVIOUS_CAMERA, 1, &p.camera[0]);
+            GL.ProgramUniform4fv(program, SL_FROXEL_TEMPORAL_PREVIOUS_FORWARD, 1, &p.forward[0]);
+            GL.ProgramUniform2f(program, SL_FROXEL_TEMPORAL_PREVIOUS_DEPTH, p.depth.x, p.depth.y);
             GL.UseProgram(program);
-            GL.BindTextureUnit(0, injected_.id());
-            GL.BindTextureUnit(1, history_[1 - current].id());
-            GL.BindImageTexture(0, result.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            GL.BindTextureUnit(SL_FROXEL_TEMPORAL_CURRENT_UNIT, injected_.id());
+            GL.BindTextureUnit(SL_FROXEL_TEMPORAL_PREVIOUS_UNIT, history_[1 - current].id());
+            GL.BindImageTexture(SL_FROXEL_TEMPORAL_IMAGE, result.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY,
+                                GL_RGBA32F);
             gl::dispatch_compute(grid.size, {4, 4, 4});
             densities = result.id();
             previous_ = Previous{.view_projection = inputs.uniforms.view_projection,
@@ -237,8 +207,8 @@ public:
         program = apply_program_.id();
         set_grid_uniforms(program, grid);
         GL.UseProgram(program);
-        GL.BindTextureUnit(0, inputs.surface_depth);
-        GL.BindTextureUnit(1, integrated_.id());
+        GL.BindTextureUnit(SL_FROXEL_APPLY_SURFACE_DEPTH_UNIT, inputs.surface_depth);
+        GL.BindTextureUnit(SL_FROXEL_APPLY_INTEGRATED_UNIT, integrated_.id());
         GL.BindVertexArray(empty_vertex_array_.id());
         GL.Enable(GL_BLEND);
         GL.BlendFunc(GL_ONE, GL_ONE);
@@ -274,6 +244,14 @@ public:
     }
 
 private:
+    frame::Param<double> grid_scale_;
+    frame::Param<int> slices_;
+    frame::Param<double> depth_extent_;
+    frame::Param<double> linear_depth_;
+    frame::Param<int> samples_;
+    frame::Param<bool> jitter_;
+    frame::Param<bool> temporal_;
+    frame::Param<double> history_weight_;
     struct Previous {
         glm::mat4 view_projection{1.0f};
         glm::vec4 camera{0.0f}, forward{0.0f, 0.0f, -1.0f, 0.0f};
@@ -304,9 +282,10 @@ private:
             atlas.label(label);
         }
         GL.UseProgram(atlas_program_.id());
-        GL.ProgramUniform1i(atlas_program_.id(), 0, columns);
-        GL.BindTextureUnit(0, volume);
-        GL.BindImageTexture(0, atlas.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        GL.ProgramUniform1i(atlas_program_.id(), SL_FROXEL_ATLAS_COLUMNS, columns);
+        GL.BindTextureUnit(SL_FROXEL_ATLAS_VOLUME_UNIT, volume);
+        GL.BindImageTexture(SL_FROXEL_ATLAS_IMAGE, atlas.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                            GL_RGBA32F);
         gl::dispatch_compute({w, h, 1}, {8, 8, 1});
     }
 
@@ -323,8 +302,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<frame::VolumeMethod> create_froxel_method() {
-    return std::make_unique<FroxelMethod>();
+void register_methods(frame::MethodRegistry& registry) {
+    registry.add("froxel", 40, [] { return std::make_unique<FroxelMethod>(); });
 }
 
 }  // namespace sl::froxel

@@ -26,6 +26,10 @@
 #include "frame/volume_method.h"
 #include "gl/objects.h"
 
+namespace sl::frame {
+class MethodRegistry;
+}
+
 namespace sl::froxel {
 
 // The grid of one frame: columns x rows x slices, and the slicing's depth extent E and linear
@@ -65,6 +69,7 @@ private:
     mutable gl::Program program_;
 };
 
-std::unique_ptr<frame::VolumeMethod> create_froxel_method();
+// Registers `froxel` (frame/method_registry.h).
+void register_methods(frame::MethodRegistry& registry);
 
 }  // namespace sl::froxel

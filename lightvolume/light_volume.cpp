@@ -7,23 +7,19 @@
 #include <glm/matrix.hpp>
 
 #include "analytic/region_pass.h"
+#include "analytic/shaders/analytic_interface.h"
 #include "core/error.h"
+#include "frame/method_registry.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
+#include "lightvolume/shaders/lightvolume_interface.h"
 
 namespace sl::lightvolume {
 
 namespace {
 
-using frame::Parameter;
 using gl::GL;
-
-// Uniform locations of shaders/grid.glsl.
-namespace grid_uniform {
-constexpr GLint resolution = 10, clip_to_world = 11;
-}
-constexpr GLuint kLightDepthUnit = 1;
 
 // The k-th border vertex of the grid (grid.glsl's border_vertex), as (i, j).
 glm::ivec2 border_vertex(int k, int resolution) {
@@ -118,23 +114,22 @@ namespace {
 
 class LightVolumeMethod final : public frame::VolumeMethod {
 public:
-    LightVolumeMethod() {
-        declare({.name = "resolution",
-                 .type = Parameter::Type::integer,
-                 .default_value = 256,
-                 .min = 0,
-                 .max = 4096,
-                 .description = "grid vertices per side over the shadow map, at least 2 (0: one "
-                                "per texel, the map's size)"});
-        declare({.name = "shadow_size",
-                 .type = Parameter::Type::integer,
-                 .default_value = 2048,
-                 .min = 16,
-                 .max = 16384,
-                 .description = "shadow map resolution (texels per side): the lit volume's "
-                                "(the frame's default, so that frame times compare)"});
+    LightVolumeMethod() : VolumeMethod("lightvolume") {
+        resolution_parameter_ =
+            declare_integer("resolution", 256, 0, 4096,
+                            "grid vertices per side over the shadow map, at least 2 (0: one per "
+                            "texel, the map's size)");
+        declare_shadow_size(
+            "shadow map resolution (texels per side): the lit volume's (the frame's default, so "
+            "that frame times compare)");
     }
-    std::string name() const override { return "lightvolume"; }
+    void validate() const override {
+        if (*resolution_parameter_ == 1) {
+            fail(
+                "lightvolume: resolution 1 makes no grid: give at least 2 vertices per side, or "
+                "0 for one per shadow-map texel");
+        }
+    }
     std::string accepts() const override { return analytic::AnalyticRegionPass::accepts(); }
 
     void prepare(const Scene& scene) override {
@@ -167,7 +162,7 @@ public:
                                     {GL_FRAGMENT_SHADER, "analytic/shaders/regions_eye.frag"}},
                                    defines);
             // One region about the eye when the triangle is not collapsed (regions_eye.frag).
-            GL.ProgramUniform1f(eye_program_.id(), 0, 1.0f);
+            GL.ProgramUniform1f(eye_program_.id(), SL_REGIONS_EYE_WINDINGS, 1.0f);
         }
         clip_to_world_ = light_clip_to_world(scene.light);
     }
@@ -175,12 +170,8 @@ public:
     void render(const frame::VolumeInputs& inputs) override {
         int map_size = 0;
         GL.GetTextureLevelParameteriv(inputs.shadow_map, 0, GL_TEXTURE_WIDTH, &map_size);
-        const int wanted = int(number("resolution"));
-        if (wanted == 1) {
-            fail(
-                "lightvolume: resolution 1 makes no grid: give at least 2 vertices per side, or 0 "
-                "for one per shadow-map texel");
-        }
+        validate();  // the viewer may hold a value that failed it
+        const int wanted = *resolution_parameter_;
         const int resolution = std::max(2, wanted == 0 ? map_size : wanted);
         if (resolution != resolution_) {
             const std::vector<glm::uvec3> triangles = light_volume_triangles(resolution);
@@ -192,12 +183,13 @@ public:
         }
         inputs.timeline.section("light volume");
         for (const gl::Program* program : {&program_, &eye_program_, &wireframe_program_}) {
-            GL.ProgramUniform1i(program->id(), grid_uniform::resolution, resolution_);
-            GL.ProgramUniformMatrix4fv(program->id(), grid_uniform::clip_to_world, 1, GL_FALSE,
+            GL.ProgramUniform1i(program->id(), SL_LIGHT_VOLUME_RESOLUTION, resolution_);
+            GL.ProgramUniformMatrix4fv(program->id(), SL_LIGHT_VOLUME_CLIP_TO_WORLD, 1, GL_FALSE,
                                        &clip_to_world_[0][0]);
         }
-        GL.BindTextureUnit(kLightDepthUnit, inputs.shadow_map);
-        GL.BindSampler(kLightDepthUnit, plain_sampler_.id());  // depths, not comparisons
+        GL.BindTextureUnit(SL_LIGHT_VOLUME_LIGHT_DEPTH_UNIT, inputs.shadow_map);
+        GL.BindSampler(SL_LIGHT_VOLUME_LIGHT_DEPTH_UNIT,
+                       plain_sampler_.id());  // depths, not comparisons
         GL.BindVertexArray(empty_vertex_array_.id());
         {
             const analytic::SignedDrawScope scope(inputs, closed_form_);
@@ -211,7 +203,7 @@ public:
         if (wireframe_wanted_) {
             draw_wireframe(inputs);
         }
-        GL.BindSampler(kLightDepthUnit, 0);
+        GL.BindSampler(SL_LIGHT_VOLUME_LIGHT_DEPTH_UNIT, 0);
     }
 
     frame::MethodStatistics statistics() const override {
@@ -238,6 +230,7 @@ public:
     }
 
 private:
+    frame::Param<int> resolution_parameter_;
     void draw_wireframe(const frame::VolumeInputs& inputs) {
         GLint target = 0;
         GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
@@ -264,8 +257,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<frame::VolumeMethod> create_light_volume_method() {
-    return std::make_unique<LightVolumeMethod>();
+void register_methods(frame::MethodRegistry& registry) {
+    registry.add("lightvolume", 50, [] { return std::make_unique<LightVolumeMethod>(); });
 }
 
 }  // namespace sl::lightvolume

@@ -21,6 +21,10 @@
 
 #include "frame/volume_method.h"
 
+namespace sl::frame {
+class MethodRegistry;
+}
+
 namespace sl::lightvolume {
 
 // The closed grid's faces for N vertices per side, outward-wound, in the vertex numbering of
@@ -35,10 +39,11 @@ std::vector<glm::dvec3> light_volume_positions(const std::vector<float>& depths,
                                                const glm::mat4& light_clip_to_world,
                                                int resolution);
 
-// The inverse of the light's view-projection as the renderer makes it (gl/renderer.cpp), in
+// The inverse of the light's view-projection as the renderer makes it (frame/renderer.cpp), in
 // double precision rounded to float: what the grid's vertices are unprojected with.
 glm::mat4 light_clip_to_world(const SpotLight& light);
 
-std::unique_ptr<frame::VolumeMethod> create_light_volume_method();
+// Registers `lightvolume` (frame/method_registry.h).
+void register_methods(frame::MethodRegistry& registry);
 
 }  // namespace sl::lightvolume

@@ -29,6 +29,7 @@ std::unique_ptr<frame::VolumeMethod> create_configured_method(const std::string&
     for (const auto& [parameter, value] : settings) {
         method->set(parameter, value);
     }
+    method->validate();
     return method;
 }
 

@@ -15,8 +15,9 @@ namespace sl::methods {
 using Settings = std::vector<std::pair<std::string, std::string>>;
 
 // The method `name` with the run's shadow map as the default of its own `shadow` parameters
-// (when it declares them), then each (name, value) setting applied; throws sl::Error naming the
-// method and parameter on an unknown one or a bad value.
+// (when it declares them), then each (name, value) setting applied and the whole set validated
+// (VolumeMethod::validate); throws sl::Error naming the method and parameter on an unknown one,
+// a bad value or a combination the method refuses.
 std::unique_ptr<frame::VolumeMethod> create_configured_method(const std::string& name,
                                                               const frame::ShadowSettings& run,
                                                               const Settings& settings);

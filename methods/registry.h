@@ -1,8 +1,7 @@
 #pragma once
-// The registry of volumetric methods: every method is created by name from here, and the
-// renderer, the harness and the viewer know methods only through frame::VolumeMethod. A method
-// lives in its family's folder (analytic/, sampling/, froxel/, lightvolume/,
-// reference/); this is the table.
+// The volumetric methods by name: every method is created from here, and the renderer, the
+// harness and the viewer know methods only through frame::VolumeMethod. A method lives in its
+// family's folder, which adds it to the table (frame/method_registry.h).
 
 #include <memory>
 #include <string>

@@ -77,7 +77,7 @@ void add_method(Row& row, const frame::VolumeMethod& method,
         }
     }
     if (samples_or_slices.is_null() && method.has_parameter("samples")) {
-        samples_or_slices = method.number("samples");
+        samples_or_slices = method.find("samples").value;
     }
     row["samples_or_slices"] = samples_or_slices;
     row["image"] = image;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "frame/method_registry.h"
 #include "gl/objects.h"
 #include "gl/shaders.h"
 #include "reference/cache.h"
@@ -17,25 +18,16 @@ namespace sl::reference {
 
 namespace {
 
-using frame::Parameter;
 using gl::GL;
 
 class ReferenceMethod final : public frame::VolumeMethod {
 public:
-    ReferenceMethod() {
-        declare({.name = "shadow_samples",
-                 .type = Parameter::Type::integer,
-                 .default_value = 256,
-                 .min = 2,
-                 .max = 65536,
-                 .description = "visibility samples along each ray's lit interval"});
-        declare({.name = "transition_tolerance",
-                 .default_value = 1e-6,
-                 .min = 1e-9,
-                 .max = 1e-2,
-                 .description = "metres: bisection of each light/shadow transition"});
+    ReferenceMethod() : VolumeMethod("reference") {
+        shadow_samples_ = declare_integer("shadow_samples", 256, 2, 65536,
+                                          "visibility samples along each ray's lit interval");
+        transition_tolerance_ = declare_real("transition_tolerance", 1e-6, 1e-9, 1e-2,
+                                             "metres: bisection of each light/shadow transition");
     }
-    std::string name() const override { return "reference"; }
     std::string accepts() const override {
         return "every medium and light (closed forms per visible interval, quadrature for a "
                "smooth cone edge)";
@@ -66,9 +58,11 @@ public:
     }
 
 private:
+    frame::Param<int> shadow_samples_;
+    frame::Param<double> transition_tolerance_;
+
     ReferenceOptions options() const {
-        return {.shadow_samples = int(number("shadow_samples")),
-                .transition_tolerance = number("transition_tolerance")};
+        return {.shadow_samples = *shadow_samples_, .transition_tolerance = *transition_tolerance_};
     }
 
     Image compute(const Scene& scene, int width, int height) const {
@@ -116,8 +110,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<frame::VolumeMethod> create_reference_method() {
-    return std::make_unique<ReferenceMethod>();
+void register_methods(frame::MethodRegistry& registry) {
+    registry.add("reference", 90, [] { return std::make_unique<ReferenceMethod>(); });
 }
 
 }  // namespace sl::reference

@@ -8,8 +8,13 @@
 
 #include "frame/volume_method.h"
 
+namespace sl::frame {
+class MethodRegistry;
+}
+
 namespace sl::reference {
 
-std::unique_ptr<frame::VolumeMethod> create_reference_method();
+// Registers `reference` (frame/method_registry.h).
+void register_methods(frame::MethodRegistry& registry);
 
 }  // namespace sl::reference

@@ -10,99 +10,67 @@
 #include "beamtree/boundary.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
+#include "frame/method_registry.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/platform.h"
 #include "gl/shaders.h"
+#include "sampling/shaders/march_interface.h"
 
 namespace sl::sampling {
 
 namespace {
 
-using frame::Parameter;
 using gl::GL;
 
 // The choices, in the order they are declared and numbered in the shaders (march.frag's
 // clip_mode and attenuation, march_resolve.frag's blur).
 enum class Blur { none, gauss5, depth_aware };
+enum class ResolutionScale { full, half, quarter };
 enum class Clip { off, pyramid, cone };
 enum class Attenuation { model, moschos };
 
-// Uniform locations of sampling/shaders/march.frag and march_resolve.frag.
-namespace march_uniform {
-constexpr GLint samples = 0, jitter = 1, clip_mode = 2, buffer_scale = 3, attenuation = 4,
-                optical_thickness = 5, animate_phase = 6, time = 7, interval_mode = 8, adaptive = 9,
-                clip_planes = 10;
-}
-namespace resolve_uniform {
-constexpr GLint buffer_scale = 0, blur = 1;
-}
-
 class MarchMethod final : public frame::VolumeMethod {
 public:
-    explicit MarchMethod(MarchVariant variant) : variant_(variant) {
-        declare({.name = "samples",
-                 .type = Parameter::Type::integer,
-                 .default_value = 64,
-                 .min = 1,
-                 .max = 4096,
-                 .description = variant == MarchVariant::march
-                                    ? "samples per eye ray over its clipped trace"
-                                    : "the most samples an eye ray spends on its uncertain "
-                                      "intervals"});
+    explicit MarchMethod(MarchVariant variant)
+        : VolumeMethod(variant == MarchVariant::march ? "march" : "hybrid3"), variant_(variant) {
+        samples_ = declare_integer("samples", 64, 1, 4096,
+                                   variant == MarchVariant::march
+                                       ? "samples per eye ray over its clipped trace"
+                                       : "the most samples an eye ray spends on its uncertain "
+                                         "intervals");
         if (variant == MarchVariant::hybrid3) {
-            declare({.name = "density",
-                     .default_value = 256.0,
-                     .min = 1e-3,
-                     .max = 1e7,
-                     .description = "samples per metre of uncertain interval: N = clamp(ceil("
-                                    "density x length), min_samples, samples)"});
-            declare(analytic::region_route_parameter());
-            declare({.name = "min_samples",
-                     .type = Parameter::Type::integer,
-                     .default_value = 2,
-                     .min = 1,
-                     .max = 4096,
-                     .description = "the fewest samples a ray with any uncertain length gets"});
+            density_ = declare_real("density", 256.0, 1e-3, 1e7,
+                                    "samples per metre of uncertain interval: N = clamp(ceil("
+                                    "density x length), min_samples, samples)");
+            route_ = declare_choice("route", analytic::region_route_choices(),
+                                    analytic::RegionRoute::automatic,
+                                    analytic::region_route_description());
+            min_samples_ = declare_integer("min_samples", 2, 1, 4096,
+                                           "the fewest samples a ray with any uncertain length "
+                                           "gets");
         }
-        declare({.name = "resolution_scale",
-                 .type = Parameter::Type::choice,
-                 .default_value = 0,
-                 .description = "size of the marching buffer relative to the frame",
-                 .choices = {"1", "0.5", "0.25"}});
-        declare({.name = "blur",
-                 .type = Parameter::Type::choice,
-                 .default_value = 0,
-                 .description = "none; gauss5 (Moschos alg. 3); depth_aware (no bleeding)",
-                 .choices = {"none", "gauss5", "depth_aware"}});
-        declare_flag("jitter", false,
-                     "on: per-pixel offset of the samples (interleaved gradient noise)");
+        resolution_scale_ =
+            declare_choice("resolution_scale", {"1", "0.5", "0.25"}, ResolutionScale::full,
+                           "size of the marching buffer relative to the frame");
+        blur_ = declare_choice("blur", {"none", "gauss5", "depth_aware"}, Blur::none,
+                               "none; gauss5 (Moschos alg. 3); depth_aware (no bleeding)");
+        jitter_ = declare_flag("jitter", false,
+                               "on: per-pixel offset of the samples (interleaved gradient noise)");
         declare_shadow_parameters();
         if (variant == MarchVariant::march) {
-            declare({.name = "clip",
-                     .type = Parameter::Type::choice,
-                     .default_value = 2,
-                     .description = "off; pyramid (Moschos alg. 4); cone (exact cone and range)",
-                     .choices = {"off", "pyramid", "cone"}});
-            declare({.name = "attenuation",
-                     .type = Parameter::Type::choice,
-                     .default_value = 0,
-                     .description = "model (the reference's); moschos (eq. 3.1, does NOT match "
-                                    "the reference)",
-                     .choices = {"model", "moschos"}});
-            declare({.name = "optical_thickness",
-                     .default_value = 15.0,
-                     .min = 1e-3,
-                     .max = 1e6,
-                     .description = "metres: l of Moschos eq. 3.1 (attenuation=moschos)"});
-            declare_flag("animate_phase", false,
-                         "on: the phase function's g drifts with time and place");
+            clip_ = declare_choice("clip", {"off", "pyramid", "cone"}, Clip::cone,
+                                   "off; pyramid (Moschos alg. 4); cone (exact cone and range)");
+            attenuation_ = declare_choice(
+                "attenuation", {"model", "moschos"}, Attenuation::model,
+                "model (the reference's); moschos (eq. 3.1, does NOT match the reference)");
+            optical_thickness_ = declare_real("optical_thickness", 15.0, 1e-3, 1e6,
+                                              "metres: l of Moschos eq. 3.1 (attenuation=moschos)");
+            animate_phase_ = declare_flag("animate_phase", false,
+                                          "on: the phase function's g drifts with time and place");
         }
     }
 
-    std::string name() const override {
-        return variant_ == MarchVariant::march ? "march" : "hybrid3";
-    }
     std::string accepts() const override {
         return variant_ == MarchVariant::hybrid3 ? analytic::AnalyticRegionPass::accepts()
                                                  : VolumeMethod::accepts();
@@ -130,7 +98,7 @@ public:
             return nullptr;
         }
         analytic::AnalyticRegionPass::require_closed_form(scene, name());
-        const bool walk = analytic::walks(choice<analytic::RegionRoute>("route"), scene, software_);
+        const bool walk = analytic::walks(*route_, scene, software_);
         return analytic::region_frame_work(
             scene, change, {.lit = !walk, .uncertain = !walk, .gpu_tree = true}, built_, walk);
     }
@@ -159,7 +127,9 @@ public:
     void render(const frame::VolumeInputs& inputs) override {
         GLint target = 0;
         GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-        const double scale = std::stod(choice_name("resolution_scale"));
+        const double scale = *resolution_scale_ == ResolutionScale::full   ? 1.0
+                             : *resolution_scale_ == ResolutionScale::half ? 0.5
+                                                                           : 0.25;
         allocate(inputs.width, inputs.height, scale);
         const bool hybrid = variant_ == MarchVariant::hybrid3;
         // hybrid3 with a marching buffer of the frame's size: the region lists mark the pixels
@@ -191,7 +161,7 @@ public:
         // A marching buffer of the frame's size without blur needs no resolve (it would copy):
         // the march adds its I_s straight into the frame's target, attached beside the buffer.
         const GLuint direct_target =
-            scale == 1.0 && choice<Blur>("blur") == Blur::none ? frame_texture(GLuint(target)) : 0;
+            scale == 1.0 && *blur_ == Blur::none ? frame_texture(GLuint(target)) : 0;
         if (direct_target) {
             attach_frame_target(direct_target);
         }
@@ -212,26 +182,22 @@ public:
         }
         const GLuint program = march_program_.id();
         GL.UseProgram(program);
-        GL.ProgramUniform1i(program, march_uniform::samples, int(number("samples")));
-        GL.ProgramUniform1i(program, march_uniform::jitter, int(flag("jitter")));
-        GL.ProgramUniform1i(program, march_uniform::clip_mode,
-                            hybrid ? int(Clip::cone) : int(choice<Clip>("clip")));
-        GL.ProgramUniform1f(program, march_uniform::buffer_scale, float(scale));
-        GL.ProgramUniform1i(
-            program, march_uniform::attenuation,
-            hybrid ? int(Attenuation::model) : int(choice<Attenuation>("attenuation")));
-        GL.ProgramUniform1f(program, march_uniform::optical_thickness,
-                            hybrid ? 1.0f : float(number("optical_thickness")));
-        GL.ProgramUniform1i(program, march_uniform::animate_phase,
-                            hybrid ? 0 : int(flag("animate_phase")));
-        GL.ProgramUniform1f(program, march_uniform::time, float(frame_index_++) / 60.0f);
-        GL.ProgramUniform1i(program, march_uniform::interval_mode, hybrid ? 1 : 0);
+        GL.ProgramUniform1i(program, SL_MARCH_SAMPLES, *samples_);
+        GL.ProgramUniform1i(program, SL_MARCH_JITTER, int(*jitter_));
+        GL.ProgramUniform1i(program, SL_MARCH_CLIP_MODE, hybrid ? int(Clip::cone) : int(*clip_));
+        GL.ProgramUniform1f(program, SL_MARCH_BUFFER_SCALE, float(scale));
+        GL.ProgramUniform1i(program, SL_MARCH_ATTENUATION,
+                            hybrid ? int(Attenuation::model) : int(*attenuation_));
+        GL.ProgramUniform1f(program, SL_MARCH_OPTICAL_THICKNESS,
+                            hybrid ? 1.0f : float(*optical_thickness_));
+        GL.ProgramUniform1i(program, SL_MARCH_ANIMATE_PHASE, hybrid ? 0 : int(*animate_phase_));
+        GL.ProgramUniform1f(program, SL_MARCH_TIME, float(frame_index_++) / 60.0f);
+        GL.ProgramUniform1i(program, SL_MARCH_INTERVAL_MODE, hybrid ? 1 : 0);
         if (hybrid) {
-            GL.ProgramUniform2f(program, march_uniform::adaptive, float(number("density")),
-                                float(number("min_samples")));
+            GL.ProgramUniform2f(program, SL_MARCH_ADAPTIVE, float(*density_), float(*min_samples_));
         }
-        GL.ProgramUniform4fv(program, march_uniform::clip_planes, 6, clip_planes_.data());
-        GL.BindTextureUnit(0, inputs.surface_depth);
+        GL.ProgramUniform4fv(program, SL_MARCH_CLIP_PLANES, 6, clip_planes_.data());
+        GL.BindTextureUnit(SL_MARCH_SURFACE_DEPTH_UNIT, inputs.surface_depth);
         GL.BindVertexArray(empty_vertex_array_.id());
         GL.DrawArrays(GL_TRIANGLES, 0, 3);
         marked.reset();
@@ -247,11 +213,10 @@ public:
         GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
         GL.Viewport(0, 0, inputs.width, inputs.height);
         GL.UseProgram(resolve_program_.id());
-        GL.ProgramUniform1f(resolve_program_.id(), resolve_uniform::buffer_scale, float(scale));
-        GL.ProgramUniform1i(resolve_program_.id(), resolve_uniform::blur,
-                            int(choice<Blur>("blur")));
-        GL.BindTextureUnit(0, inputs.surface_depth);
-        GL.BindTextureUnit(1, march_target_.id());
+        GL.ProgramUniform1f(resolve_program_.id(), SL_RESOLVE_BUFFER_SCALE, float(scale));
+        GL.ProgramUniform1i(resolve_program_.id(), SL_RESOLVE_BLUR, int(*blur_));
+        GL.BindTextureUnit(SL_RESOLVE_SURFACE_DEPTH_UNIT, inputs.surface_depth);
+        GL.BindTextureUnit(SL_RESOLVE_MARCHED_UNIT, march_target_.id());
         GL.Enable(GL_BLEND);
         GL.BlendFunc(GL_ONE, GL_ONE);
         GL.DrawArrays(GL_TRIANGLES, 0, 3);
@@ -296,6 +261,17 @@ public:
     }
 
 private:
+    frame::Param<int> samples_;
+    frame::Param<double> density_;               // hybrid3
+    frame::Param<analytic::RegionRoute> route_;  // hybrid3
+    frame::Param<int> min_samples_;              // hybrid3
+    frame::Param<ResolutionScale> resolution_scale_;
+    frame::Param<Blur> blur_;
+    frame::Param<bool> jitter_;
+    frame::Param<Clip> clip_;                 // march
+    frame::Param<Attenuation> attenuation_;   // march
+    frame::Param<double> optical_thickness_;  // march
+    frame::Param<bool> animate_phase_;        // march
     // The texture behind the frame target's first colour attachment, or 0 (the default
     // framebuffer, a renderbuffer): the march then resolves into the target instead.
     static GLuint frame_texture(GLuint framebuffer) {
@@ -364,8 +340,10 @@ private:
 
 }  // namespace
 
-std::unique_ptr<frame::VolumeMethod> create_march_method(MarchVariant variant) {
-    return std::make_unique<MarchMethod>(variant);
+void register_march_methods(frame::MethodRegistry& registry) {
+    registry.add("march", 30, [] { return std::make_unique<MarchMethod>(MarchVariant::march); });
+    registry.add("hybrid3", 31,
+                 [] { return std::make_unique<MarchMethod>(MarchVariant::hybrid3); });
 }
 
 }  // namespace sl::sampling

@@ -20,10 +20,15 @@
 
 #include "frame/volume_method.h"
 
+namespace sl::frame {
+class MethodRegistry;
+}
+
 namespace sl::sampling {
 
 enum class MarchVariant { march, hybrid3 };
 
-std::unique_ptr<frame::VolumeMethod> create_march_method(MarchVariant variant);
+// Registers `march` and `hybrid3` (frame/method_registry.h).
+void register_march_methods(frame::MethodRegistry& registry);
 
 }  // namespace sl::sampling

@@ -13,10 +13,12 @@
 #include "beamtree/boundary.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
+#include "frame/method_registry.h"
 #include "gl/functions.h"
 #include "gl/objects.h"
 #include "gl/platform.h"
 #include "gl/shaders.h"
+#include "sampling/shaders/planes_interface.h"
 #include "sampling/slices.h"
 
 namespace sl::sampling {
@@ -28,12 +30,6 @@ using gl::GL;
 
 // The `partition` choices, in declaration order.
 enum class Partition { gpu, cpu };
-
-// Uniform locations of sampling/shaders/planes.frag.
-constexpr GLint kDzLocation = 0;
-constexpr GLint kKnownLitLocation = 1;
-constexpr GLint kJitterLocation = 2;
-constexpr GLint kClassifyLocation = 3;
 
 double ms_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -54,40 +50,38 @@ void append_fan(const bt::Polygon& polygon, double depth, std::vector<PlaneVerte
     }
 }
 
+const char* variant_name(PlanesVariant variant) {
+    switch (variant) {
+        case PlanesVariant::planes:
+            return "planes";
+        case PlanesVariant::hybrid1:
+            return "hybrid1";
+        case PlanesVariant::hybrid2:
+            return "hybrid2";
+    }
+    return "?";
+}
+
 class PlanesMethod final : public frame::VolumeMethod {
 public:
-    explicit PlanesMethod(PlanesVariant variant) : variant_(variant) {
-        declare({.name = "dz",
-                 .default_value = 0.1,
-                 .min = 1e-3,
-                 .max = 100.0,
-                 .description = "metres of eye depth between sampling planes"});
-        declare_flag("jitter", false,
-                     "on: offset each pixel's sample within its slab (noise for bands)");
+    explicit PlanesMethod(PlanesVariant variant)
+        : VolumeMethod(variant_name(variant)), variant_(variant) {
+        dz_ = declare_real("dz", 0.1, 1e-3, 100.0, "metres of eye depth between sampling planes");
+        jitter_ = declare_flag("jitter", false,
+                               "on: offset each pixel's sample within its slab (noise for bands)");
         declare_shadow_parameters();
         if (variant != PlanesVariant::planes) {
-            declare({.name = "partition",
-                     .type = Parameter::Type::choice,
-                     .default_value = 0,
-                     .description = "gpu: each plane sample classified by the beam tree on the "
-                                    "GPU (beamtree/shaders/classify.glsl); cpu: every plane cut "
-                                    "by the tree on the CPU each frame (Nilsson's method)",
-                     .choices = {"gpu", "cpu"}});
-            declare(analytic::region_route_parameter());
+            partition_ = declare_choice(
+                "partition", {"gpu", "cpu"}, Partition::gpu,
+                "gpu: each plane sample classified by the beam tree on the GPU "
+                "(beamtree/shaders/classify.glsl); cpu: every plane cut by the tree on the CPU "
+                "each frame (Nilsson's method)");
+            route_ = declare_choice("route", analytic::region_route_choices(),
+                                    analytic::RegionRoute::automatic,
+                                    analytic::region_route_description());
         }
     }
 
-    std::string name() const override {
-        switch (variant_) {
-            case PlanesVariant::planes:
-                return "planes";
-            case PlanesVariant::hybrid1:
-                return "hybrid1";
-            case PlanesVariant::hybrid2:
-                return "hybrid2";
-        }
-        return "?";
-    }
     std::string accepts() const override {
         return variant_ == PlanesVariant::hybrid2 ? analytic::AnalyticRegionPass::accepts()
                                                   : VolumeMethod::accepts();
@@ -104,12 +98,13 @@ public:
             vertex_array_ = gl::create_vertex_array();
             const GLuint vao = vertex_array_.id();
             GL.VertexArrayVertexBuffer(vao, 0, vertex_buffer_.id(), 0, sizeof(PlaneVertex));
-            GL.EnableVertexArrayAttrib(vao, 0);
-            GL.VertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-            GL.VertexArrayAttribBinding(vao, 0, 0);
-            GL.EnableVertexArrayAttrib(vao, 1);
-            GL.VertexArrayAttribFormat(vao, 1, 1, GL_FLOAT, GL_FALSE, offsetof(PlaneVertex, depth));
-            GL.VertexArrayAttribBinding(vao, 1, 0);
+            GL.EnableVertexArrayAttrib(vao, SL_PLANES_POSITION_ATTRIBUTE);
+            GL.VertexArrayAttribFormat(vao, SL_PLANES_POSITION_ATTRIBUTE, 3, GL_FLOAT, GL_FALSE, 0);
+            GL.VertexArrayAttribBinding(vao, SL_PLANES_POSITION_ATTRIBUTE, 0);
+            GL.EnableVertexArrayAttrib(vao, SL_PLANES_DEPTH_ATTRIBUTE);
+            GL.VertexArrayAttribFormat(vao, SL_PLANES_DEPTH_ATTRIBUTE, 1, GL_FLOAT, GL_FALSE,
+                                       offsetof(PlaneVertex, depth));
+            GL.VertexArrayAttribBinding(vao, SL_PLANES_DEPTH_ATTRIBUTE, 0);
             vertex_array_.label("sampling planes");
             fragments_ = gl::create_query(GL_FRAGMENT_SHADER_INVOCATIONS);
         }
@@ -125,7 +120,7 @@ public:
         }
         // The CPU partition cuts planes with the tree alone; the lists and the lit integral need
         // the meshes only on the mesh route.
-        const bool walk = analytic::walks(choice<analytic::RegionRoute>("route"), scene, software_);
+        const bool walk = analytic::walks(*route_, scene, software_);
         return analytic::region_frame_work(scene, change,
                                            {.lit = !walk, .uncertain = !walk, .gpu_tree = true},
                                            tree_ != nullptr, walk);
@@ -149,7 +144,7 @@ public:
     }
 
     void render(const frame::VolumeInputs& inputs) override {
-        const double dz = number("dz");
+        const double dz = *dz_;
         // CPU: the planes clipped to the influence pyramid, then (hybrids) partitioned by the
         // beam tree (Nilsson appendix B `partition`, §5.2.1).
         auto start = std::chrono::steady_clock::now();
@@ -160,7 +155,7 @@ public:
         // Pieces drawn with the shadow lookup, then (hybrid1) the lit ones drawn without it.
         std::vector<PlaneVertex> vertices, lit;
         pieces_ = {};
-        const bool classify_on_gpu = tree_ && choice<Partition>("partition") == Partition::gpu;
+        const bool classify_on_gpu = tree_ && *partition_ == Partition::gpu;
         if (!tree_ || classify_on_gpu) {
             for (const Slice& slice : slices)
                 append_fan(slice.polygon, slice.depth, vertices);
@@ -243,24 +238,24 @@ public:
         }
         GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
         GL.UseProgram(program_.id());
-        GL.ProgramUniform1f(program_.id(), kDzLocation, float(dz));
-        GL.ProgramUniform1i(program_.id(), kJitterLocation, int(flag("jitter")));
-        GL.ProgramUniform1i(program_.id(), kClassifyLocation,
+        GL.ProgramUniform1f(program_.id(), SL_PLANES_DZ, float(dz));
+        GL.ProgramUniform1i(program_.id(), SL_PLANES_JITTER, int(*jitter_));
+        GL.ProgramUniform1i(program_.id(), SL_PLANES_CLASSIFY_MODE,
                             !classify_on_gpu                     ? 0
                             : variant_ == PlanesVariant::hybrid1 ? 1
                                                                  : 2);
         if (classify_on_gpu) {
             gpu_tree_.bind();
         }
-        GL.BindTextureUnit(0, inputs.surface_depth);
+        GL.BindTextureUnit(SL_PLANES_SURFACE_DEPTH_UNIT, inputs.surface_depth);
         GL.Enable(GL_BLEND);
         GL.BlendFunc(GL_ONE, GL_ONE);
         GL.Enable(GL_DEPTH_CLAMP);  // planes beyond the camera's far plane still count
         GL.BindVertexArray(vertex_array_.id());
-        GL.ProgramUniform1i(program_.id(), kKnownLitLocation, 0);
+        GL.ProgramUniform1i(program_.id(), SL_PLANES_KNOWN_LIT, 0);
         GL.DrawArrays(GL_TRIANGLES, 0, shadowed_count);
         if (lit_count > 0) {
-            GL.ProgramUniform1i(program_.id(), kKnownLitLocation, 1);
+            GL.ProgramUniform1i(program_.id(), SL_PLANES_KNOWN_LIT, 1);
             GL.DrawArrays(GL_TRIANGLES, shadowed_count, lit_count);
         }
         GL.Disable(GL_DEPTH_CLAMP);
@@ -323,6 +318,10 @@ public:
 
 private:
     PlanesVariant variant_;
+    frame::Param<double> dz_;
+    frame::Param<bool> jitter_;
+    frame::Param<Partition> partition_;          // the hybrids'
+    frame::Param<analytic::RegionRoute> route_;  // the hybrids'
     std::shared_ptr<const bt::BeamTree> tree_;
     bt::RegionStageTimes stages_;
     analytic::AnalyticRegionPass analytic_;
@@ -347,8 +346,13 @@ private:
 
 }  // namespace
 
-std::unique_ptr<frame::VolumeMethod> create_planes_method(PlanesVariant variant) {
-    return std::make_unique<PlanesMethod>(variant);
+void register_planes_methods(frame::MethodRegistry& registry) {
+    int order = 20;
+    for (const PlanesVariant variant :
+         {PlanesVariant::planes, PlanesVariant::hybrid1, PlanesVariant::hybrid2}) {
+        registry.add(variant_name(variant), order++,
+                     [variant] { return std::make_unique<PlanesMethod>(variant); });
+    }
 }
 
 }  // namespace sl::sampling

@@ -18,10 +18,15 @@
 
 #include "frame/volume_method.h"
 
+namespace sl::frame {
+class MethodRegistry;
+}
+
 namespace sl::sampling {
 
 enum class PlanesVariant { planes, hybrid1, hybrid2 };
 
-std::unique_ptr<frame::VolumeMethod> create_planes_method(PlanesVariant variant);
+// Registers `planes`, `hybrid1` and `hybrid2` (frame/method_registry.h).
+void register_planes_methods(frame::MethodRegistry& registry);
 
 }  // namespace sl::sampling

@@ -13,6 +13,7 @@
 #include "gl/shaders/frame_uniforms.h"
 #include "sss/diffusion.h"
 #include "sss/layers.h"
+#include "sss/shaders/subsurface_interface.h"
 #include "sss/surface_samples.h"
 
 namespace sl::sss {
@@ -22,33 +23,6 @@ using gl::GL;
 using gl::Texture;
 
 namespace {
-
-// Uniform locations of sss/shaders (layout(location = N)).
-constexpr GLint kViewProjectionLocation = 5;
-constexpr GLint kGbufferObjectLocation = 6;
-constexpr GLint kRoiLocation = 10;
-constexpr GLint kGridLocation = 11;
-constexpr GLint kLightPositionLocation = 12;
-constexpr GLint kLightDirectionLocation = 13;
-constexpr GLint kLightIntensityLocation = 14;
-constexpr GLint kLightRangeLocation = 15;
-constexpr GLint kMaterialLocation = 16;
-constexpr GLint kSlabLocation = 17;
-constexpr GLint kObjectLocation = 18;
-constexpr GLint kAreaPerSampleLocation = 19;
-constexpr GLint kFootprintLocation = 20;
-
-// Texture units of sss/shaders/subsurface.glsl.
-enum Unit : GLuint {
-    kLightPositionsUnit = 0,
-    kLightNormalsUnit = 1,
-    kBackPositionsUnit = 2,
-    kEyePositionsUnit = 3,
-    kEyeNormalsUnit = 4,
-    kProfileRUnit = 5,
-    kProfileTUnit = 6,
-    kVisibleAreaUnit = 7,
-};
 
 constexpr int kThicknessRows = 64;
 constexpr int kFootprintLevels = 8;
@@ -326,14 +300,14 @@ glm::vec4 SubsurfacePass::region_of_interest(size_t index, const SpotLight& ligh
 
 void SubsurfacePass::set_light(GLuint program, const SpotLight& light) const {
     const float half_angle = glm::radians(light.cone_half_angle_degrees);
-    GL.ProgramUniform4fv(program, kLightPositionLocation, 1,
+    GL.ProgramUniform4fv(program, SL_SSS_LIGHT_POSITION, 1,
                          glm::value_ptr(glm::vec4(light.position, std::tan(half_angle))));
-    GL.ProgramUniform4fv(program, kLightDirectionLocation, 1,
+    GL.ProgramUniform4fv(program, SL_SSS_LIGHT_DIRECTION, 1,
                          glm::value_ptr(glm::vec4(light.direction(), half_angle)));
     GL.ProgramUniform4fv(
-        program, kLightIntensityLocation, 1,
+        program, SL_SSS_LIGHT_INTENSITY, 1,
         glm::value_ptr(glm::vec4(light.intensity, glm::radians(light.falloff_degrees))));
-    GL.ProgramUniform4fv(program, kLightRangeLocation, 1,
+    GL.ProgramUniform4fv(program, SL_SSS_LIGHT_RANGE, 1,
                          glm::value_ptr(glm::vec4(light.near, light.far, 0.0f, 0.0f)));
 }
 
@@ -342,18 +316,18 @@ void SubsurfacePass::set_material(GLuint program, size_t object) const {
     const SubsurfaceMaterial& m = *material_of(o.material);
     const Translucency& t = *scene_.materials[size_t(o.material)].translucency;
     const float mm = scene_.subsurface.mm_per_unit;
-    GL.ProgramUniform4fv(program, kMaterialLocation, 1,
+    GL.ProgramUniform4fv(program, SL_SSS_MATERIAL, 1,
                          glm::value_ptr(glm::vec4(float(m.r_max_mm) / mm, mm, float(t.medium.eta),
                                                   m.multipole ? 1.0f : 0.0f)));
     const float weighting = scene_.subsurface.weighting == SplatWeighting::seed ? 1.0f : 0.0f;
     const int levels = scene_.subsurface.footprint ? kFootprintLevels : 1;
-    GL.ProgramUniform4fv(program, kSlabLocation, 1,
+    GL.ProgramUniform4fv(program, SL_SSS_SLAB, 1,
                          glm::value_ptr(glm::vec4(float(m.d_min_mm), float(m.d_max_mm),
                                                   float(m.layer * levels), weighting)));
     GL.ProgramUniform4fv(
-        program, kFootprintLocation, 1,
+        program, SL_SSS_FOOTPRINT, 1,
         glm::value_ptr(glm::vec4(float(m.r_max_mm / 4.0), float(levels), 0.0f, 0.0f)));
-    GL.ProgramUniform1f(program, kObjectLocation, float(object + 1));
+    GL.ProgramUniform1f(program, SL_SSS_OBJECT, float(object + 1));
 }
 
 void SubsurfacePass::render(const DrawObject& draw, const glm::mat4& view_projection,
@@ -384,10 +358,10 @@ void SubsurfacePass::render(const DrawObject& draw, const glm::mat4& view_projec
     GL.DepthMask(GL_FALSE);
     const GLuint gbuffer = gbuffer_program_.id();
     GL.UseProgram(gbuffer);
-    GL.ProgramUniformMatrix4fv(gbuffer, kViewProjectionLocation, 1, GL_FALSE,
+    GL.ProgramUniformMatrix4fv(gbuffer, SL_SSS_VIEW_PROJECTION, 1, GL_FALSE,
                                glm::value_ptr(view_projection));
     for (const size_t i : translucent) {
-        GL.ProgramUniform1f(gbuffer, kGbufferObjectLocation, float(i + 1));
+        GL.ProgramUniform1f(gbuffer, SL_SSS_GBUFFER_OBJECT, float(i + 1));
         draw(i, gbuffer);
     }
     GL.DepthMask(GL_TRUE);
@@ -395,14 +369,14 @@ void SubsurfacePass::render(const DrawObject& draw, const glm::mat4& view_projec
     GL.PopDebugGroup();
 
     GL.ClearNamedFramebufferfv(scatter_framebuffer_.id(), GL_COLOR, 0, zero);
-    GL.BindTextureUnit(kLightPositionsUnit, light_positions_.id());
-    GL.BindTextureUnit(kLightNormalsUnit, light_normals_.id());
-    GL.BindTextureUnit(kBackPositionsUnit, back_positions_.id());
-    GL.BindTextureUnit(kEyePositionsUnit, eye_positions_.id());
-    GL.BindTextureUnit(kEyeNormalsUnit, eye_normals_.id());
-    GL.BindTextureUnit(kProfileRUnit, profile_R_.id());
-    GL.BindTextureUnit(kProfileTUnit, profile_T_.id());
-    GL.BindTextureUnit(kVisibleAreaUnit, area_sums_.id());
+    GL.BindTextureUnit(SL_SSS_LIGHT_POSITIONS_UNIT, light_positions_.id());
+    GL.BindTextureUnit(SL_SSS_LIGHT_NORMALS_UNIT, light_normals_.id());
+    GL.BindTextureUnit(SL_SSS_BACK_POSITIONS_UNIT, back_positions_.id());
+    GL.BindTextureUnit(SL_SSS_EYE_POSITIONS_UNIT, eye_positions_.id());
+    GL.BindTextureUnit(SL_SSS_EYE_NORMALS_UNIT, eye_normals_.id());
+    GL.BindTextureUnit(SL_SSS_PROFILE_R_UNIT, profile_R_.id());
+    GL.BindTextureUnit(SL_SSS_PROFILE_T_UNIT, profile_T_.id());
+    GL.BindTextureUnit(SL_SSS_VISIBLE_AREA_UNIT, area_sums_.id());
     const int size = settings.map_size;
     const GLsizei grid_count = settings.grid_x * settings.grid_y;
     for (const SpotLight& light : lights_of(scene_)) {
@@ -417,14 +391,14 @@ void SubsurfacePass::render(const DrawObject& draw, const glm::mat4& view_projec
         GL.ClearNamedFramebufferfv(light_framebuffer_.id(), GL_DEPTH, 0, &one);
         GL.Enable(GL_DEPTH_TEST);
         GL.UseProgram(gbuffer);
-        GL.ProgramUniformMatrix4fv(gbuffer, kViewProjectionLocation, 1, GL_FALSE,
+        GL.ProgramUniformMatrix4fv(gbuffer, SL_SSS_VIEW_PROJECTION, 1, GL_FALSE,
                                    glm::value_ptr(light_view_projection));
         // As the frame's shadow map: what lies between the light and its near plane still
         // occludes (clamped to the map's near plane, its positions kept), not clipped away.
         GL.Enable(GL_DEPTH_CLAMP);
         for (size_t i = 0; i < scene_.objects.size(); ++i) {
             if (scene_.casts_shadow(scene_.objects[i])) {  // glass lets the light through
-                GL.ProgramUniform1f(gbuffer, kGbufferObjectLocation, float(i + 1));
+                GL.ProgramUniform1f(gbuffer, SL_SSS_GBUFFER_OBJECT, float(i + 1));
                 draw(i, gbuffer);
             }
         }
@@ -439,7 +413,7 @@ void SubsurfacePass::render(const DrawObject& draw, const glm::mat4& view_projec
             GL.Enable(GL_CULL_FACE);
             GL.CullFace(GL_FRONT);
             for (const size_t i : translucent) {
-                GL.ProgramUniform1f(gbuffer, kGbufferObjectLocation, float(i + 1));
+                GL.ProgramUniform1f(gbuffer, SL_SSS_GBUFFER_OBJECT, float(i + 1));
                 draw(i, gbuffer);
             }
             GL.Disable(GL_CULL_FACE);
@@ -464,13 +438,13 @@ void SubsurfacePass::render(const DrawObject& draw, const glm::mat4& view_projec
             for (const GLuint program : {area_program_.id(), splat_program_.id()}) {
                 set_light(program, light);
                 set_material(program, i);
-                GL.ProgramUniform4fv(program, kRoiLocation, 1, glm::value_ptr(roi));
-                GL.ProgramUniform4i(program, kGridLocation, grid.x, grid.y, grid.z, grid.w);
+                GL.ProgramUniform4fv(program, SL_SSS_ROI, 1, glm::value_ptr(roi));
+                GL.ProgramUniform4i(program, SL_SSS_GRID, grid.x, grid.y, grid.z, grid.w);
             }
             if (settings.weighting == SplatWeighting::seed) {
                 // Σ ΔA and N_s of this light's valid samples for A_vis / N_s.
                 const GLuint area = area_program_.id();
-                GL.ProgramUniform4fv(area, kSlabLocation, 1,
+                GL.ProgramUniform4fv(area, SL_SSS_SLAB, 1,
                                      glm::value_ptr(glm::vec4(0.0f, 0.0f, 0.0f, 2.0f)));
                 GL.BindFramebuffer(GL_FRAMEBUFFER, area_framebuffer_.id());
                 GL.Viewport(0, 0, 1, 1);
@@ -499,7 +473,7 @@ void SubsurfacePass::render(const DrawObject& draw, const glm::mat4& view_projec
         GL.UseProgram(points);
         for (const EnvironmentSamples& e : environment_) {
             set_material(points, e.object);
-            GL.ProgramUniform1f(points, kAreaPerSampleLocation, e.area_per_sample);
+            GL.ProgramUniform1f(points, SL_SSS_AREA_PER_SAMPLE, e.area_per_sample);
             GL.BindVertexArray(e.vertex_array.id());
             GL.DrawArrays(GL_POINTS, 0, e.count);
         }
@@ -514,7 +488,7 @@ void SubsurfacePass::render(const DrawObject& draw, const glm::mat4& view_projec
     GL.Enable(GL_BLEND);
     GL.BlendFunc(GL_ONE, GL_ONE);
     GL.UseProgram(combine_program_.id());
-    GL.BindTextureUnit(0, scatter_.id());
+    GL.BindTextureUnit(SL_SSS_SCATTER_UNIT, scatter_.id());
     GL.BindVertexArray(empty_vertex_array_.id());
     GL.DrawArrays(GL_TRIANGLES, 0, 3);
     GL.Disable(GL_BLEND);

@@ -70,8 +70,10 @@ void Viewer::ui_method() {
         if (text) {
             try {
                 method_->set(p.name, *text);
+                method_->validate();
             } catch (const Error& e) {
                 status_ = e.what();
+                method_->set(p.name, p.text());  // back to the last value that held
             }
         }
         if (commit) {

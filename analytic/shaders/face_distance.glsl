@@ -5,7 +5,8 @@
 // point of its longest edge nearest the ray instead, within the same span: a pixel centre that
 // the rasterizer gives to such a triangle lies by the edge it shares with the neighbour that
 // covers the pixel once more, so the pair's two G(z) nearly cancel, as the exact faces' do.
-#define SL_FACE_CORNERS_BINDING 5
+
+#include "analytic/shaders/analytic_interface.h"
 layout(std430, binding = SL_FACE_CORNERS_BINDING) readonly buffer FaceCorners {
     vec4 face_corners[];
 };

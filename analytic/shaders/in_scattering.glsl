@@ -13,8 +13,9 @@
 // code is compiled only where SL_SMOOTH_CONE_EDGE is defined (a program per edge kind): left in
 // behind a uniform branch it made llvmpipe's hard-edge region pass 4.6x slower (134 ms against
 // 29 ms on toplight at 640x360).
+#include "analytic/shaders/analytic_interface.h"
 #include "gl/shaders/scattering.glsl"
-layout(binding = 7) uniform sampler2D medium_table;
+layout(binding = SL_MEDIUM_TABLE_UNIT) uniform sampler2D medium_table;
 
 // Bilinear interpolation of one channel of a table in float arithmetic at `texel` (texel units, 0
 // at the first sample's centre). The texture unit's own GL_LINEAR filter is not used: GPUs

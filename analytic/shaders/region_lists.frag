@@ -3,11 +3,12 @@
 // along the eye ray, + for a front face (entering), - for a back face (leaving). No colour. The
 // distance comes from the triangle's corners, not from the interpolated position, which a
 // triangle degenerate in float gets wrong (face_distance.glsl).
+#include "analytic/shaders/analytic_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/view.glsl"
 #include "beamtree/shaders/region_lists.glsl"
 #include "analytic/shaders/face_distance.glsl"
-layout(location = 0) uniform int surface;  // 0 lit, 1 uncertain
+layout(location = SL_REGION_LISTS_SURFACE) uniform int surface;  // 0 lit, 1 uncertain
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     int slot = region_slot(pixel, surface);

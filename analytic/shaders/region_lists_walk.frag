@@ -6,14 +6,15 @@
 // ray inside a region at the eye enters it at t = 1e-30. A pixel whose ray crosses none of the
 // surfaces in `mark_surfaces` (bit 0 lit, bit 1 uncertain) is discarded, so that the stencil
 // marks only the others. No colour.
+#include "analytic/shaders/analytic_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/view.glsl"
 #include "beamtree/shaders/classify.glsl"
 #include "beamtree/shaders/walk.glsl"
 #include "beamtree/shaders/region_lists.glsl"
 
-layout(binding = 0) uniform sampler2D surface_depth;
-layout(location = 0) uniform int mark_surfaces;
+layout(binding = SL_ANALYTIC_SURFACE_DEPTH_UNIT) uniform sampler2D surface_depth;
+layout(location = SL_REGION_LISTS_MARK_SURFACES) uniform int mark_surfaces;
 
 ivec2 pixel = ivec2(0);
 // Per surface (x lit, y uncertain): the crossings written, and whether the walk is inside.

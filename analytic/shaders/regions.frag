@@ -8,6 +8,7 @@
 // analytic/region_faces.h) a face's z is taken from its triangle's corners, not from the
 // interpolated position, which a triangle degenerate in float gets wrong (face_distance.glsl);
 // lightvolume's grid, made on the GPU, has no corners buffer and interpolates.
+#include "analytic/shaders/analytic_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "analytic/shaders/in_scattering.glsl"
@@ -16,7 +17,7 @@
 #include "analytic/shaders/face_distance.glsl"
 #endif
 
-layout(binding = 0) uniform sampler2D surface_depth;
+layout(binding = SL_ANALYTIC_SURFACE_DEPTH_UNIT) uniform sampler2D surface_depth;
 in vec3 world_position;
 layout(location = 0) out vec4 in_scattered;
 

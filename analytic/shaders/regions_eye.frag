@@ -3,12 +3,13 @@
 // entry face lies behind the eye, so nothing subtracts G at the ray's start. This full-screen pass
 // subtracts G(0) once per region about the eye (`windings`), as the missing front faces at z = 0
 // would (regions.frag); the closed form's antiderivative is not 0 there.
+#include "analytic/shaders/analytic_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "analytic/shaders/in_scattering.glsl"
 #include "gl/shaders/view.glsl"
 
-layout(location = 0) uniform float windings;
+layout(location = SL_REGIONS_EYE_WINDINGS) uniform float windings;
 layout(location = 0) out vec4 in_scattered;
 
 void main() {

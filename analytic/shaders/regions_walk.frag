@@ -7,6 +7,7 @@
 // (regions.frag). Where a list overflowed, the pass walks the tree itself
 // (beamtree/shaders/walk.glsl, whose pieces of one region are already merged). No eye winding
 // pass is needed: a ray that starts inside a lit region has an interval from z = 0.
+#include "analytic/shaders/analytic_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "analytic/shaders/in_scattering.glsl"
@@ -15,7 +16,7 @@
 #include "beamtree/shaders/walk.glsl"
 #include "beamtree/shaders/region_lists.glsl"
 
-layout(binding = 0) uniform sampler2D surface_depth;
+layout(binding = SL_ANALYTIC_SURFACE_DEPTH_UNIT) uniform sampler2D surface_depth;
 layout(location = 0) out vec4 in_scattered;
 
 vec3 ray_origin = vec3(0.0), ray_direction = vec3(0.0);

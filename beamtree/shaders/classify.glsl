@@ -4,12 +4,8 @@
 // uncertain behind; blocker also unlit behind its stopper. Planes are relative to the light, so
 // float keeps the tree's ε. Needs frame_uniforms.h (the light's position). Tested against the
 // C++ classify on 10^5 points.
-#ifndef SL_TREE_NODES_BINDING
-#define SL_TREE_NODES_BINDING 1
-#endif
-#ifndef SL_TREE_PLANES_BINDING
-#define SL_TREE_PLANES_BINDING 2
-#endif
+
+#include "beamtree/shaders/classify_interface.h"
 
 const int REGION_LIT = 0;
 const int REGION_UNCERTAIN = 1;

@@ -4,13 +4,9 @@
 // enters the region (a front face: the surfaces face outward), - where it leaves. A ray crosses
 // each surface a few times; a pixel with more than REGION_LIST_SIZE crossings of one surface
 // overflows, and its readers fall back to the tree itself (beamtree/shaders/classify.glsl).
-#ifndef SL_REGION_COUNTS_BINDING
-#define SL_REGION_COUNTS_BINDING 3
-#endif
-#ifndef SL_REGION_CROSSINGS_BINDING
-#define SL_REGION_CROSSINGS_BINDING 4
-#endif
-const int REGION_LIST_SIZE = 16;
+
+#include "beamtree/shaders/region_lists_interface.h"
+const int REGION_LIST_SIZE = SL_REGION_LIST_SIZE;
 
 layout(std430, binding = SL_REGION_COUNTS_BINDING) buffer RegionCounts { uint region_counts[]; };
 layout(std430, binding = SL_REGION_CROSSINGS_BINDING) buffer RegionCrossings {

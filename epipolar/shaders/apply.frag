@@ -5,6 +5,7 @@
 // the pixel's surface (same_surface): a bilateral filter, so that no shaft bleeds across a depth
 // edge. A pixel left without a sample of its surface is marched directly through the frame's
 // shadow map (march_direct: Yusov's fix-up pass), as is every pixel with interpolation off.
+#include "epipolar/shaders/epipolar_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/scattering.glsl"
@@ -13,9 +14,9 @@
 #include "analytic/shaders/in_scattering.glsl"
 #include "epipolar/shaders/epipolar.glsl"
 
-layout(binding = 0) uniform sampler2D surface_depth;
-layout(binding = 1) uniform sampler2D coordinates;
-layout(binding = 2) uniform sampler2D scattering;
+layout(binding = SL_EPIPOLAR_SURFACE_DEPTH_UNIT) uniform sampler2D surface_depth;
+layout(binding = SL_EPIPOLAR_COORDINATES_UNIT) uniform sampler2D coordinates;
+layout(binding = SL_EPIPOLAR_SCATTERING_UNIT) uniform sampler2D scattering;
 layout(location = 0) out vec4 in_scattered;
 
 // The least summed weight of the samples of the pixel's surface that is interpolated.

@@ -5,6 +5,7 @@
 // Output per sample: xy window position, z the ray's end distance (surface or far plane), w its
 // view depth; w = -1 for a slice that crosses no pixel.
 layout(local_size_x = 64, local_size_y = 1) in;
+#include "epipolar/shaders/epipolar_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/scattering.glsl"
@@ -13,8 +14,8 @@ layout(local_size_x = 64, local_size_y = 1) in;
 #include "analytic/shaders/in_scattering.glsl"
 #include "epipolar/shaders/epipolar.glsl"
 
-layout(binding = 0) uniform sampler2D surface_depth;
-layout(rgba32f, binding = 0) uniform writeonly image2D coordinates;
+layout(binding = SL_EPIPOLAR_SURFACE_DEPTH_UNIT) uniform sampler2D surface_depth;
+layout(rgba32f, binding = SL_EPIPOLAR_COORDINATES_IMAGE) uniform writeonly image2D coordinates;
 
 void main() {
     ivec2 id = ivec2(gl_GlobalInvocationID.xy);

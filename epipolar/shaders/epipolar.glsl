@@ -9,31 +9,33 @@
 // Needs frame_uniforms.h, lighting.glsl, scattering.glsl, shadow.glsl; march_rectified with
 // EPIPOLAR_CLOSED_FORM also in_scattering.glsl.
 
-layout(location = 0) uniform ivec2 grid;          // x = samples per slice, y = slices
-layout(location = 1) uniform vec2 light_screen;   // the light's screen position, pixels
-layout(location = 2) uniform vec3 arc;            // exit arc: start, length, 1 when periodic
-layout(location = 3) uniform int map_texels;      // texels of a rectified line
-layout(location = 4) uniform float depth_threshold;
-layout(location = 5) uniform int max_step;
-layout(location = 6) uniform int samples;         // steps per eye ray
-layout(location = 7) uniform int minmax_levels;   // levels of the tree walked (0: none)
-layout(location = 8) uniform int direct;          // 1: interpolation off (every pixel marched)
+#include "epipolar/shaders/epipolar_interface.h"
+
+layout(location = SL_EPIPOLAR_GRID) uniform ivec2 grid;          // x = samples per slice, y = slices
+layout(location = SL_EPIPOLAR_LIGHT_SCREEN) uniform vec2 light_screen;   // the light's screen position, pixels
+layout(location = SL_EPIPOLAR_ARC) uniform vec3 arc;            // exit arc: start, length, 1 when periodic
+layout(location = SL_EPIPOLAR_MAP_TEXELS) uniform int map_texels;      // texels of a rectified line
+layout(location = SL_EPIPOLAR_DEPTH_THRESHOLD) uniform float depth_threshold;
+layout(location = SL_EPIPOLAR_MAX_STEP) uniform int max_step;
+layout(location = SL_EPIPOLAR_SAMPLES) uniform int samples;         // steps per eye ray
+layout(location = SL_EPIPOLAR_MINMAX_LEVELS) uniform int minmax_levels;   // levels of the tree walked (0: none)
+layout(location = SL_EPIPOLAR_DIRECT) uniform int direct;          // 1: interpolation off (every pixel marched)
 
 struct Slice {
     vec4 ends;  // xy entry, zw exit (window pixels)
     vec4 line;  // xy shadow-map origin, zw step per texel (0: the line misses the map)
 };
-layout(std430, binding = 0) readonly buffer Slices {
+layout(std430, binding = SL_EPIPOLAR_SLICES_BINDING) readonly buffer Slices {
     Slice slices[];
 };
 // The frame's counters (epipolar.cpp's Counters): march.comp's work groups as an indirect
 // dispatch, then what the statistics report.
-layout(std430, binding = 1) buffer Counters {
+layout(std430, binding = SL_EPIPOLAR_COUNTERS_BINDING) buffer Counters {
     uint march_groups, march_groups_y, march_groups_z;
     uint marched_samples, lit_samples, tree_lookups, fixup_pixels, fixup_samples;
 };
 // The marched samples (refine.comp), x | y << 16.
-layout(std430, binding = 2) buffer MarchedList {
+layout(std430, binding = SL_EPIPOLAR_MARCHED_LIST_BINDING) buffer MarchedList {
     uint marched_list[];
 };
 
@@ -95,7 +97,7 @@ bool same_surface(float a, float b) {
 
 // ---- The marches ----
 
-layout(binding = 3) uniform sampler2D light_depth;  // the shadow map's depths, not comparisons
+layout(binding = SL_EPIPOLAR_LIGHT_DEPTH_UNIT) uniform sampler2D light_depth;  // the shadow map's depths, not comparisons
 
 // Texel `texel` of slice s's rectified line (level 0 of its min-max tree): the depth of the
 // shadow map's texel under its centre.

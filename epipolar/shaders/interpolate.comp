@@ -2,10 +2,13 @@
 // Epipolar pass 6 (Engelhardt & Dachsbacher 2010 §3.2): every sample that was not marched takes
 // the linear interpolation, by its index, of the nearest marched samples on each side of it on
 // its slice (refine.comp: at most max_step away, and no depth discontinuity between).
+
+#include "epipolar/shaders/epipolar_interface.h"
+
 layout(local_size_x = 64, local_size_y = 1) in;
-layout(location = 0) uniform ivec2 grid;
-layout(binding = 6) uniform isampler2D marks;
-layout(rgba32f, binding = 3) uniform image2D scattering;
+layout(location = SL_EPIPOLAR_GRID) uniform ivec2 grid;
+layout(binding = SL_EPIPOLAR_MARKS_UNIT) uniform isampler2D marks;
+layout(rgba32f, binding = SL_EPIPOLAR_SCATTERING_IMAGE) uniform image2D scattering;
 
 void main() {
     ivec2 id = ivec2(gl_GlobalInvocationID.xy);

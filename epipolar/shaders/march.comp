@@ -4,6 +4,7 @@
 // (rectified_march.glsl). Output per marched sample: rgb I_s, a the samples lit. The samples lit and
 // the tree's texels read are summed in `Counters`.
 layout(local_size_x = 64, local_size_y = 1) in;
+#include "epipolar/shaders/epipolar_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/scattering.glsl"
@@ -13,8 +14,8 @@ layout(local_size_x = 64, local_size_y = 1) in;
 #include "epipolar/shaders/epipolar.glsl"
 #include "epipolar/shaders/rectified_march.glsl"
 
-layout(binding = 1) uniform sampler2D coordinates;
-layout(rgba32f, binding = 3) uniform writeonly image2D scattering;
+layout(binding = SL_EPIPOLAR_COORDINATES_UNIT) uniform sampler2D coordinates;
+layout(rgba32f, binding = SL_EPIPOLAR_SCATTERING_IMAGE) uniform writeonly image2D scattering;
 
 void main() {
     uint index = gl_GlobalInvocationID.x;

@@ -3,9 +3,12 @@
 // tree above 6 (rectify.comp makes 0 to 6), one invocation per slice, each level's texels the
 // minimum and maximum of their two children. Level l >= 1 of a row starts at column W - 2W / 2^l
 // (W = map_texels).
+
+#include "epipolar/shaders/epipolar_interface.h"
+
 layout(local_size_x = 64, local_size_y = 1) in;
-layout(location = 0) uniform ivec3 levels;  // x = the top level, y = map_texels, z = slices
-layout(rg32f, binding = 2) uniform image2D tree;
+layout(location = SL_EPIPOLAR_TREE_LEVELS) uniform ivec3 levels;  // x = the top level, y = map_texels, z = slices
+layout(rg32f, binding = SL_EPIPOLAR_TREE_IMAGE) uniform image2D tree;
 
 int level_start(int l) {
     return levels.y - ((2 * levels.y) >> l);

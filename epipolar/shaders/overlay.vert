@@ -2,10 +2,11 @@
 // The previewer's overlay of the epipolar samples: one point per sample at its window position,
 // orange where it was marched, blue where it was interpolated; slices that cross no pixel are
 // left out.
+#include "epipolar/shaders/epipolar_interface.h"
 #include "gl/shaders/frame_uniforms.h"
-layout(location = 0) uniform ivec2 grid;
-layout(binding = 1) uniform sampler2D coordinates;
-layout(binding = 6) uniform isampler2D marks;
+layout(location = SL_EPIPOLAR_GRID) uniform ivec2 grid;
+layout(binding = SL_EPIPOLAR_COORDINATES_UNIT) uniform sampler2D coordinates;
+layout(binding = SL_EPIPOLAR_MARKS_UNIT) uniform isampler2D marks;
 layout(location = 0) out vec3 colour;
 
 void main() {

@@ -13,7 +13,9 @@
 // analytic lit segments; analytic/shaders/in_scattering.glsl).
 // Needs epipolar.glsl.
 
-layout(binding = 2) uniform sampler2D minmax;
+#include "epipolar/shaders/epipolar_interface.h"
+
+layout(binding = SL_EPIPOLAR_TREE_UNIT) uniform sampler2D minmax;
 
 struct MapPoint {
     float u;  // along the line, in texels

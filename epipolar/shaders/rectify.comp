@@ -6,6 +6,7 @@
 // (minmax.comp makes the levels above). Level l >= 1 of a row starts at column W - 2W / 2^l
 // (W = map_texels, a multiple of 64).
 layout(local_size_x = 64, local_size_y = 1) in;
+#include "epipolar/shaders/epipolar_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/scattering.glsl"
@@ -14,7 +15,7 @@ layout(local_size_x = 64, local_size_y = 1) in;
 #include "analytic/shaders/in_scattering.glsl"
 #include "epipolar/shaders/epipolar.glsl"
 
-layout(rg32f, binding = 2) uniform writeonly image2D tree;
+layout(rg32f, binding = SL_EPIPOLAR_TREE_IMAGE) uniform writeonly image2D tree;
 
 void main() {
     int block = int(gl_GlobalInvocationID.x), slice = int(gl_GlobalInvocationID.y);

@@ -10,6 +10,7 @@
 // discontinuity separates from them. Output per sample: 1 where it is marched, else 0; and the
 // marched samples appended to a list, so that march.comp's invocations are all busy.
 layout(local_size_x = 64, local_size_y = 1) in;
+#include "epipolar/shaders/epipolar_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/scattering.glsl"
@@ -18,8 +19,8 @@ layout(local_size_x = 64, local_size_y = 1) in;
 #include "analytic/shaders/in_scattering.glsl"
 #include "epipolar/shaders/epipolar.glsl"
 
-layout(binding = 1) uniform sampler2D coordinates;
-layout(r32i, binding = 1) uniform writeonly iimage2D marks;
+layout(binding = SL_EPIPOLAR_COORDINATES_UNIT) uniform sampler2D coordinates;
+layout(r32i, binding = SL_EPIPOLAR_MARKS_IMAGE) uniform writeonly iimage2D marks;
 
 // The distance from the light to the sample's eye ray, between the eye and the ray's end.
 float light_distance(vec4 c) {

@@ -1,10 +1,11 @@
 #version 450 core
 // I_eye = I_obj·T(Z) + I_s (Nilsson eq. 2.7), then the preview tone map: exposure, Reinhard per
 // channel, sRGB encoding (the same curve as core/image.cpp tone_map_srgb8).
+#include "frame/shaders/frame_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 
-layout(binding = 0) uniform sampler2D surface_radiance;
-layout(binding = 1) uniform sampler2D in_scattering;
+layout(binding = SL_COMPOSITE_SURFACE_UNIT) uniform sampler2D surface_radiance;
+layout(binding = SL_COMPOSITE_IN_SCATTERING_UNIT) uniform sampler2D in_scattering;
 
 in vec2 uv;
 layout(location = 0) out vec4 hdr;

@@ -1,8 +1,9 @@
 #version 450 core
 // Shadow map pass: depth from the light, and the light's linear depth for the VSM moments.
+#include "gl/shaders/object_uniforms.h"
 #include "gl/shaders/frame_uniforms.h"
 layout(location = 0) in vec3 position;
-layout(location = 0) uniform mat4 model;
+layout(location = SL_OBJECT_MODEL) uniform mat4 model;
 out float light_depth;
 void main() {
     vec4 world = model * vec4(position, 1.0);

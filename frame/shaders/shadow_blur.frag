@@ -1,8 +1,11 @@
 #version 450 core
 // One direction of a separable Gaussian over the VSM moments, (2r+1) taps, σ = (r + 1) / 2.
-layout(binding = 0) uniform sampler2D source;
-layout(location = 0) uniform ivec2 direction;
-layout(location = 1) uniform int radius;
+
+#include "frame/shaders/frame_interface.h"
+
+layout(binding = SL_SHADOW_BLUR_SOURCE_UNIT) uniform sampler2D source;
+layout(location = SL_SHADOW_BLUR_DIRECTION) uniform ivec2 direction;
+layout(location = SL_SHADOW_BLUR_RADIUS) uniform int radius;
 layout(location = 0) out vec2 moments;
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);

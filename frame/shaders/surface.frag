@@ -2,17 +2,18 @@
 // Surface pass: I_obj·T(Z) of Nilsson eq. 2.7 for Lambertian surfaces lit by the spot light
 // (cone eq. 2.9, falloff eq. 2.8/2.13, shadow-map visibility) plus a constant ambient term; with
 // an environment, the spot light's microfacet specular and the environment's light (ibl.glsl).
+#include "frame/shaders/frame_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/shadow.glsl"
 #include "ibl/shaders/ibl.glsl"
 
-layout(location = 2) uniform vec3 albedo;
-layout(location = 3) uniform float roughness;  // microfacet α
-layout(location = 4) uniform vec3 f0;
+layout(location = SL_SURFACE_ALBEDO) uniform vec3 albedo;
+layout(location = SL_SURFACE_ROUGHNESS) uniform float roughness;  // microfacet α
+layout(location = SL_SURFACE_F0) uniform vec3 f0;
 // x > 0.5: translucent (sss/subsurface_pass.h adds the scattered light; here only the specular
 // term, always, and the ambient light reflected with the profile's total reflectance in yzw).
-layout(location = 5) uniform vec4 translucent;
+layout(location = SL_SURFACE_TRANSLUCENT) uniform vec4 translucent;
 
 in vec3 world_position;
 in vec3 world_normal;

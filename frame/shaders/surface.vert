@@ -1,9 +1,10 @@
 #version 450 core
+#include "gl/shaders/object_uniforms.h"
 #include "gl/shaders/frame_uniforms.h"
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
-layout(location = 0) uniform mat4 model;
-layout(location = 1) uniform mat4 normal_matrix;  // inverse transpose of model
+layout(location = SL_OBJECT_MODEL) uniform mat4 model;
+layout(location = SL_OBJECT_NORMAL_MATRIX) uniform mat4 normal_matrix;  // inverse transpose of model
 out vec3 world_position;
 out vec3 world_normal;
 void main() {

@@ -2,11 +2,12 @@
 // Each pixel reads the integrated froxels at its surface's view depth (or the grid's far side):
 // bilinear between columns, linear in the slice coordinate between the slices' far sides (texel k
 // holds I at slice boundary k + 1; I = 0 at the eye).
+#include "froxel/shaders/froxel_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "froxel/shaders/grid.glsl"
 
-layout(binding = 0) uniform sampler2D surface_depth;
-layout(binding = 1) uniform sampler3D integrated;
+layout(binding = SL_FROXEL_APPLY_SURFACE_DEPTH_UNIT) uniform sampler2D surface_depth;
+layout(binding = SL_FROXEL_APPLY_INTEGRATED_UNIT) uniform sampler3D integrated;
 layout(location = 0) out vec4 in_scattered;
 
 void main() {

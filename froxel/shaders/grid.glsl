@@ -2,8 +2,11 @@
 // eye to depth_extent E. Slice boundary s lies at view depth d(s) = c ((E + c) / c)^(s / D) - c:
 // linear, d ≈ c ln(1 + E / c) s / D, where d << c, exponential where d >> c. Needs
 // frame_uniforms.h.
-layout(location = 20) uniform ivec3 grid_size;
-layout(location = 21) uniform vec2 grid_depth;  // E, c
+
+#include "froxel/shaders/froxel_interface.h"
+
+layout(location = SL_FROXEL_GRID_SIZE) uniform ivec3 grid_size;
+layout(location = SL_FROXEL_GRID_DEPTH) uniform vec2 grid_depth;  // E, c
 
 float slice_depth(float s) {
     float E = grid_depth.x, c = grid_depth.y;

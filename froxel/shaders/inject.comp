@@ -6,16 +6,17 @@
 // which the integration applies. With jitter the points move by a per-froxel offset that changes
 // every frame (interleaved gradient noise plus a Halton step), for the temporal filter to average.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "froxel/shaders/froxel_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/scattering.glsl"
 #include "gl/shaders/shadow.glsl"
 #include "froxel/shaders/grid.glsl"
 
-layout(rgba32f, binding = 0) uniform writeonly image3D scattering;
-layout(location = 0) uniform int samples;
-layout(location = 1) uniform int jitter;
-layout(location = 2) uniform float frame_offset;  // the frame's Halton step, in [0, 1)
+layout(rgba32f, binding = SL_FROXEL_INJECT_IMAGE) uniform writeonly image3D scattering;
+layout(location = SL_FROXEL_INJECT_SAMPLES) uniform int samples;
+layout(location = SL_FROXEL_INJECT_JITTER) uniform int jitter;
+layout(location = SL_FROXEL_INJECT_FRAME_OFFSET) uniform float frame_offset;  // the frame's Halton step, in [0, 1)
 
 vec3 source(vec3 p, vec3 direction) {
     vec3 from_light = p - frame.light_position.xyz;

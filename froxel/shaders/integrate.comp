@@ -7,11 +7,12 @@
 // slice's far side. A constant slab of any length integrates to its closed form, whatever the
 // slice count.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+#include "froxel/shaders/froxel_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "froxel/shaders/grid.glsl"
 
-layout(binding = 0) uniform sampler3D densities;
-layout(rgba32f, binding = 0) uniform writeonly image3D integrated;
+layout(binding = SL_FROXEL_INTEGRATE_DENSITIES_UNIT) uniform sampler3D densities;
+layout(rgba32f, binding = SL_FROXEL_INTEGRATE_IMAGE) uniform writeonly image3D integrated;
 
 void main() {
     ivec2 xy = ivec2(gl_GlobalInvocationID.xy);

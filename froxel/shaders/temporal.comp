@@ -5,17 +5,18 @@
 // six neighbours, as TAA clamps colour), is blended in: S = mix(S_new, clamp(S_old), history).
 // Froxels that were outside the previous grid keep S_new.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "froxel/shaders/froxel_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "froxel/shaders/grid.glsl"
 
-layout(binding = 0) uniform sampler3D current;  // this frame's densities
-layout(binding = 1) uniform sampler3D previous;  // the last frame's result
-layout(rgba32f, binding = 0) uniform writeonly image3D result;
-layout(location = 3) uniform float history;
-layout(location = 4) uniform mat4 previous_view_projection;
-layout(location = 5) uniform vec4 previous_camera;   // xyz
-layout(location = 6) uniform vec4 previous_forward;  // xyz
-layout(location = 7) uniform vec2 previous_depth;    // E, c of the previous grid
+layout(binding = SL_FROXEL_TEMPORAL_CURRENT_UNIT) uniform sampler3D current;  // this frame's densities
+layout(binding = SL_FROXEL_TEMPORAL_PREVIOUS_UNIT) uniform sampler3D previous;  // the last frame's result
+layout(rgba32f, binding = SL_FROXEL_TEMPORAL_IMAGE) uniform writeonly image3D result;
+layout(location = SL_FROXEL_TEMPORAL_HISTORY) uniform float history;
+layout(location = SL_FROXEL_TEMPORAL_PREVIOUS_VIEW_PROJECTION) uniform mat4 previous_view_projection;
+layout(location = SL_FROXEL_TEMPORAL_PREVIOUS_CAMERA) uniform vec4 previous_camera;   // xyz
+layout(location = SL_FROXEL_TEMPORAL_PREVIOUS_FORWARD) uniform vec4 previous_forward;  // xyz
+layout(location = SL_FROXEL_TEMPORAL_PREVIOUS_DEPTH) uniform vec2 previous_depth;    // E, c of the previous grid
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);

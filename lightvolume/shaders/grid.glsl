@@ -3,9 +3,11 @@
 // ray to the depth the map holds there (the first surface the light meets, or the backplate where
 // it meets none), closed by walls down the influence pyramid's sides to the near plane and a fan
 // over the near plane. Needs frame_uniforms.h.
-layout(location = 10) uniform int grid_resolution;  // N, vertices per side
-layout(location = 11) uniform mat4 light_clip_to_world;  // inverse of frame.light_view_projection
-layout(binding = 1) uniform sampler2D light_depth;  // the shadow map, read plainly
+
+#include "lightvolume/shaders/lightvolume_interface.h"
+layout(location = SL_LIGHT_VOLUME_RESOLUTION) uniform int grid_resolution;  // N, vertices per side
+layout(location = SL_LIGHT_VOLUME_CLIP_TO_WORLD) uniform mat4 light_clip_to_world;  // inverse of frame.light_view_projection
+layout(binding = SL_LIGHT_VOLUME_LIGHT_DEPTH_UNIT) uniform sampler2D light_depth;  // the shadow map, read plainly
 
 // Where a vertex of the grid at (i, j) lies: at its shadow-map depth, or on the near plane.
 vec3 grid_point(ivec2 ij, bool near_plane) {

@@ -12,6 +12,7 @@
 // overflowed marches its whole cone interval at the same density (N from the cone interval's
 // length) and keeps the samples the tree calls uncertain (beamtree/shaders/classify.glsl).
 // Output: rgb = I_s, a = samples evaluated (for the method's statistics).
+#include "sampling/shaders/march_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/scattering.glsl"
@@ -22,18 +23,18 @@
 #include "beamtree/shaders/region_lists.glsl"
 #include "sampling/shaders/ray_clip.glsl"
 
-layout(binding = 0) uniform sampler2D surface_depth;
-layout(location = 0) uniform int samples;
-layout(location = 1) uniform int jitter;
-layout(location = 2) uniform int clip_mode;       // 0 off, 1 pyramid (Moschos), 2 exact cone
-layout(location = 3) uniform float buffer_scale;  // reduced buffer texels per full-res pixel
-layout(location = 4) uniform int attenuation;     // 0 the shared model, 1 Moschos eq. 3.1
-layout(location = 5) uniform float optical_thickness;
-layout(location = 6) uniform int animate_phase;
-layout(location = 7) uniform float time;
-layout(location = 8) uniform int interval_mode;
-layout(location = 9) uniform vec2 adaptive;  // hybrid3: x = density (samples per metre), y = min
-layout(location = 10) uniform vec4 clip_planes[6];
+layout(binding = SL_MARCH_SURFACE_DEPTH_UNIT) uniform sampler2D surface_depth;
+layout(location = SL_MARCH_SAMPLES) uniform int samples;
+layout(location = SL_MARCH_JITTER) uniform int jitter;
+layout(location = SL_MARCH_CLIP_MODE) uniform int clip_mode;       // 0 off, 1 pyramid (Moschos), 2 exact cone
+layout(location = SL_MARCH_BUFFER_SCALE) uniform float buffer_scale;  // reduced buffer texels per full-res pixel
+layout(location = SL_MARCH_ATTENUATION) uniform int attenuation;     // 0 the shared model, 1 Moschos eq. 3.1
+layout(location = SL_MARCH_OPTICAL_THICKNESS) uniform float optical_thickness;
+layout(location = SL_MARCH_ANIMATE_PHASE) uniform int animate_phase;
+layout(location = SL_MARCH_TIME) uniform float time;
+layout(location = SL_MARCH_INTERVAL_MODE) uniform int interval_mode;
+layout(location = SL_MARCH_ADAPTIVE) uniform vec2 adaptive;  // hybrid3: x = density (samples per metre), y = min
+layout(location = SL_MARCH_CLIP_PLANES) uniform vec4 clip_planes[6];
 
 layout(location = 0) out vec4 result;  // rgb I_s, a the samples taken
 // I_s again, for the frame's own target where the method adds it in this pass (a marching

@@ -5,13 +5,14 @@
 //   blur 2  the same Gaussian weighted by depth similarity (Moschos' future work): no light
 //           crosses a depth edge.
 // Depth is the distance along each texel's own eye ray to its surface (or the far plane).
+#include "sampling/shaders/march_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/view.glsl"
 
-layout(binding = 0) uniform sampler2D surface_depth;
-layout(binding = 1) uniform sampler2D marched;
-layout(location = 0) uniform float buffer_scale;
-layout(location = 1) uniform int blur;
+layout(binding = SL_RESOLVE_SURFACE_DEPTH_UNIT) uniform sampler2D surface_depth;
+layout(binding = SL_RESOLVE_MARCHED_UNIT) uniform sampler2D marched;
+layout(location = SL_RESOLVE_BUFFER_SCALE) uniform float buffer_scale;
+layout(location = SL_RESOLVE_BLUR) uniform int blur;
 layout(location = 0) out vec4 in_scattered;
 
 const float GAUSS5[25] = float[25](

@@ -3,6 +3,7 @@
 // integrand e of eq. 2.7 at the plane, times the shadow map's visibility H, times the ray length
 // the plane stands for, dz / (V·forward) (Nilsson's footnote: planes dz apart in eye depth are
 // further apart along oblique rays). Additive blending into the float target sums the planes.
+#include "sampling/shaders/planes_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "gl/shaders/scattering.glsl"
@@ -14,15 +15,15 @@
 // The hybrids' stencil (partition = gpu) rejects pixels without a region crossing before they
 // are shaded.
 layout(early_fragment_tests) in;
-layout(binding = 0) uniform sampler2D surface_depth;
-layout(location = 0) uniform float dz;
-layout(location = 1) uniform int known_lit;  // 1: the beam tree says lit, skip the lookup
-layout(location = 2) uniform int jitter;      // 1: per-pixel offset of the sample in its slab
+layout(binding = SL_PLANES_SURFACE_DEPTH_UNIT) uniform sampler2D surface_depth;
+layout(location = SL_PLANES_DZ) uniform float dz;
+layout(location = SL_PLANES_KNOWN_LIT) uniform int known_lit;  // 1: the beam tree says lit, skip the lookup
+layout(location = SL_PLANES_JITTER) uniform int jitter;      // 1: per-pixel offset of the sample in its slab
 // The beam tree's regions, classified here per sample (partition = gpu) instead of by cutting
 // the planes on the CPU: 0 none (planes, or the CPU's pieces), 1 hybrid1 (lit: no shadow lookup,
 // unlit: nothing), 2 hybrid2 (only uncertain samples: the lit ones are the analytic pass's).
 // The pixel's region lists say where the sample is; where one overflowed, the tree does.
-layout(location = 3) uniform int classify_mode;
+layout(location = SL_PLANES_CLASSIFY_MODE) uniform int classify_mode;
 
 flat in float slice_depth;
 layout(location = 0) out vec4 in_scattered;

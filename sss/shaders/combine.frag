@@ -1,10 +1,11 @@
 #version 450 core
 // Adds the scattered radiance of translucent pixels to the surface pass, attenuated by the
 // medium like every surface (I_obj·T(Z), Nilsson eq. 2.7); blended additively.
+#include "sss/shaders/subsurface_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
-layout(binding = 0) uniform sampler2D scatter;
-layout(binding = 3) uniform sampler2D eye_positions;
+layout(binding = SL_SSS_SCATTER_UNIT) uniform sampler2D scatter;
+layout(binding = SL_SSS_EYE_POSITIONS_UNIT) uniform sampler2D eye_positions;
 layout(location = 0) out vec4 radiance;
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);

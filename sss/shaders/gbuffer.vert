@@ -1,11 +1,15 @@
 #version 450 core
 // Positions and normals of the objects seen from a camera or a light (Rohat listing 5.2), in
 // world space.
+
+#include "gl/shaders/object_uniforms.h"
+#include "sss/shaders/subsurface_interface.h"
+
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
-layout(location = 0) uniform mat4 model;
-layout(location = 1) uniform mat4 normal_matrix;  // inverse transpose of model
-layout(location = 5) uniform mat4 view_projection;
+layout(location = SL_OBJECT_MODEL) uniform mat4 model;
+layout(location = SL_OBJECT_NORMAL_MATRIX) uniform mat4 normal_matrix;  // inverse transpose of model
+layout(location = SL_SSS_VIEW_PROJECTION) uniform mat4 view_projection;
 out vec3 world_position;
 out vec3 world_normal;
 void main() {

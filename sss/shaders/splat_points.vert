@@ -2,6 +2,7 @@
 // Environment light on translucent objects (Rohat §4.5.2, §5.3): a uniform surface sample with
 // its share of the area, lit by the environment's SH9 irradiance E(n) (ibl/sh9.h), transmitted
 // with the hemispherical average of Schlick's Fresnel, F0 + (1 − F0)/21.
+#include "sss/shaders/subsurface_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
 #include "ibl/shaders/ibl.glsl"
@@ -9,7 +10,7 @@
 
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
-layout(location = 19) uniform float area_per_sample;  // world units²
+layout(location = SL_SSS_AREA_PER_SAMPLE) uniform float area_per_sample;  // world units²
 
 out SampleData {
     vec3 position;

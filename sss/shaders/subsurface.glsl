@@ -1,26 +1,28 @@
 // Shared by the splatting shaders: the per-draw light and material (sss/subsurface_pass.cpp sets
 // them), Fresnel transmittance and the profile lookups (Rohat §5.1.1-5.1.2).
 
-layout(location = 10) uniform vec4 roi;              // light-map region: uv min, uv size
-layout(location = 11) uniform ivec4 grid;            // N, M, frame seed, jitter on
-layout(location = 12) uniform vec4 light_position;   // xyz, tan of the cone's half angle
-layout(location = 13) uniform vec4 light_direction;  // unit axis, cone half angle (radians)
-layout(location = 14) uniform vec4 light_intensity;  // rgb, falloff width (radians)
-layout(location = 15) uniform vec4 light_range;      // near, far along the axis
-layout(location = 16) uniform vec4 material;         // r_max (units), mm per unit, η, multipole
-layout(location = 17) uniform vec4 slab;  // d_min, d_max (mm), profile layer, weights:
-                                          // 0 jacobian, 1 seed, 2 ΔA alone (area pass)
-layout(location = 18) uniform float object_id;       // index + 1
-layout(location = 20) uniform vec4 footprint;        // ρ_max (mm), levels (1: off)
+#include "sss/shaders/subsurface_interface.h"
 
-layout(binding = 0) uniform sampler2D light_positions;   // xyz, id + 1
-layout(binding = 1) uniform sampler2D light_normals;
-layout(binding = 2) uniform sampler2D light_back_positions;  // thickness pass
-layout(binding = 3) uniform sampler2D eye_positions;
-layout(binding = 4) uniform sampler2D eye_normals;
-layout(binding = 5) uniform sampler2DArray profile_R;  // (r, d) per material layer
-layout(binding = 6) uniform sampler2DArray profile_T;
-layout(binding = 7) uniform sampler2D visible_area;    // 1x1: Σ ΔA, N_s (seed weighting)
+layout(location = SL_SSS_ROI) uniform vec4 roi;              // light-map region: uv min, uv size
+layout(location = SL_SSS_GRID) uniform ivec4 grid;            // N, M, frame seed, jitter on
+layout(location = SL_SSS_LIGHT_POSITION) uniform vec4 light_position;   // xyz, tan of the cone's half angle
+layout(location = SL_SSS_LIGHT_DIRECTION) uniform vec4 light_direction;  // unit axis, cone half angle (radians)
+layout(location = SL_SSS_LIGHT_INTENSITY) uniform vec4 light_intensity;  // rgb, falloff width (radians)
+layout(location = SL_SSS_LIGHT_RANGE) uniform vec4 light_range;      // near, far along the axis
+layout(location = SL_SSS_MATERIAL) uniform vec4 material;         // r_max (units), mm per unit, η, multipole
+layout(location = SL_SSS_SLAB) uniform vec4 slab;  // d_min, d_max (mm), profile layer, weights:
+                                          // 0 jacobian, 1 seed, 2 ΔA alone (area pass)
+layout(location = SL_SSS_OBJECT) uniform float object_id;       // index + 1
+layout(location = SL_SSS_FOOTPRINT) uniform vec4 footprint;        // ρ_max (mm), levels (1: off)
+
+layout(binding = SL_SSS_LIGHT_POSITIONS_UNIT) uniform sampler2D light_positions;   // xyz, id + 1
+layout(binding = SL_SSS_LIGHT_NORMALS_UNIT) uniform sampler2D light_normals;
+layout(binding = SL_SSS_BACK_POSITIONS_UNIT) uniform sampler2D light_back_positions;  // thickness pass
+layout(binding = SL_SSS_EYE_POSITIONS_UNIT) uniform sampler2D eye_positions;
+layout(binding = SL_SSS_EYE_NORMALS_UNIT) uniform sampler2D eye_normals;
+layout(binding = SL_SSS_PROFILE_R_UNIT) uniform sampler2DArray profile_R;  // (r, d) per material layer
+layout(binding = SL_SSS_PROFILE_T_UNIT) uniform sampler2DArray profile_T;
+layout(binding = SL_SSS_VISIBLE_AREA_UNIT) uniform sampler2D visible_area;    // 1x1: Σ ΔA, N_s (seed weighting)
 
 const float SSS_PI = 3.14159265358979;
 
