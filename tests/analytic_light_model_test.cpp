@@ -266,7 +266,8 @@ TEST(InScattering, AnisotropicLimits) {
 
 // Near the antilight direction (the light behind the eye), near the light's own direction, and
 // through the light from behind, 1e-4 to 10 degrees off: the C++ integral equals quadrature of
-// e(z) to 1e-6 relative, over the whole ray and over a short lit piece of it (issue 33's blob).
+// e(z) to 1e-6 relative, over the whole ray and over a short lit piece of it (where an
+// ill-conditioned G made a blob).
 TEST(InScattering, NearTheLightAndItsAntipodeMatchesQuadrature) {
     const SpotLight light = near_light_test_light();
     const std::vector<NearLightRay> rays = near_light_rays(light);

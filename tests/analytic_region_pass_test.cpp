@@ -16,6 +16,7 @@
 #include "analytic/phase_functions.h"
 #include "analytic/quadrature.h"
 #include "analytic/region_pass.h"
+#include "analytic/shaders/analytic_interface.h"
 #include "core/error.h"
 #include "core/metrics.h"
 #include "frame/renderer.h"
@@ -26,7 +27,7 @@
 #include "reference/reference.h"
 #include "scenes/mesh.h"
 #include "scenes/scene_file.h"
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {
@@ -58,7 +59,7 @@ TwinError glsl_against_cpp(const Scene& scene, int table_size = analytic::kMediu
     const frame::RenderOptions options{.width = width, .height = height};
     const gl::shared::FrameUniforms uniforms = frame::make_frame_uniforms(scene, options);
     const gl::Texture table = analytic::create_medium_table(scene.medium, table_size);
-    gl::GL.BindTextureUnit(analytic::kMediumTableUnit, table.id());
+    gl::GL.BindTextureUnit(SL_MEDIUM_TABLE_UNIT, table.id());
     const std::vector<float> rgba =
         render_test_pattern(uniforms, "tests/shaders/in_scattering.frag", width, height,
                             analytic::closed_form_defines(scene));
@@ -204,11 +205,11 @@ TEST_F(GpuMethod, GlslAntiderivativeMatchesCpp) {
     }
 }
 
-// The GLSL integral on issue 33's rays (near_light_rays: 1e-4 to 10 degrees from the antilight
-// direction, from the light's, and through the light from behind) in every medium of
-// near_light_media, against the C++ closed forms, which the light model's tests hold to
-// quadrature of e(z): the worst error relative to the ray's own value, per kind of ray, and how
-// many values were compared.
+// The GLSL integral on the rays where G is hardest to condition (near_light_rays: 1e-4 to 10
+// degrees from the antilight direction, from the light's, and through the light from behind) in
+// every medium of near_light_media, against the C++ closed forms, which the light model's tests
+// hold to quadrature of e(z): the worst error relative to the ray's own value, per kind of ray, and
+// how many values were compared.
 struct NearLightError {
     double worst[3] = {};
     int compared = 0;
@@ -230,7 +231,7 @@ NearLightError glsl_near_the_light(const Medium& medium) {
         gl::create_buffer(buffer.data(), GLsizeiptr(buffer.size() * sizeof(glm::vec4)));
     gl::GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ssbo.id());
     const gl::Texture table = analytic::create_medium_table(medium);
-    gl::GL.BindTextureUnit(analytic::kMediumTableUnit, table.id());
+    gl::GL.BindTextureUnit(SL_MEDIUM_TABLE_UNIT, table.id());
     const std::vector<float> rgba =
         render_test_pattern(frame::make_frame_uniforms(scene, {.width = width, .height = height}),
                             "tests/shaders/in_scattering_rays.frag", width, height,
@@ -256,10 +257,11 @@ NearLightError glsl_near_the_light(const Medium& medium) {
     return error;
 }
 
-// Issue 33: the closed form near the antilight direction made a blob of up to 4x the image's peak
-// (float32 cancellation in G anchored behind the eye, and a table that could not resolve the
-// sliver of angle those rays span). On every ray of near_light_rays, in every medium, the GLSL
-// integral equals C++ to 2e-4 of the ray's own value: the whole ray and a short lit piece of it.
+// Near the antilight direction a badly anchored closed form makes a blob of up to 4x the image's
+// peak (float32 cancellation in G anchored behind the eye, or a table that cannot resolve the
+// sliver of angle those rays span; analytic/in_scattering.h). On every ray of near_light_rays, in
+// every medium, the GLSL integral equals C++ to 2e-4 of the ray's own value: the whole ray and a
+// short lit piece of it.
 TEST_F(GpuMethod, GlslIntegralNearTheLightAndItsAntipodeMatchesCpp) {
     for (const Medium& medium : near_light_media()) {
         const NearLightError error = glsl_near_the_light(medium);
@@ -347,10 +349,9 @@ TEST_F(GpuMethod, AnalyticMethodsMatchTheReferenceOnAnisotropicMedia) {
     }
 }
 
-// Issue 33's reproducer: the eye inside the cone of a physical medium with HG g = 0.82 over a
-// floor, the antilight direction in view. The closed-form methods drew a blob of rings around it
-// (beamtree, hybrid3 and lightvolume 6.3% off); now within 1e-3 of the reference at 160x90, as at
-// every asymmetry the issue measured.
+// The eye inside the cone of a physical medium with HG g = 0.82 over a floor, the antilight
+// direction in view: where a badly conditioned closed form draws a blob of rings. The closed-form
+// methods stay within 1e-3 of the reference at 160x90, at every asymmetry.
 TEST_F(GpuMethod, AnalyticMethodsMatchTheReferenceLookingAwayFromTheLight) {
     Scene scene;
     scene.name = "hg082";
@@ -383,15 +384,15 @@ TEST_F(GpuMethod, AnalyticMethodsMatchTheReferenceLookingAwayFromTheLight) {
     }
 }
 
-// Issue 33's class search: on random box scenes (boxes:SEED, scenes/generators.cpp: rotated boxes
+// The class search: on random box scenes (boxes:SEED, scenes/generators.cpp: rotated boxes
 // that are their own bounding volumes, a random light and medium of either model, HG or Schlick at
 // any g, a0 = 0 on some, an occluder between the light and its near plane on some, the eye inside
 // the cone on odd seeds and looking away from the light on some), nothing is uncertain, so
 // `beamtree` equals the reference, at 128x72 on 80 seeds:
 //   - at most 0.3% of a scene's pixels are off by more than 1e-3 of its peak: a wrong closed form
-//     makes a blob (issue 33's covered hundreds), while the isolated pixels allowed are rays along
+//     makes a blob (hundreds of pixels), while the isolated pixels allowed are rays along
 //     lit slivers thinner than llvmpipe's subpixel grid (BoundaryOnTheGpu, 0-2 a scene);
-//   - relative RMSE at most 1e-2 on every scene and 3e-4 in the median (issue 33: 6.3%).
+//   - relative RMSE at most 1e-2 on every scene and 3e-4 in the median.
 // results/random_boxes measures the same at 320x180 on 200 seeds for beamtree, hybrid3 and
 // lightvolume.
 TEST_F(GpuMethod, BeamtreeMatchesTheReferenceOnRandomBoxScenes) {

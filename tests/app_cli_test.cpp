@@ -16,7 +16,7 @@
 #include "core/text.h"
 #include "scenes/scene_file.h"
 
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {

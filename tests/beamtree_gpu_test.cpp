@@ -14,7 +14,7 @@
 #include "beamtree/bounding_volumes.h"
 #include "frame/renderer.h"
 #include "gl/objects.h"
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {

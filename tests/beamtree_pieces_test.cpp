@@ -69,7 +69,7 @@ void expect_pieces_cover_and_stay_inside(const Mesh& mesh,
     }
 }
 
-// (That no piece covers the window does not hold yet: see issue 37's note.)
+// (Whether a piece also covers part of the window is not checked.)
 TEST(Pieces, AWallWithAWindowIsCutAndThePiecesCoverIt) {
     const Mesh wall = wall_with_window();
     const bt::Pieces pieces = bt::convex_pieces(wall);

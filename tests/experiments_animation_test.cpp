@@ -1,4 +1,4 @@
-// The harness on moving scenes (issue 23, docs/design.md §11): the bootstrap intervals of the
+// The harness on moving scenes (docs/design.md §11): the bootstrap intervals of the
 // medians, the "fastest" mark only where it is significant, the frames an animation cell plays,
 // animation cells end to end (every frame measured, every stride-th frame scored, the temporal
 // metrics, frames.csv), an interrupted animated cell resuming with nothing lost or repeated, and
@@ -28,7 +28,7 @@
 #include "reference/cache.h"
 #include "scenes/scene_file.h"
 
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {

@@ -1,4 +1,4 @@
-// The harness (issue 7): experiment files expand into the right cells, overrides and presets
+// The harness: experiment files expand into the right cells, overrides and presets
 // apply, bad files give one clear error, the equal-error bisection finds the cheapest parameter,
 // and `shaftlab bench` runs smoke.toml end to end, resumes after a kill, shards and merges.
 
@@ -21,7 +21,7 @@
 #include "experiments/report.h"
 #include "experiments/tables.h"
 
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 extern char** environ;
 
@@ -191,7 +191,7 @@ TEST(Experiment, BadFilesGiveOneErrorNamingTheFileAndKey) {
     EXPECT_NE(parse_error(base, {"protocol.frmes=2"}).find("frmes: unknown key"),
               std::string::npos);
     EXPECT_NE(parse_error(base, {"protocol.frmes=2"}).find("command line"), std::string::npos);
-    // A table row that is neither scene, size nor a parameter was silently dropped (issue 33).
+    // A table row that is neither scene, size nor a parameter must be refused, not dropped.
     EXPECT_NE(parse_error(base, {"table.rows=[\"nope\"]"})
                   .find("[table] rows: unknown row 'nope': expected scene, size, a scene "
                         "variation or a method's parameter"),

@@ -1,4 +1,4 @@
-// The per-frame update of every method and the frame loop (gl/frame_loop.h): a method brought to
+// The per-frame update of every method and the frame loop (frame/frame_loop.h): a method brought to
 // frame k by its updates renders what the same method prepared on the still scene at t_k renders,
 // and the pipelined loop (CPU work of frame k+1 on a worker during frame k's draw) renders
 // exactly the serial loop's frames.
@@ -14,7 +14,7 @@
 #include "methods/registry.h"
 #include "scenes/animation.h"
 #include "scenes/scene_file.h"
-#include "support.h"
+#include "tests/gl_support.h"
 
 namespace sl::frame {
 namespace {
@@ -44,7 +44,7 @@ std::vector<Image> play(const Scene& animated, VolumeMethod& method, FrameMode m
     return images;
 }
 
-// Every method but the reference (its per-frame cost is issue 23's), on each canonical animation:
+// Every method but the reference (its per-frame cost is its own), on each canonical animation:
 // updated to frame k, against prepared on the still scene at t_k by a fresh renderer.
 TEST_F(FrameLoopTest, FrameKOfAnAnimationEqualsTheStillSceneAtItsTime) {
     for (const std::string& scene_name : animated_scene_names()) {

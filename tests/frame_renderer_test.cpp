@@ -16,7 +16,7 @@
 #include "methods/registry.h"
 #include "reference/reference.h"
 #include "scenes/mesh.h"
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {
@@ -198,8 +198,8 @@ TEST_F(Render, ParallelFloorMatchesCpuWithHardShadowsAndPhysicalMedium) {
     EXPECT_EQ(check.mismatches, 0) << "of " << check.checked << " floor pixels";
 }
 
-// Issue 33's scene: a box `distance` below a light whose range starts at 1 m, over a floor; at 0.5
-// m (the issue's 0.4 x 0.2 x 0.4 box) it lies between the light and its near plane. The box is
+// A box `distance` below a light whose range starts at 1 m, over a floor; at 0.5 m (a
+// 0.4 x 0.2 x 0.4 box) it lies between the light and its near plane. The box is
 // scaled with its distance, so that it casts the same shadow (the same solid angle from the light)
 // wherever it is. The light's range bounds where it scatters, not what casts shadows.
 Scene near_occluder_scene(float distance) {

@@ -14,7 +14,7 @@
 #include "froxel/froxel.h"
 #include "methods/registry.h"
 #include "reference/reference.h"
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {
@@ -115,26 +115,6 @@ TEST_F(Froxel, HistoryAveragesTheJitterOfAStillView) {
     const double single = error_after(1, false), accumulated = error_after(24, true);
     std::printf("froxel jitter noise: one frame %.5f, 24 with history %.5f\n", single, accumulated);
     EXPECT_LT(accumulated, 0.5 * single);
-}
-
-// The eye inside the light volume (looking across the beam, and down at the objects) and the
-// light behind the eye (its shaft seen from under the light, the apex behind the camera,
-// support.h's eye_and_light_views): finite images within 10% (the grid's error) of the reference.
-TEST_F(Froxel, EyeInsideTheLightAndTheLightBehindTheEyeMatchTheReference) {
-    for (const auto& [view, scene] : eye_and_light_views()) {
-        const Image exact = reference::ReferenceRenderer(scene).render(96, 54, {});
-        const frame::Frame frame = render_method(scene, "froxel", 96, 54);
-        for (const float v : frame.in_scattering.rgb)
-            ASSERT_TRUE(std::isfinite(v)) << view;
-        EXPECT_LE(compare_images(frame.in_scattering, exact).rel_rmse, 0.10) << view;
-    }
-}
-
-// Bad parameters get one clear error each: a grid beyond the GL's 3D textures, values out of range.
-TEST_F(Froxel, BadParametersAreRefusedByName) {
-    expect_refused("froxel", "grid_scale", "16", "too large");
-    expect_refused("froxel", "history", "1.5", "history");
-    expect_refused("froxel", "slices", "0", "slices");
 }
 
 // The previewer's slices: made by the frame after the one whose textures() asked for them, each

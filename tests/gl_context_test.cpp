@@ -11,7 +11,7 @@
 #include "gl/platform.h"
 #include "gl/shaders.h"
 #include "gl/shaders/frame_uniforms.h"
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {

@@ -14,7 +14,7 @@
 #include "ibl/shading.h"
 #include "methods/registry.h"
 #include "scenes/scene_file.h"
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {

@@ -18,7 +18,7 @@
 #include "ibl/prefilter.h"
 #include "ibl/sh9.h"
 #include "scenes/scene_file.h"
-#include "support.h"
+#include "tests/support.h"
 
 namespace sl::ibl {
 namespace {

@@ -14,7 +14,7 @@
 #include "lightvolume/light_volume.h"
 #include "methods/registry.h"
 #include "reference/reference.h"
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {
@@ -137,26 +137,6 @@ TEST_F(LightVolume, EqualsItsCpuOracle) {
         EXPECT_LT(error.rel_rmse, 1e-4) << (inside ? "inside" : "outside");
         EXPECT_LT(error.max_abs, 1e-3 * peak) << (inside ? "inside" : "outside");
     }
-}
-
-// The eye inside the light volume (looking across the beam, and down at the objects) and the
-// light behind the eye (its shaft seen from under the light, the apex behind the camera,
-// support.h's eye_and_light_views): finite images within 1% (its shadow map's error) of the
-// reference.
-TEST_F(LightVolume, EyeInsideTheLightAndTheLightBehindTheEyeMatchTheReference) {
-    for (const auto& [view, scene] : eye_and_light_views()) {
-        const Image exact = reference::ReferenceRenderer(scene).render(96, 54, {});
-        const frame::Frame frame = render_method(scene, "lightvolume", 96, 54);
-        for (const float v : frame.in_scattering.rgb)
-            ASSERT_TRUE(std::isfinite(v)) << view;
-        EXPECT_LE(compare_images(frame.in_scattering, exact).rel_rmse, 0.01) << view;
-    }
-}
-
-// Bad parameters get one clear error each: one vertex per side, values out of range.
-TEST_F(LightVolume, BadParametersAreRefusedByName) {
-    expect_refused("lightvolume", "resolution", "1", "at least 2");
-    expect_refused("lightvolume", "resolution", "-4", "resolution");
 }
 
 // The previewer's wireframe: made by the frame after the one whose textures() asked for it, with

@@ -18,7 +18,7 @@
 #include "reference/reference.h"
 #include "sampling/ray_clip.h"
 #include "scenes/mesh.h"
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {

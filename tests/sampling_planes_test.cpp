@@ -16,7 +16,7 @@
 #include "frame/volume_method.h"
 #include "reference/reference.h"
 #include "sampling/slices.h"
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {

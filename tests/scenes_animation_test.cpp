@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "scenes/animation.h"
 #include "scenes/scene_file.h"
-#include "support.h"
+#include "tests/support.h"
 
 namespace sl {
 namespace {

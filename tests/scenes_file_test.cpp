@@ -133,7 +133,7 @@ TEST(SceneFile, BadInputsGiveOneClearError) {
          "[camera] position: expected an array of three numbers"},
         {replace(s, "position = [0.0, 1.0, 5.0]", "position = [0.0, inf, 5.0]"),
          "[camera] position: component 1 is not finite"},
-        // Issue 33: values that become float32 are checked as float32 (1e39 was infinite
+        // Values that become float32 are checked as float32 (1e39 is infinite
         // there: a black image, a misleading error or a NaN later), with sane bounds.
         {replace(s, "position = [0.0, 1.0, 5.0]", "position = [1e39, 1.0, 5.0]"),
          ":2: [camera] position: component 0 is 1e+39: must be within ±1e+06"},

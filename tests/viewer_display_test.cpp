@@ -17,7 +17,7 @@
 #include "core/metrics.h"
 #include "reference/reference.h"
 #include "scenes/scene_file.h"
-#include "tests/support.h"
+#include "tests/gl_support.h"
 
 namespace sl::test {
 namespace {

@@ -17,7 +17,7 @@
 #include "methods/registry.h"
 #include "reference/reference.h"
 #include "scenes/scene_file.h"
-#include "tests/support.h"
+#include "tests/gl_support.h"
 #include "viewer/camera_controller.h"
 #include "viewer/region_overlay.h"
 #include "viewer/saved_view.h"

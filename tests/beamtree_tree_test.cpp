@@ -1,0 +1,452 @@
+// The beam tree (beamtree/beam_tree.h) against independent oracles: classification against
+// Embree ray casts through the bounding volumes and the true meshes on random scenes of every
+// kind (tests/beamtree_oracle.h), its regions, partition and walk against classify(), region
+// meshes that close up, and the cases built on purpose (slivers, degenerate inputs).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "beamtree/beam_tree.h"
+#include "beamtree/bounding_volumes.h"
+#include "beamtree/conforming.h"
+#include "beamtree/regions.h"
+#include "core/error.h"
+#include "scenes/scene_file.h"
+#include "tests/beamtree_oracle.h"
+#include "tests/random_scenes.h"
+#include "tests/support.h"
+
+namespace sl::test {
+namespace {
+
+TEST(BeamTree, AgreesWithRayCastsIsSoundAndConservesVolumeOnRandomScenes) {
+    check_random_scenes(Shapes::canonical, {}, 200);
+}
+
+// The same oracle on scenes of what real models hold (random_scene's Shapes::real: walls with
+// openings and T-junctions, several boxes in one mesh, open boxes, terrain, tori, inside-out
+// meshes, rooms around the light), with the objects cut into convex pieces; in some scenes the
+// light hangs inside an object's hull and outside each of its pieces.
+TEST(BeamTree, IsSoundOnRandomNonConvexOpenAndMultiPartMeshesCutIntoPieces) {
+    const int light_in_a_hull = check_random_scenes(Shapes::real, {.pieces = true}, 100);
+    EXPECT_GE(light_in_a_hull, 5) << "of 100 scenes";
+}
+
+// The same oracle on height fields cut into pieces, facing the light and facing away from it:
+// overlapping thin pieces are where a fragment nearer than a leaf's occluder can be a sliver
+// between two of the leaf's planes, whose beam must still be its own (and not the leaf's).
+TEST(BeamTree, IsSoundOnRandomTerrainCutIntoPiecesFacingEitherWay) {
+    check_random_scenes(Shapes::terrain, {.pieces = true}, 8);
+}
+
+// The configuration behind tests/data/terrain-pieces, built on purpose: a thin triangular
+// occluder C (a 2.9 degree corner) is inserted first; a farther face F crosses C's plane so near
+// that corner that F's part in front of C, inside C's beam, is a sliver whose two long edges lie
+// on C's beam planes and whose cut edge is shorter than ε. That sliver must not hand F's plane
+// to the whole of C's beam: just behind C, the points stay uncertain.
+TEST(BeamTree, ASliverNearerThanALeafsOccluderTakesOnlyItsOwnBeam) {
+    SpotLight light;
+    light.position = glm::vec3(0.0f, 10.0f, 0.0f);
+    light.target = glm::vec3(0.0f);
+    light.cone_half_angle_degrees = 40.0f;
+    light.near = 0.1f;
+    light.far = 10.0f;  // ε = 1e-5
+    auto volume = [](const std::vector<dvec3>& corners) {
+        Mesh mesh;
+        for (const dvec3& c : corners) {
+            mesh.positions.emplace_back(c);
+        }
+        mesh.triangles.emplace_back(0, 1, 2);
+        return bt::convex_hull(mesh, 0);
+    };
+    // C: the top of a triangular prism, its apex at x = 1.
+    const bt::ConvexVolume prism = volume(
+        {{1, 5, 0}, {-1, 5, -0.05}, {-1, 5, 0.05}, {1, 4, 0}, {-1, 4, -0.05}, {-1, 4, 0.05}});
+    // F: y = 5 + k (x - x0), in front of C only for x > x0 = 1 - 1.4e-4, where C's beam is
+    // 7e-6 wide (the tip stands 2.8e-5 in front of C); its box is farther from the light than
+    // C's, so C goes in first.
+    const double k = 0.2, x0 = 1.0 - 1.4e-4;
+    std::vector<dvec3> slab;
+    for (const double x : {0.95, 1.0002}) {
+        for (const double z : {-0.5, 0.5}) {
+            const double y = 5.0 + k * (x - x0);
+            slab.insert(slab.end(), {{x, y, z}, {x, y - 0.5, z}});
+        }
+    }
+    std::vector<bt::ObjectVolumes> volumes(2);
+    volumes[0].name = "C";
+    volumes[0].outer = prism;
+    volumes[1].object = 1;
+    volumes[1].name = "F";
+    volumes[1].outer = volume(slab);
+    const bt::BeamTree tree(light, volumes);
+    for (const double x : {-0.5, 0.0, 0.5, 0.9}) {
+        const dvec3 behind_c(x, 4.999, 0.0);  // inside the prism, in front of F's plane
+        double margin = 0.0;
+        EXPECT_STREQ(bt::to_string(tree.classify(behind_c, &margin)), "uncertain") << "x = " << x;
+        EXPECT_GT(margin, 10.0 * tree.epsilon());
+    }
+}
+
+// tests/data/terrain-pieces (an external check's reproducer): a 72-triangle height field facing
+// away from the light, cut into 32 pieces; the segment from the light to each point crosses a
+// terrain triangle 2 and 6 mm inside its edges, so neither point may be lit.
+TEST(BeamTree, PointsBehindATerrainCutIntoPiecesAreNotLit) {
+    const std::filesystem::path dir =
+        std::filesystem::path(SHAFTLAB_SOURCE_DIR) / "tests/data/terrain-pieces";
+    const Scene scene = load_scene_file(dir / "scene.toml", SceneSearchPaths::defaults());
+    ASSERT_TRUE(scene.bounds.pieces);
+    const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
+    Oracles oracles;
+    add_volumes(bt::VolumeLibrary::shared({.pieces = true}).build(scene, nullptr), scene, oracles);
+    std::ifstream points(dir / "points.txt");
+    dvec3 p;
+    int count = 0;
+    while (points >> p.x >> p.y >> p.z) {
+        ++count;
+        EXPECT_TRUE(oracles.meshes.blocked(dvec3(scene.light.position), p)) << "point " << count;
+        EXPECT_STRNE(bt::to_string(tree.classify(p)), "lit") << "point " << count;
+    }
+    EXPECT_EQ(count, 2);
+}
+
+// The real building (scenes/house.toml: the FZK-Haus through assimp, walls cut into convex
+// pieces with inner boxes verified against their welded meshes, glass casting no shadow): on
+// 4 x 10^4 points around the light's cone, lit points see the light past every mesh that casts
+// shadows and unlit points do not (Embree), and the tree agrees with ray casts through its
+// volumes.
+TEST(BeamTree, IsSoundOnTheHouse) {
+    const Scene scene = load_canonical("house");
+    bt::VolumeLibrary library({.pieces = true});
+    const std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
+    const bt::BeamTree tree(scene.light, volumes);
+    Oracles oracles;
+    add_volumes(volumes, scene, oracles);
+    std::mt19937 rng(37);
+    size_t counts[3] = {0, 0, 0};
+    int failures = 0;
+    for_each_decided_point(
+        tree, oracles, scene.light, rng, 40000, [&](const dvec3& p, const PointCheck& check) {
+            const bt::Region region = check.region, expected = check.expected;
+            const bool sound = check.sound;
+            ++counts[size_t(region)];
+            if ((region != expected || !sound) && ++failures <= 10) {
+                ADD_FAILURE() << "point (" << p.x << ", " << p.y << ", " << p.z << "): tree "
+                              << bt::to_string(region) << ", ray cast " << bt::to_string(expected)
+                              << (sound ? "" : ", unsound against the meshes");
+            }
+        });
+    EXPECT_EQ(failures, 0);
+    for (const size_t count : counts) {
+        EXPECT_GT(count, 300u) << "every region type must be exercised";
+    }
+}
+
+// Each region piece is a closed convex polyhedron with outward faces whose interior classifies
+// as its region; the meshes for the GPU hold every face but those of lit slivers, whose volume is
+// negligible; and partition() splits a polygon into
+// pieces that conserve its area and classify as the list they are in.
+TEST(BeamTree, RegionsAndPartitionMatchClassify) {
+    bt::VolumeLibrary library;
+    std::mt19937 rng(7);
+    for (int seed = 300; seed < 320; ++seed) {
+        const Scene scene = random_scene(seed, library).scene;
+        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        const bt::Regions regions = bt::extract_regions(tree);
+        for (size_t r = 0; r < 3; ++r) {
+            const bt::RegionMesh mesh = regions.mesh(bt::Region(r));
+            EXPECT_EQ(mesh.triangles.size(), mesh.beams.size());
+            size_t drawn_faces = 0;
+            double left_out = 0.0;
+            for (const bt::RegionPiece& piece : regions.pieces[r]) {
+                if (regions.drawn(bt::Region(r), piece)) {
+                    drawn_faces += piece.polyhedron.faces.size();
+                } else {
+                    left_out += bt::volume(piece.polyhedron);
+                }
+            }
+            EXPECT_GE(mesh.triangles.size(), drawn_faces);
+            EXPECT_LE(left_out, 1e-4 * regions.influence_volume) << "slivers left out";
+            for (const bt::RegionPiece& piece : regions.pieces[r]) {
+                dvec3 center(0.0);
+                size_t n = 0;
+                for (const bt::Polygon& face : piece.polyhedron.faces) {
+                    for (const dvec3& v : face.vertices) {
+                        center += v;
+                        ++n;
+                    }
+                }
+                center /= double(n);
+                EXPECT_GT(bt::volume(piece.polyhedron), 0.0);
+                for (const bt::Polygon& face : piece.polyhedron.faces) {
+                    // Outward: the piece's vertex centroid lies behind every face (round-off
+                    // aside: 1e-9 of the light's range).
+                    const dvec3 normal = bt::area_vector(face);
+                    if (glm::length(normal) > 1e-9 * scene.light.far * scene.light.far) {
+                        EXPECT_GE(glm::dot(glm::normalize(normal), bt::centroid(face) - center),
+                                  -1e-9 * scene.light.far);
+                    }
+                }
+                double margin = 0.0;
+                const bt::Region region = tree.classify(center, &margin);
+                if (margin > 10.0 * tree.epsilon()) {
+                    EXPECT_EQ(size_t(region), r) << "scene " << seed;
+                }
+            }
+        }
+        for (int i = 0; i < 50; ++i) {
+            const bt::Polygon polygon =
+                random_convex_polygon(rng, random_point(rng, scene.light), uniform(rng, 0.2, 4));
+            const bt::BeamTree::Partition parts = tree.partition(polygon);
+            double total = 0.0;
+            const std::vector<bt::Polygon>* lists[3] = {&parts.lit, &parts.uncertain, &parts.unlit};
+            for (size_t r = 0; r < 3; ++r) {
+                for (const bt::Polygon& piece : *lists[r]) {
+                    total += bt::area(piece);
+                    double margin = 0.0;
+                    const bt::Region region = tree.classify(bt::centroid(piece), &margin);
+                    if (margin > 10.0 * tree.epsilon()) {
+                        EXPECT_EQ(size_t(region), r) << "scene " << seed;
+                    }
+                }
+            }
+            EXPECT_NEAR(total, bt::area(polygon), 1e-6 * bt::area(polygon))
+                << "scene " << seed << ": " << parts.lit.size() << " lit, "
+                << parts.uncertain.size() << " uncertain, " << parts.unlit.size()
+                << " unlit pieces";
+        }
+    }
+}
+
+// trace() walks a segment through the tree once: its intervals tile the segment in order, no two
+// neighbours share a region, and classify() agrees with the interval around every point that
+// is not within 10ε of a plane the answer depends on (random scenes, segments through the
+// influence volume and beyond it, both directions).
+TEST(BeamTree, TraceTilesTheSegmentAndMatchesClassify) {
+    bt::VolumeLibrary library;
+    std::mt19937 rng(11);
+    std::vector<bt::RegionInterval> intervals;
+    size_t checked = 0, crossed = 0;
+    for (int seed = 400; seed < 420; ++seed) {
+        const Scene scene = random_scene(seed, library).scene;
+        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        for (int i = 0; i < 200; ++i) {
+            const dvec3 a = random_point(rng, scene.light) + random_unit(rng) * uniform(rng, 0, 3);
+            const dvec3 b = random_point(rng, scene.light) + random_unit(rng) * uniform(rng, 0, 3);
+            const double length = glm::length(b - a);
+            if (!(length > 1e-3)) {
+                continue;
+            }
+            const dvec3 direction = (b - a) / length;
+            const double t0 = uniform(rng, -1.0, 0.5), t1 = length + uniform(rng, -0.5, 1.0);
+            tree.trace(a, direction, t0, t1, intervals);
+            ASSERT_FALSE(intervals.empty());
+            EXPECT_EQ(intervals.front().begin, t0);
+            EXPECT_EQ(intervals.back().end, t1);
+            for (size_t k = 0; k < intervals.size(); ++k) {
+                EXPECT_LT(intervals[k].begin, intervals[k].end);
+                if (k > 0) {
+                    EXPECT_EQ(intervals[k].begin, intervals[k - 1].end);
+                    EXPECT_NE(intervals[k].region, intervals[k - 1].region);
+                }
+            }
+            crossed += intervals.size();
+            for (int s = 0; s < 64; ++s) {
+                const double t = uniform(rng, t0, t1);
+                double margin = 0.0;
+                const bt::Region expected = tree.classify(a + t * direction, &margin);
+                if (margin <= 10.0 * tree.epsilon()) {
+                    continue;
+                }
+                const auto it = std::find_if(intervals.begin(), intervals.end(),
+                                             [&](const auto& iv) { return t <= iv.end; });
+                ASSERT_NE(it, intervals.end());
+                EXPECT_EQ(it->region, expected) << "scene " << seed << " t " << t;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 100000u);
+    EXPECT_GT(crossed, 8000u) << "segments should cross several regions";
+}
+
+// The mesh of a region's faces as extracted, each fanned from its first corner.
+bt::RegionMesh corner_fans(const bt::Regions& regions, bt::Region region) {
+    bt::RegionMesh mesh;
+    for (const bt::RegionPiece& piece : regions.pieces[size_t(region)]) {
+        if (!regions.drawn(region, piece)) {
+            continue;
+        }
+        for (const bt::Polygon& face : piece.polyhedron.faces) {
+            const auto base = uint32_t(mesh.positions.size());
+            for (const dvec3& v : face.vertices) {
+                mesh.positions.emplace_back(v);
+            }
+            for (uint32_t i = 1; i + 1 < face.size(); ++i) {
+                mesh.triangles.emplace_back(base, base + i, base + i + 1);
+            }
+        }
+    }
+    return mesh;
+}
+
+// Conforming by hand: a square next to two half-height squares gets their shared corner in its
+// edge, and a copy of that corner 1e-12 away (round-off) is welded onto the original; a fan of
+// the square with the T-vertex goes around its centroid, of the others from a corner.
+TEST(Conforming, InsertsTVerticesAndWeldsCopies) {
+    bt::Polygon square({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}});
+    bt::Polygon lower({{2, 0, 0}, {3, 0, 0}, {3, 0.5, 0}, {2, 0.5, 0}});
+    bt::Polygon upper({{2, 0.5 + 1e-12, 0}, {3, 0.5, 0}, {3, 1, 0}, {2, 1, 0}});
+    bt::make_conforming({&square, &lower, &upper}, 1e-7);
+    EXPECT_EQ(square.vertices,
+              (std::vector<dvec3>{{0, 0, 0}, {2, 0, 0}, {2, 0.5, 0}, {2, 1, 0}, {0, 1, 0}}));
+    EXPECT_EQ(upper.vertices[0], dvec3(2, 0.5, 0));
+    EXPECT_EQ(lower.vertices.size(), 4u);
+    EXPECT_TRUE(bt::has_collinear_vertex(square));
+    EXPECT_FALSE(bt::has_collinear_vertex(lower));
+    size_t triangles = 0;
+    EXPECT_TRUE(bt::fan_triangles(square, [&](uint32_t a, uint32_t, uint32_t) {
+        EXPECT_EQ(a, 5u);
+        ++triangles;
+    }));
+    EXPECT_EQ(triangles, 5u);
+    EXPECT_FALSE(
+        bt::fan_triangles(lower, [](uint32_t a, uint32_t, uint32_t) { EXPECT_EQ(a, 0u); }));
+}
+
+// Region meshes are watertight: with the vertices welded and the T-vertices inserted
+// (beamtree/conforming.h) every edge is met from both sides, where the faces as extracted leave
+// hundreds of edges unmatched (650 and 1454 in 'parallel'); and fanning each face around its
+// centroid keeps the volume the pieces bound.
+TEST(BeamTree, RegionMeshesAreConforming) {
+    bt::VolumeLibrary library;
+    std::vector<Scene> scenes;
+    for (int seed = 330; seed < 334; ++seed) {
+        scenes.push_back(random_scene(seed, library).scene);
+    }
+    scenes.push_back(load_canonical("parallel"));
+    size_t unmatched_as_extracted = 0;
+    for (const Scene& scene : scenes) {
+        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        const bt::Regions regions = bt::extract_regions(tree);
+        for (const bt::Region region : {bt::Region::lit, bt::Region::uncertain}) {
+            double volume = 0.0;
+            for (const bt::RegionPiece& piece : regions.pieces[size_t(region)]) {
+                if (regions.drawn(region, piece)) {
+                    volume += bt::volume(piece.polyhedron);
+                }
+            }
+            const bt::RegionMesh mesh = regions.mesh(region);
+            ASSERT_EQ(mesh.beams.size(), mesh.triangles.size());
+            double mesh_volume = 0.0;
+            for (const glm::uvec3& t : mesh.triangles) {
+                const dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
+                mesh_volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+            }
+            EXPECT_NEAR(mesh_volume, volume, 1e-5 * regions.influence_volume)
+                << scene.name << " region " << int(region);
+            EXPECT_EQ(unmatched_edges(mesh), 0u) << scene.name << " region " << int(region);
+            unmatched_as_extracted += unmatched_edges(corner_fans(regions, region));
+        }
+    }
+    EXPECT_GT(unmatched_as_extracted, 1000u) << "the faces as extracted have cracks to close";
+}
+
+// Overlapping volumes: the answer does not depend on the order the volumes are inserted in.
+TEST(BeamTree, InsertionOrderDoesNotChangeTheAnswer) {
+    bt::VolumeLibrary library;
+    for (int seed = 400; seed < 430; ++seed) {
+        const Scene scene = random_scene(seed, library).scene;
+        std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
+        const bt::BeamTree forward(scene.light, volumes);
+        // Insert the farthest first: move the objects away from the front of the sort by
+        // reversing and nudging nothing; the tree sorts by distance, so also shuffle faces.
+        for (bt::ObjectVolumes& v : volumes) {
+            std::reverse(v.outer.faces.begin(), v.outer.faces.end());
+            std::reverse(v.outer.planes.begin(), v.outer.planes.end());
+        }
+        std::reverse(volumes.begin(), volumes.end());
+        const bt::BeamTree reversed(scene.light, volumes);
+        std::mt19937 rng(seed);
+        for (int i = 0; i < 2000; ++i) {
+            const dvec3 p = random_point(rng, scene.light);
+            double m1 = 0.0, m2 = 0.0;
+            const bt::Region a = forward.classify(p, &m1), b = reversed.classify(p, &m2);
+            if (std::min(m1, m2) > 10.0 * forward.epsilon()) {
+                ASSERT_EQ(a, b) << "scene " << seed;
+            }
+        }
+    }
+}
+
+// A light inside (or on) an outer volume is one clear error; edge-on and zero-area polygons and
+// an empty scene give correct answers.
+TEST(BeamTree, DegenerateInputs) {
+    Scene scene;
+    scene.light.position = glm::vec3(0.0f, 5.0f, 0.0f);
+    scene.light.target = glm::vec3(0.0f);
+    scene.light.far = 10.0f;
+    bt::VolumeLibrary library;
+    {
+        const bt::BeamTree empty(scene.light, {});
+        EXPECT_EQ(empty.classify({0.0, 1.0, 0.0}), bt::Region::lit);
+        EXPECT_EQ(empty.classify({0.0, -6.0, 0.0}), bt::Region::unlit);  // beyond the far range
+        EXPECT_EQ(empty.classify({0.0, 6.0, 0.0}), bt::Region::unlit);   // behind the light
+    }
+    scene.objects = {make_object(
+        "box", shapes().box,
+        glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0, 5, 0)), glm::vec3(2.0f)))};
+    try {
+        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        ADD_FAILURE() << "no error for a light inside an outer volume";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("inside the outer bounding volume"),
+                  std::string::npos);
+    }
+    scene.objects[0].transform =
+        glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 4.5f, 0.0f));  // light on its top face
+    EXPECT_THROW(bt::BeamTree(scene.light, library.build(scene, nullptr)), Error);
+
+    // An edge-on square through the light and a zero-area polygon occlude nothing.
+    bt::ObjectVolumes edge_on;
+    edge_on.outer.flat = true;
+    edge_on.outer.faces = {bt::Polygon({{-1, 5, 0}, {1, 5, 0}, {1, 1, 0}, {-1, 1, 0}})};
+    edge_on.outer.planes = {{{0, 0, 1}, 0.0}};
+    bt::ObjectVolumes degenerate;
+    degenerate.object = 1;
+    degenerate.outer.faces = {bt::Polygon({{0, 2, 0}, {1, 2, 0}, {2, 2, 0}})};
+    degenerate.outer.planes = {{{0, 1, 0}, -2.0}};
+    const bt::BeamTree tree(scene.light, {edge_on, degenerate});
+    EXPECT_EQ(tree.classify({0.3, 0.5, 0.2}), bt::Region::lit);
+    EXPECT_EQ(tree.classify({1.5, 0.5, 0.1}), bt::Region::lit);
+}
+
+// The canonical scenes build, and their regions tile the influence volume.
+TEST(BeamTree, CanonicalScenesConserveVolume) {
+    for (const std::string& name : canonical_scene_names()) {
+        const Scene scene = load_canonical(name);
+        bt::VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes});
+        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        const bt::Regions regions = bt::extract_regions(tree);
+        EXPECT_NEAR(
+            (regions.volume[0] + regions.volume[1] + regions.volume[2]) / regions.influence_volume,
+            1.0, 1e-6)
+            << name;
+        EXPECT_GT(regions.volume[1], 0.0) << name << " has uncertain space behind its objects";
+        EXPECT_GT(regions.volume[2], 0.0) << name << " has unlit space behind its floor";
+    }
+}
+
+}  // namespace
+}  // namespace sl::test
