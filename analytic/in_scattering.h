@@ -14,7 +14,7 @@
 // integrates it by quadrature, and in_scattering_pieces gives the GPU's approximation of it.
 // Visibility is the caller's: the interval given is taken as unshadowed.
 //
-// Conditioning (issue 33). The GPU evaluates an antiderivative G(z) per fragment and sums
+// Conditioning. The GPU evaluates an antiderivative G(z) per fragment and sums
 // ±G(z) in float32, so G must stay of the size of what it integrates. Anchored behind the eye,
 // G loses every digit where the light is behind the eye and the ray points away from it (γ -> π):
 // the ray then spans a sliver of the angle variable next to its end (ζ -> π/2 in Sun's form,

@@ -8,8 +8,7 @@
 // T-vertex) and slivers seen edge-on. Rasterized, such a triangle can still cover a pixel centre
 // (the mesh stays watertight, so a neighbour covers it once more with the other sign), and its
 // interpolated position there is far off, NaN or infinite. The pair then adds G(z) at two
-// different z instead of cancelling: on house-sweep, 14 crossings where the tree has 12, one at
-// t = inf, the pixel off by 0.08 (the mesh route 2.4 % off the reference, the walk route 0.8 %).
+// different z instead of cancelling (docs/design.md §9; the measurements are in results/house.md).
 
 #include <vector>
 
@@ -19,16 +18,14 @@
 
 namespace sl::analytic {
 
-// The corners' binding (face_distance.glsl's SL_FACE_CORNERS_BINDING).
-constexpr GLuint kFaceCornersBinding = 5;
-
 struct RegionFaces {
     gl::TriangleMesh mesh;
     gl::Buffer corners;  // 3 vec4 per triangle, in the order drawn (gl_PrimitiveID)
 
     GLsizei index_count() const { return mesh.index_count; }
-    // Binds the corners at kFaceCornersBinding and the vertex array; the caller draws all of it
-    // in one DrawElements (gl_PrimitiveID counts from 0 per draw).
+    // Binds the corners at SL_FACE_CORNERS_BINDING (analytic/shaders/analytic_interface.h) and the
+    // vertex array; the caller draws all of it in one DrawElements (gl_PrimitiveID counts from 0
+    // per draw).
     void bind() const;
 };
 

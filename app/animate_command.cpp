@@ -1,5 +1,5 @@
 // `shaftlab animate`: plays a scene's [animation] with one method, serial or pipelined
-// (gl/frame_loop.h), and writes every frame's costs (docs/design.md §10).
+// (frame/frame_loop.h), and writes every frame's costs (docs/design.md §10).
 
 #include <algorithm>
 #include <cmath>

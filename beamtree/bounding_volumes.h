@@ -26,8 +26,8 @@ struct BoundingVolumeOptions {
     int max_outer_planes = 0;     // 0: the full convex hull; else at most this many planes (>= 8)
     bool automatic_inner = true;  // find an inner box for closed meshes without explicit ones
     // Several convex hulls where one is loose (beamtree/pieces.h), each grown by 1e-4 of the
-    // mesh's size. Off by default: with the pieces of random tori the boundary meshes miss their
-    // 1e-9 volume tolerance and keep a few faces that separate nothing (issue 37).
+    // mesh's size. Off by default: the boundary meshes of thin grown pieces (random tori) keep a
+    // few faces that separate nothing, within 1e-9 of the volume.
     bool pieces = false;
 };
 
@@ -89,7 +89,7 @@ public:
     // One library per option set for the whole process (what the methods build with).
     static VolumeLibrary& shared(BoundingVolumeOptions options);
     // Off: this library computes every mesh's volumes itself, sharing nothing with the process
-    // or the disk (oracles in tests, the first round's cost in benchmarks).
+    // or the disk (oracles in tests, the uncached cost in benchmarks).
     void set_caching(bool enabled) { caching_ = enabled; }
     // Empties what this process keeps across libraries, so that a new library reads the disk
     // (what a fresh process does; benchmarks and tests of the disk cache).

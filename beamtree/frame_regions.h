@@ -4,7 +4,7 @@
 // reduced hulls and inner boxes) comes from VolumeLibrary::shared, computed once per mesh and
 // cached on disk; what is left per frame is to transform the volumes, build the tree, extract
 // the regions and build the surfaces asked for. No GL: it runs on the pipelined frame loop's
-// worker thread (gl/frame_loop.h) while the GPU draws the previous frame.
+// worker thread (frame/frame_loop.h) while the GPU draws the previous frame.
 
 #include <memory>
 #include <string>
@@ -21,7 +21,7 @@ namespace sl::bt {
 struct RegionRequest {
     bool lit = false;        // the lit region's mesh
     bool uncertain = false;  // the uncertain region's boundary mesh
-    bool cells = false;  // lit: every lit cell's faces (the first round's mesh), not the boundary
+    bool cells = false;  // lit: every lit cell's faces (the per-cell mesh), not the boundary
     bool gpu_tree = false;  // the tree as the GPU's classify reads it
     bool pieces = false;    // keep the region pieces (FrameRegions::regions: PLY, statistics)
     // The boundary meshes' triangles: maximal polygons, or each face fanned (for comparison).

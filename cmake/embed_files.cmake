@@ -1,5 +1,5 @@
 # Embeds text files into a C++ source as raw string literals, looked up by their path relative to
-# the project root (e.g. "gl/shaders/surface.frag"). Run as: cmake -DROOT=.. -DOUTPUT=.. -DFILES=a|b -P
+# the project root (e.g. "frame/shaders/surface.frag"). Run as: cmake -DROOT=.. -DOUTPUT=.. -DFILES=a|b -P
 string(REPLACE "|" ";" FILES "${FILES}")
 set(body "")
 foreach(file IN LISTS FILES)

@@ -13,7 +13,7 @@
 //                 animation; 120 for an orbit), step = 0 (seconds per frame; 0: 1/fps of the
 //                 scene's [animation]), orbit_degrees = 90 (a scene without [animation]: the
 //                 camera circles its target this far over the frames), frame_mode = "serial" |
-//                 "pipelined" (gl/frame_loop.h)
+//                 "pipelined" (frame/frame_loop.h)
 //   [render]      shadow = "hard" | "pcf" | "vsm", shadow_map_size = 2048, pcf_radius = 1
 //   [sweep]       scenes = [...], methods = [...], sizes = ["256x256", ...]   (scene files
 //                 relative to the experiment file are found beside it first)

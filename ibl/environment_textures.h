@@ -2,7 +2,7 @@
 // The GPU side of image-based lighting: the prefiltered chain as one mipmapped cube map (level l
 // of the chain = mip l), the split-sum DFG table, the uniforms ibl/shaders/ibl.glsl reads (SH9,
 // the roughness-to-level mapping) and the skybox. Built from what ibl/ computed on the CPU; the
-// frame renderer (gl/renderer.h) binds it for its surface pass.
+// frame renderer (frame/renderer.h) binds it for its surface pass.
 
 #include <memory>
 

@@ -80,7 +80,7 @@ Scene scene_at(const Scene& scene, double time);
 Scene scene_at(const Scene& scene, const Animation& animation, double time);
 
 // What changed between two states of one scene (same objects and meshes), for the methods'
-// per-frame update (gl/volume_method.h).
+// per-frame update (frame/volume_method.h).
 struct SceneChange {
     bool camera = false;
     bool light = false;           // anything of the light

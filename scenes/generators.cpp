@@ -4,7 +4,7 @@
 //               scaling studies (docs/design.md §5);
 //   boxes:SEED  a few rotated boxes under a randomly placed spot light in a random medium, the
 //               eye inside the cone on odd seeds: every object is its own bounding volume, so the
-//               region methods must equal the reference (issue 33's search for wrong images).
+//               region methods must equal the reference.
 
 #include <array>
 #include <cmath>

@@ -94,7 +94,7 @@ constexpr int kMultipleMaxCount = 10000;
 std::string generate_multiple_scene(int count);
 // A few rotated boxes (their own bounding volumes) and a floor under a random spot light in a
 // random medium, the eye inside the cone on odd seeds, as TOML text, deterministic in the seed:
-// where the region methods must equal the reference (issue 33).
+// where the region methods must equal the reference.
 constexpr int kBoxesMaxSeed = 1000000;
 std::string generate_boxes_scene(int seed);
 // Whether `name` names a generated scene (multiple:N or boxes:SEED), and its TOML text (an error

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 33's class search as a benchmark: runs experiments/random_boxes.toml (beamtree, hybrid3 and
+# The random-box class search as a benchmark: runs experiments/random_boxes.toml (beamtree, hybrid3 and
 # lightvolume on the random box scenes boxes:SEED, where every object is its own bounding volume
 # and the region methods must equal the reference) into results/random_boxes/, and writes the
 # distribution of their errors against the reference (median, p95, worst; per method, medium

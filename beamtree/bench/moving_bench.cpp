@@ -3,7 +3,7 @@
 // process with taskset). Writes Markdown to stdout.
 //
 //   1. A light move on toplight, parallel and multiple: the light circles 0.5 m about its place
-//      over 24 frames. Per frame, the first round's path (a fresh VolumeLibrary: hulls, reduced
+//      over 24 frames. Per frame, the uncached path (a fresh VolumeLibrary: hulls, reduced
 //      hulls and inner boxes recomputed, as build_scene_beam_tree did) against today's
 //      (bt::build_frame_regions: cached volumes transformed, then tree, regions, meshes), each
 //      stage timed, for what `beamtree` needs (the lit boundary) and what the hybrids need (lit
@@ -86,7 +86,7 @@ StageSamples play(const std::vector<Scene>& states, const RegionRequest& request
     return samples;
 }
 
-// The first round's per-frame path: volumes from a fresh library (nothing cached), then the same
+// The uncached per-frame path: volumes from a fresh library (nothing cached), then the same
 // stages.
 double first_round_frame(const Scene& scene, const RegionRequest& request) {
     const Clock::time_point start = Clock::now();

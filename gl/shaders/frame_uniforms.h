@@ -1,4 +1,4 @@
-// One uniform block shared by C++ (gl/renderer.cpp fills it) and GLSL (every pass reads it), so
+// One uniform block shared by C++ (frame/renderer.cpp fills it) and GLSL (every pass reads it), so
 // the two can never drift: std140, vec4 and mat4 members only (no padding rules to get wrong).
 #ifndef SL_FRAME_UNIFORMS_H
 #define SL_FRAME_UNIFORMS_H

@@ -1,4 +1,4 @@
-// Visibility of the light from a point, through the frame's shadow map (gl/volume_method.h
+// Visibility of the light from a point, through the frame's shadow map (frame/volume_method.h
 // ShadowFilter): surfaces and mid-air samples use the same lookup. Needs frame_uniforms.h.
 layout(binding = SL_SHADOW_MAP_UNIT) uniform sampler2DShadow shadow_map;
 layout(binding = SL_SHADOW_MOMENTS_UNIT) uniform sampler2D shadow_moments;
