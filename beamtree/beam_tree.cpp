@@ -706,10 +706,7 @@ BeamTreeStats BeamTree::stats() const {
 }
 
 BeamTree build_scene_beam_tree(const Scene& scene) {
-    VolumeLibrary& library =
-        VolumeLibrary::shared({.max_outer_planes = scene.bounds.max_outer_planes,
-                               .automatic_inner = scene.bounds.automatic_inner,
-                               .pieces = scene.bounds.pieces});
+    VolumeLibrary& library = VolumeLibrary::shared(scene.bounds);
     return BeamTree(scene.light, library.build(scene, nullptr));
 }
 

@@ -439,7 +439,7 @@ std::filesystem::path verified_box_file(uint64_t mesh_key, uint64_t box_key) {
 
 }  // namespace
 
-uint64_t volumes_key(const Mesh& mesh, const BoundingVolumeOptions& options) {
+uint64_t volumes_key(const Mesh& mesh, const BoundsSettings& options) {
     uint64_t hash = fnv1a(kVolumesVersion);
     hash = mix(hash, mesh.positions.data(), mesh.positions.size());
     hash = mix(hash, mesh.triangles.data(), mesh.triangles.size());
@@ -453,7 +453,7 @@ void VolumeLibrary::forget_process_volumes() {
     process_volumes().clear();
 }
 
-VolumeLibrary& VolumeLibrary::shared(BoundingVolumeOptions options) {
+VolumeLibrary& VolumeLibrary::shared(BoundsSettings options) {
     static std::mutex mutex;
     // Keyed by every option: a library made for one set computes its volumes with that set.
     static std::map<std::tuple<int, bool, bool>, std::unique_ptr<VolumeLibrary>> libraries;

@@ -22,15 +22,6 @@
 
 namespace sl::bt {
 
-struct BoundingVolumeOptions {
-    int max_outer_planes = 0;     // 0: the full convex hull; else at most this many planes (>= 8)
-    bool automatic_inner = true;  // find an inner box for closed meshes without explicit ones
-    // Several convex hulls where one is loose (beamtree/pieces.h), each grown by 1e-4 of the
-    // mesh's size. Off by default: the boundary meshes of thin grown pieces (random tori) keep a
-    // few faces that separate nothing, within 1e-9 of the volume.
-    bool pieces = false;
-};
-
 // The volumes of one object in world space, or of one convex piece of it: an object cut into
 // pieces gives one entry per piece (its hull and the inner volumes inside it).
 struct ObjectVolumes {
@@ -82,12 +73,12 @@ struct VolumeLibraryStats {
 // Thread-safe: the pipelined frame loop builds on a worker thread.
 class VolumeLibrary {
 public:
-    explicit VolumeLibrary(BoundingVolumeOptions options = {}) : options_(options) {}
+    explicit VolumeLibrary(BoundsSettings options = {}) : options_(options) {}
     VolumeLibrary(const VolumeLibrary&) = delete;
     VolumeLibrary& operator=(const VolumeLibrary&) = delete;
 
     // One library per option set for the whole process (what the methods build with).
-    static VolumeLibrary& shared(BoundingVolumeOptions options);
+    static VolumeLibrary& shared(BoundsSettings options);
     // Off: this library computes every mesh's volumes itself, sharing nothing with the process
     // or the disk (oracles in tests, the uncached cost in benchmarks).
     void set_caching(bool enabled) { caching_ = enabled; }
@@ -112,7 +103,7 @@ private:
     const Entry& entry(const std::shared_ptr<const Mesh>& mesh);
     bool box_verified(const Mesh& mesh, uint64_t key, const Box& box);
 
-    BoundingVolumeOptions options_;
+    BoundsSettings options_;
     bool caching_ = true;
     mutable std::mutex mutex_;
     std::map<const Mesh*, Entry> cache_;
@@ -122,6 +113,6 @@ private:
 
 // The content key of a mesh's volumes under `options` (FNV-1a of its vertices, triangles and the
 // options, with the cache format's version).
-uint64_t volumes_key(const Mesh& mesh, const BoundingVolumeOptions& options);
+uint64_t volumes_key(const Mesh& mesh, const BoundsSettings& options);
 
 }  // namespace sl::bt

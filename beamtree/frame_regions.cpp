@@ -30,10 +30,7 @@ FrameRegions build_frame_regions(const Scene& scene, const RegionRequest& reques
         stage = ms_between(t, now);
         t = now;
     };
-    VolumeLibrary& library =
-        VolumeLibrary::shared({.max_outer_planes = scene.bounds.max_outer_planes,
-                               .automatic_inner = scene.bounds.automatic_inner,
-                               .pieces = scene.bounds.pieces});
+    VolumeLibrary& library = VolumeLibrary::shared(scene.bounds);
     const std::vector<ObjectVolumes> volumes = library.build(scene, nullptr);
     lap(out.ms.volumes);
     auto tree = std::make_shared<const BeamTree>(scene.light, volumes);

@@ -151,11 +151,15 @@ struct Medium {
     glm::vec3 light_falloff(float r) const;
 };
 
-// How the beam tree bounds the objects (beamtree/bounding_volumes.h).
+// How the beam tree bounds the objects ([beamtree] in scene files; beamtree/bounding_volumes.h
+// computes them with these settings).
 struct BoundsSettings {
-    int max_outer_planes = 0;     // 0: full convex hulls; else at most this many planes each
-    bool automatic_inner = true;  // inscribed boxes for closed meshes without explicit ones
-    bool pieces = false;          // convex pieces where an object's hull is loose
+    int max_outer_planes = 0;     // 0: the full convex hull; else at most this many planes (>= 8)
+    bool automatic_inner = true;  // find an inner box for closed meshes without explicit ones
+    // Several convex hulls where one is loose (beamtree/pieces.h), each grown by 1e-4 of the
+    // mesh's size. Off by default: the boundary meshes of thin grown pieces (random tori) keep a
+    // few faces that separate nothing, within 1e-9 of the volume.
+    bool pieces = false;
 };
 
 // Image-based lighting from an HDR environment (ibl/, Moschos §3.3); off when `file` is empty.

@@ -133,8 +133,8 @@ TEST(MovingRegions, OverlappingMovingObjectsKeepTheTreeConsistent) {
 TEST(VolumeCache, DiskRoundTripIsBitExactAndSkipsTheComputation) {
     const ScopedCache cache;
     const Scene scene = load_scene("toplight", SceneSearchPaths::defaults());
-    const BoundingVolumeOptions options{.max_outer_planes = scene.bounds.max_outer_planes,
-                                        .automatic_inner = scene.bounds.automatic_inner};
+    const BoundsSettings options{.max_outer_planes = scene.bounds.max_outer_planes,
+                                 .automatic_inner = scene.bounds.automatic_inner};
     VolumeLibrary::forget_process_volumes();
     VolumeLibrary first(options);
     const std::vector<ObjectVolumes> computed = first.build(scene, nullptr);

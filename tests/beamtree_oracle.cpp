@@ -50,7 +50,7 @@ PointCheck check_point(const bt::BeamTree& tree, const Oracles& oracles, const d
     return check;
 }
 
-int check_random_scenes(Shapes kinds, bt::BoundingVolumeOptions options, int seeds) {
+int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds) {
     bt::VolumeLibrary library(options);
     library.set_caching(false);  // random meshes: nothing to share with the disk
     size_t compared = 0, counts[3] = {0, 0, 0};

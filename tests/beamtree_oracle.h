@@ -112,7 +112,7 @@ void for_each_decided_point_behind_a_surface(const bt::BeamTree& tree, const Ora
 // tile the influence volume (conservation); and no convex piece reaches outside its mesh's hull
 // by more than 10^-3 of its size (tightness). Returns how many scenes had the light inside the
 // hull of a whole object (which only its pieces allow).
-int check_random_scenes(Shapes kinds, bt::BoundingVolumeOptions options, int seeds);
+int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds);
 
 // The directed edges of a float triangle mesh that no triangle meets in the opposite direction
 // (zero-length edges left out). The faces of a region's pieces close up, so in a crack-free mesh

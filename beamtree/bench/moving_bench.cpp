@@ -90,9 +90,7 @@ StageSamples play(const std::vector<Scene>& states, const RegionRequest& request
 // stages.
 double first_round_frame(const Scene& scene, const RegionRequest& request) {
     const Clock::time_point start = Clock::now();
-    VolumeLibrary library({.max_outer_planes = scene.bounds.max_outer_planes,
-                           .automatic_inner = scene.bounds.automatic_inner,
-                           .pieces = scene.bounds.pieces});
+    VolumeLibrary library(scene.bounds);
     library.set_caching(false);
     const BeamTree tree(scene.light, library.build(scene, nullptr));
     const Regions regions = extract_regions(tree);
@@ -219,9 +217,7 @@ int run(bool real) {
         "core.\n\n| scene | meshes | computed ms | from disk ms |\n|---|---:|---:|---:|\n");
     for (const std::string& name : stills) {
         const Scene scene = load_scene(name, paths);
-        const BoundingVolumeOptions options{.max_outer_planes = scene.bounds.max_outer_planes,
-                                            .automatic_inner = scene.bounds.automatic_inner,
-                                            .pieces = scene.bounds.pieces};
+        const BoundsSettings options = scene.bounds;
         Clock::time_point start = Clock::now();
         VolumeLibrary cold(options);
         cold.set_caching(false);
