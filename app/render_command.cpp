@@ -19,6 +19,7 @@
 #include "methods/region_statistics.h"
 #include "methods/registry.h"
 #include "methods/result_row.h"
+#include "reference/reference.h"
 #include "scenes/animation.h"
 #include "scenes/scene_file.h"
 
@@ -78,7 +79,9 @@ int run_render(const RenderArguments& args) {
     if (!args.compare.empty()) {
         const auto reference = methods::create_volume_method(args.compare);
         reference_image = renderer.render(*reference).in_scattering;
-        error = compare_images(frame.in_scattering, *reference_image);
+        const std::vector<uint8_t> scored =
+            reference::same_surface_pixels(scene, options.width, options.height, frame.depth);
+        error = compare_images(frame.in_scattering, *reference_image, &scored);
     }
 
     // One row in the harness's columns (methods/result_row.h), so that a render and a cell of a
@@ -103,6 +106,7 @@ int run_render(const RenderArguments& args) {
     json["rel_rmse"] = error ? methods::Row(error->rel_rmse) : methods::Row();
     json["max_abs"] = error ? methods::Row(error->max_abs) : methods::Row();
     json["psnr"] = error && std::isfinite(error->psnr) ? methods::Row(error->psnr) : methods::Row();
+    json["unscored_pixels"] = error ? methods::Row(error->unscored) : methods::Row();
     methods::add_regions(json, regions, measured.statistics);
     methods::add_method(json, *method, measured.statistics, stem + ".png");
     methods::add_context(json, shadow, context);

@@ -8,26 +8,38 @@
 
 namespace sl {
 
-ErrorMetrics compare_images(const Image& image, const Image& reference) {
+ErrorMetrics compare_images(const Image& image, const Image& reference,
+                            const std::vector<uint8_t>* scored) {
     if (image.width != reference.width || image.height != reference.height) {
         fail("cannot compare a {}x{} image with a {}x{} reference", image.width, image.height,
              reference.width, reference.height);
     }
+    const size_t pixels = size_t(image.width) * size_t(image.height);
+    if (scored && scored->size() != pixels) {
+        fail("the scored-pixel mask holds {} pixels for a {}x{} image", scored->size(), image.width,
+             image.height);
+    }
     require_finite(image, "compared image");
     require_finite(reference, "reference");
     double squared = 0.0, norm = 0.0, peak = 0.0;
+    size_t counted = 0;
     ErrorMetrics metrics;
     for (size_t i = 0; i < image.rgb.size(); ++i) {
+        if (scored && !(*scored)[i / 3]) {
+            continue;
+        }
         const double a = image.rgb[i], r = reference.rgb[i];
         squared += (a - r) * (a - r);
         norm += r * r;
         peak = std::max(peak, r);
         metrics.max_abs = std::max(metrics.max_abs, std::abs(a - r));
+        ++counted;
     }
     metrics.rel_rmse = norm > 0.0 ? std::sqrt(squared / norm) : (squared > 0.0 ? 1.0 : 0.0);
-    const double rmse = std::sqrt(squared / double(std::max<size_t>(1, image.rgb.size())));
+    const double rmse = std::sqrt(squared / double(std::max<size_t>(1, counted)));
     metrics.psnr =
         rmse > 0.0 ? 20.0 * std::log10(peak / rmse) : std::numeric_limits<double>::infinity();
+    metrics.unscored = pixels > 0 ? 1.0 - double(counted / 3) / double(pixels) : 0.0;
     return metrics;
 }
 

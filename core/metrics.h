@@ -4,6 +4,7 @@
 //   max_abs  = max |a - r| over pixels and channels
 //   psnr     = 20 log10(max r / rmse) in dB, rmse = sqrt(mean (a - r)²); +inf when equal
 
+#include <cstdint>
 #include <vector>
 
 #include "core/image.h"
@@ -14,11 +15,14 @@ struct ErrorMetrics {
     double rel_rmse = 0.0;
     double max_abs = 0.0;
     double psnr = 0.0;
+    double unscored = 0.0;  // the share of pixels left out (compare_images' `scored`)
 };
 
 // Throws sl::Error when the sizes differ, or when either holds a NaN or an infinity (named with
-// its first such pixel): a score of a broken image would look like a result.
-ErrorMetrics compare_images(const Image& image, const Image& reference);
+// its first such pixel): a score of a broken image would look like a result. With `scored` (one
+// byte per pixel, rows top to bottom), only the pixels marked non-zero count, in every metric.
+ErrorMetrics compare_images(const Image& image, const Image& reference,
+                            const std::vector<uint8_t>* scored = nullptr);
 
 // Relative RMSE sqrt(Σ |a − r|² / Σ |r|²) over the pixels of each label (labels[i] of pixel i in
 // 0 .. label_count − 1; negative: no label), and, as the last entry, over every labelled pixel;

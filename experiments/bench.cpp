@@ -33,6 +33,7 @@
 #include "methods/registry.h"
 #include "methods/result_row.h"
 #include "reference/cache.h"
+#include "reference/reference.h"
 #include "scenes/scene_file.h"
 #include "scenes/variations.h"
 #include "sss/subsurface_pass.h"
@@ -244,14 +245,31 @@ Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs
     const gl::ContextInfo& context = c.info;
     const double setup_ms = c.setup_ms, prepare_ms = c.prepare_ms;
 
+    // Paired with `none` at the method's own shadow map (harness.md, "Paired"), or alone.
+    std::optional<methods::PairedMeasurement> paired;
+    if (x.protocol.paired && cell.method != "none") {
+        const frame::ShadowSettings shadow = s.method->shadow_settings(s.options.shadow);
+        const auto none =
+            methods::create_configured_method("none", shadow,
+                                              {{"shadow", frame::to_string(shadow.filter)},
+                                               {"shadow_size", std::to_string(shadow.map_size)}});
+        none->prepare(scene);
+        paired = methods::measure_paired_frames(renderer, *s.method, *none, x.protocol.warmup,
+                                                x.protocol.frames);
+    }
     const methods::FrameMeasurement m =
-        methods::measure_frames(renderer, *s.method, x.protocol.warmup, x.protocol.frames);
+        paired ? paired->method
+               : methods::measure_frames(renderer, *s.method, x.protocol.warmup, x.protocol.frames);
     const frame::Frame frame = renderer.read_back();
 
     std::optional<ErrorMetrics> error;
     if (!x.reference.empty()) {
+        // Scored where the rasterized surface is the reference's first hit (docs/harness.md).
+        const std::vector<uint8_t> scored =
+            reference::same_surface_pixels(scene, cell.width, cell.height, frame.depth);
         const auto reference = methods::create_volume_method(x.reference);
-        error = compare_images(frame.in_scattering, renderer.render(*reference).in_scattering);
+        error =
+            compare_images(frame.in_scattering, renderer.render(*reference).in_scattering, &scored);
     }
 
     auto start = Clock::now();
@@ -272,9 +290,16 @@ Json measure_still_cell(const Experiment& x, const Cell& cell, int rep, const fs
     row["max_abs"] = metric_value(x, "max_abs", error.has_value(), error ? error->max_abs : 0.0);
     // psnr is empty when exact (infinite).
     row["psnr"] = metric_value(x, "psnr", error.has_value(), error ? error->psnr : 0.0);
+    row["unscored_pixels"] = error ? Json(error->unscored) : Json();
     add_tail(row, x, *s.method, m.statistics, regions, renderer, context, image);
     row["protocol"] = "still";
     row["frame_ms_samples"] = m.frame_ms;  // for the confidence intervals (statistics.h)
+    if (paired) {
+        row["paired_with"] = "none";
+        row["paired_difference_ms"] = median(paired->difference_ms);
+        row["paired_difference_ms_samples"] = paired->difference_ms;
+        row["paired_baseline_ms_samples"] = paired->baseline_ms;
+    }
     return row;
 }
 
@@ -287,8 +312,8 @@ struct SequenceScores {
     std::optional<frame::Frame> picture;
     int picture_frame = -1;
 
-    void score(int k, frame::Frame frame, const Image& truth) {
-        errors[size_t(k)] = compare_images(frame.in_scattering, truth);
+    void score(int k, frame::Frame frame, const Image& truth, const std::vector<uint8_t>& scored) {
+        errors[size_t(k)] = compare_images(frame.in_scattering, truth, &scored);
         temporal.add(frame.in_scattering, truth);
         if (!picture || errors[size_t(k)]->rel_rmse > errors[size_t(picture_frame)]->rel_rmse) {
             picture = std::move(frame);
@@ -401,9 +426,12 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
             const int k = record.frame;
             if (reference && k % stride == 0) {
                 frame::Frame frame = renderer.read_back();
+                const std::vector<uint8_t> scored =
+                    reference::same_surface_pixels(live, cell.width, cell.height, frame.depth);
                 reference->update(live, scene_change(reference_scene, live));
                 reference_scene = live;
-                scores.score(k, std::move(frame), renderer.render(*reference).in_scattering);
+                scores.score(k, std::move(frame), renderer.render(*reference).in_scattering,
+                             scored);
             } else if (!reference && k + 1 == frames) {
                 scores.picture = renderer.read_back();  // no scores: the last frame is shown
                 scores.picture_frame = k;

@@ -48,6 +48,7 @@ std::string results_csv(const std::vector<StoredRow>& rows) {
     static const std::vector<std::string> middle = {"rel_rmse",
                                                     "max_abs",
                                                     "psnr",
+                                                    "unscored_pixels",
                                                     "ray_frac_lit",
                                                     "ray_frac_uncertain",
                                                     "ray_frac_unlit",

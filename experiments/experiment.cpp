@@ -363,7 +363,13 @@ void read_protocol(const toml::table& table, const std::string& origin, Experime
                     fmt::format("{}: expected \"serial\" or \"pipelined\"", quote(mode)));
         }
         x.protocol.pipelined = mode == "pipelined";
+        if (r.has("paired")) {
+            r.error("paired",
+                    "only for kind = \"still\": an animation's frames are played through the "
+                    "frame loop, one method at a time (compare two animation cells instead)");
+        }
     } else {
+        x.protocol.paired = r.boolean("paired", false);
         for (const char* key : {"step", "orbit_degrees", "frame_mode"}) {
             if (r.has(key)) {
                 r.error(key, "only for kind = \"animation\"");

@@ -13,7 +13,8 @@
 //                 animation; 120 for an orbit), step = 0 (seconds per frame; 0: 1/fps of the
 //                 scene's [animation]), orbit_degrees = 90 (a scene without [animation]: the
 //                 camera circles its target this far over the frames), frame_mode = "serial" |
-//                 "pipelined" (frame/frame_loop.h)
+//                 "pipelined" (frame/frame_loop.h); for kind = "still": paired = false (true:
+//                 each frame paired with a frame of `none`, docs/harness.md "Paired")
 //   [render]      shadow = "hard" | "pcf" | "vsm", shadow_map_size = 2048, pcf_radius = 1
 //   [sweep]       scenes = [...], methods = [...], sizes = ["256x256", ...]   (scene files
 //                 relative to the experiment file are found beside it first)
@@ -65,6 +66,10 @@ struct Protocol {
     double step = 0.0;
     double orbit_degrees = 90.0;
     bool pipelined = false;
+    // Still cells: each frame of a method measured in a pair with a frame of `none` at the
+    // method's shadow map, in the same context (methods/frame_measurement.h), for a volume cost
+    // by difference that cancels drift.
+    bool paired = false;
     bool animated() const { return kind == ProtocolKind::animation; }
 };
 

@@ -85,11 +85,15 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
         }
     }
     const std::string& plain = x.equal_error->plain;
-    // The volume cost by difference: an outcome's frame time less that of `none` in its row, and
-    // the interval of the difference where both frames have one; nullopt without `none`.
+    // The volume cost by difference: an outcome's frame time less that of `none`, with an
+    // interval. Paired cells (harness.md, "Paired") give the median of their per-pair differences
+    // and its bootstrap interval; otherwise the difference of the two cells' medians, with the
+    // interval from their two intervals (which does not hold the drift between the cells).
+    // nullopt without `none` (or pairs).
     struct Difference {
         double ms;
         std::optional<Interval> interval;
+        bool paired = false;
     };
     auto none_entry = [&](const std::string& scene, int w, int h) -> const Entry* {
         for (const Entry& e : entries) {
@@ -100,9 +104,33 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
         }
         return nullptr;
     };
+    // `none`'s shadow-map pass (with a VSM's blur), the median over its repetitions.
+    auto none_shadow_ms = [](const Entry& none) {
+        std::vector<double> values;
+        for (const StoredRow* r : none.rows) {
+            values.push_back(r->row.value("gpu_ms_shadow", 0.0));
+        }
+        return median(values);
+    };
     auto difference_of = [&](const SearchOutcome& o) -> std::optional<Difference> {
-        const Entry* none = none_entry(o.group.scene, o.group.width, o.group.height);
         const Entry* e = entry_of(probed_cell(o));
+        if (e) {
+            std::vector<std::vector<double>> pairs;
+            std::vector<double> pooled;
+            for (const StoredRow* r : e->rows) {
+                const auto it = r->row.find("paired_difference_ms_samples");
+                if (it == r->row.end() || !it->is_array()) {
+                    pairs.clear();
+                    break;
+                }
+                pairs.push_back(it->get<std::vector<double>>());
+                pooled.insert(pooled.end(), pairs.back().begin(), pairs.back().end());
+            }
+            if (!pooled.empty()) {
+                return Difference{median(pooled), median_interval(pairs), true};
+            }
+        }
+        const Entry* none = none_entry(o.group.scene, o.group.width, o.group.height);
         if (!none || !e) {
             return std::nullopt;
         }
@@ -280,6 +308,17 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
                                        cost(*other) / cost(ours), other->group.method,
                                        cost(*other));
                 };
+                // The frame-time ratio is a tie where the two medians' intervals overlap.
+                auto overlapping = [&](const SearchOutcome* other,
+                                       const SearchOutcome& ours) -> std::string {
+                    const Entry* a = other ? entry_of(probed_cell(*other)) : nullptr;
+                    const Entry* b = entry_of(probed_cell(ours));
+                    if (!a || !b || !a->has_interval || !b->has_interval ||
+                        !a->frame_ms_interval.overlaps(b->frame_ms_interval)) {
+                        return "";
+                    }
+                    return " (not resolved: the frame times' intervals overlap)";
+                };
                 auto and_plain = [&](const SearchOutcome* base, const SearchOutcome* other,
                                      const SearchOutcome& ours, auto cost) -> std::string {
                     if (other && base && other->group.method == base->group.method) {
@@ -287,23 +326,66 @@ std::pair<std::string, std::string> equal_error_report(const Experiment& x,
                     }
                     return "; " + against(other, ours, cost);
                 };
+                // By difference, a ratio only where it is resolved: both differences' intervals
+                // above zero and each within reach of its timer's volume cost (the two measures
+                // agree); "not resolved" and why otherwise.
+                auto unresolved = [&](const SearchOutcome& o) -> std::string {
+                    const std::optional<Difference> d = difference_of(o);
+                    if (!d || !d->interval) {
+                        return "no interval";
+                    }
+                    if (!(d->interval->low > 0.0)) {
+                        return fmt::format("{}'s interval holds zero", o.group.method);
+                    }
+                    if (outside(o.summary.volume_ms, d->interval)) {
+                        return fmt::format("{}'s timer and difference disagree", o.group.method);
+                    }
+                    return "";
+                };
+                auto against_by_difference = [&](const SearchOutcome* other,
+                                                 const SearchOutcome& ours) -> std::string {
+                    if (!other) {
+                        return "no plain method";
+                    }
+                    for (const SearchOutcome* o : {&ours, other}) {
+                        if (const std::string why = unresolved(*o); !why.empty()) {
+                            return fmt::format("against **{}** {}: not resolved ({})",
+                                               other->group.method, difference_text(*other), why);
+                        }
+                    }
+                    return fmt::format("×{:.2f} against **{}** {}",
+                                       difference_of(*other)->ms / difference_of(ours)->ms,
+                                       other->group.method, difference_text(*other));
+                };
                 if (hybrid && baseline && hybrid_volume && baseline_volume) {
                     std::string line = fmt::format("- {:.3g}% on {} {}x{}:", 100 * target,
                                                    scene_label(scene), w, h);
                     if (none) {
-                        auto by_difference = [&](const SearchOutcome& o) {
-                            return difference_of(o)->ms;
-                        };
+                        const bool plain_is_baseline =
+                            plain_frame && plain_frame->group.method == baseline->group.method;
                         line += fmt::format(
-                            " volume cost (frame − none) **{}** {}: {}{}.", hybrid->group.method,
-                            difference_text(*hybrid), against(baseline, *hybrid, by_difference),
-                            and_plain(baseline, plain_frame, *hybrid, by_difference));
+                            " volume cost (frame − none{}) **{}** {}: {}{}.",
+                            difference_of(*hybrid)->paired ? ", paired" : "", hybrid->group.method,
+                            difference_text(*hybrid), against_by_difference(baseline, *hybrid),
+                            plain_is_baseline ? fmt::format(" ({} is the plain method)",
+                                                            plain_frame->group.method)
+                                              : "; " + against_by_difference(plain_frame, *hybrid));
+                        // What every frame of the protocol pays whatever the method: `none`'s
+                        // passes, the shadow map (and a VSM's blur) first.
+                        line += fmt::format(
+                            " (Fixed passes: `none`'s frame {:.1f} ms, its "
+                            "shadow map {:.1f} ms.)",
+                            none->frame_ms, none_shadow_ms(*none));
                     }
                     line += fmt::format(
                         " Frame **{}** {:.1f} ms: {}{}. Volume cost by timers **{}** {:.1f} "
                         "ms: {}{}.",
-                        hybrid->group.method, frame(*hybrid), against(baseline, *hybrid, frame),
-                        and_plain(baseline, plain_frame, *hybrid, frame),
+                        hybrid->group.method, frame(*hybrid),
+                        against(baseline, *hybrid, frame) + overlapping(baseline, *hybrid),
+                        and_plain(baseline, plain_frame, *hybrid, frame) +
+                            (plain_frame && plain_frame->group.method != baseline->group.method
+                                 ? overlapping(plain_frame, *hybrid)
+                                 : std::string()),
                         hybrid_volume->group.method, volume(*hybrid_volume),
                         against(baseline_volume, *hybrid_volume, volume),
                         and_plain(baseline_volume, plain_volume, *hybrid_volume, volume));

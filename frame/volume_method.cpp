@@ -17,7 +17,10 @@ const std::vector<std::string> kShadowFilterNames = {"hard", "pcf", "vsm"};
 
 class NoVolume final : public VolumeMethod {
 public:
-    NoVolume() : VolumeMethod("none") {}
+    // Its shadow map is the run's unless set: a `none` paired with a method
+    // (methods/frame_measurement.h) takes that method's, so the two frames differ by the volume
+    // pass alone.
+    NoVolume() : VolumeMethod("none") { declare_shadow_parameters(); }
     std::string accepts() const override { return "every scene (it renders no medium)"; }
     void prepare(const Scene&) override {}
     std::unique_ptr<FrameWork> cpu_update(const Scene&, const SceneChange&) const override {

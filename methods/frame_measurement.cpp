@@ -41,4 +41,37 @@ FrameMeasurement measure_frames(frame::SceneRenderer& renderer, frame::VolumeMet
     return m;
 }
 
+PairedMeasurement measure_paired_frames(frame::SceneRenderer& renderer, frame::VolumeMethod& method,
+                                        frame::VolumeMethod& baseline, int warmup, int frames) {
+    for (int i = 0; i < warmup; ++i) {
+        renderer.draw(method);
+        renderer.draw(baseline);
+    }
+    PairedMeasurement m;
+    PassSeries passes;
+    NamedSeries statistics;
+    auto draw_method = [&] {
+        const frame::FrameTimings timings = renderer.draw(method);
+        passes.add(timings.gpu);
+        collect(statistics, method.statistics());
+        m.method.frame_ms.push_back(timings.cpu_ms);
+    };
+    for (int i = 0; i < frames; ++i) {
+        if (i % 2 == 0) {
+            draw_method();
+            m.baseline_ms.push_back(renderer.draw(baseline).cpu_ms);
+        } else {
+            m.baseline_ms.push_back(renderer.draw(baseline).cpu_ms);
+            draw_method();
+        }
+        m.difference_ms.push_back(m.method.frame_ms.back() - m.baseline_ms.back());
+    }
+    // The renderer holds the method's frame for read_back(), as measure_frames leaves it.
+    renderer.draw(method);
+    m.method.gpu = passes.medians();
+    m.method.gpu_total_ms = passes.total_median();
+    m.method.statistics = medians(statistics);
+    return m;
+}
+
 }  // namespace sl::methods

@@ -38,4 +38,17 @@ struct FrameMeasurement {
 FrameMeasurement measure_frames(frame::SceneRenderer& renderer, frame::VolumeMethod& method,
                                 int warmup, int frames);
 
+// A method's frames measured in pairs with a baseline's (`none`, set to the method's shadow map)
+// in the same context on the same scene, so that what drifts over the run (clocks, the machine's
+// other load, the driver's state) drifts in both: pair i draws the method then the baseline on
+// even i and the other way round on odd i (ABBA), so a drift linear in time cancels too. A cost
+// by difference is then the median of the per-pair differences (harness.md, "Paired").
+struct PairedMeasurement {
+    FrameMeasurement method;
+    std::vector<double> baseline_ms;    // the baseline's frame of each pair
+    std::vector<double> difference_ms;  // method - baseline, pair by pair
+};
+PairedMeasurement measure_paired_frames(frame::SceneRenderer& renderer, frame::VolumeMethod& method,
+                                        frame::VolumeMethod& baseline, int warmup, int frames);
+
 }  // namespace sl::methods

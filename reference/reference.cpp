@@ -197,6 +197,31 @@ Image ReferenceRenderer::render(int width, int height, const ReferenceOptions& o
     return image;
 }
 
+std::vector<uint8_t> same_surface_pixels(const Scene& scene, int width, int height,
+                                         const std::vector<float>& window_depth) {
+    if (window_depth.size() != size_t(width) * size_t(height)) {
+        fail("a depth buffer of {} pixels for a {}x{} frame", window_depth.size(), width, height);
+    }
+    const ReferenceRenderer caster(scene);
+    const dvec3 eye(scene.camera.position);
+    const PixelUnprojector pixels(scene.camera, width, height);
+    std::vector<uint8_t> same(window_depth.size(), 0);
+    tbb::parallel_for(0, height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            const size_t i = size_t(y) * size_t(width) + size_t(x);
+            const dvec3 far = pixels.point(x, y, 1.0);
+            const analytic::EyeRay ray{eye, glm::normalize(far - eye)};
+            const double cast = caster.first_hit(ray, glm::length(far - eye));
+            const double depth = double(window_depth[i]);
+            const double drawn = depth < 1.0
+                                     ? glm::length(pixels.point(x, y, 2.0 * depth - 1.0) - eye)
+                                     : glm::length(far - eye);
+            same[i] = std::abs(cast - drawn) <= 1e-3 * std::max(cast, drawn) ? 1 : 0;
+        }
+    });
+    return same;
+}
+
 uint64_t reference_key(const Scene& scene, int width, int height, const ReferenceOptions& options) {
     // FNV-1a over the bytes of every input.
     uint64_t hash = 1469598103934665603ull;

@@ -6,8 +6,10 @@
 
 #include <embree3/rtcore.h>
 
+#include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "analytic/in_scattering.h"
 #include "core/image.h"
@@ -56,6 +58,16 @@ private:
     RTCScene rtc_scene_ = nullptr;
     RTCScene shadow_scene_ = nullptr;  // the shadow casters only (rtc_scene_ when all are)
 };
+
+// Per pixel of the scene's camera at width x height (rows top to bottom), 1 where the rasterized
+// surface and the reference's first hit are the same: the distance along the pixel's eye ray to
+// the surface the depth buffer holds (`window_depth`, [0, 1], 1 where nothing was drawn) and to
+// the first hit of its ray cast (the camera's far plane where none) within 1e-3 of the larger.
+// Where they differ (a silhouette the rasterizer gives to another surface than the ray through
+// the pixel centre meets), a method and the reference integrate different intervals, and the
+// pixel is left out of the score (docs/harness.md, "Scoring").
+std::vector<uint8_t> same_surface_pixels(const Scene& scene, int width, int height,
+                                         const std::vector<float>& window_depth);
 
 // A 64-bit hash of everything the reference image depends on (scene geometry, camera, light,
 // medium, size, options), naming its cache file.

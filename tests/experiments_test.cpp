@@ -166,6 +166,9 @@ TEST(Experiment, BadFilesGiveOneErrorNamingTheFileAndKey) {
         {base + "[sweep.params.planes]\nsamples = 8\n", "samples"},
         {base + "[[exclude]]\nfoo = 1\n", "foo"},
         {base + "[protocol]\nisolation = \"thread\"\n", "isolation"},
+        {base + "[protocol]\nkind = \"animation\"\npaired = true\n",
+         "paired: only for kind = \"still\""},
+        {base + "[protocol]\npaired = 1\n", "paired: expected true or false"},
         {base + "[table]\nmetric = \"ssim\"\n", "metric"},
         {base + "[equal_error]\ntargets = [2.0]\n", "targets"},
         {base + "[equal_error]\ntargets = [0.01]\nbaselines = [\"march\"]\n", "baselines"},
@@ -325,8 +328,13 @@ expensive = 1
     EXPECT_NE(md.find("| toplight | 32x16 | samples=50:"), std::string::npos) << md;
     EXPECT_NE(md.find(" epipolar · epipolar |"), std::string::npos) << "row's baselines\n" << md;
     EXPECT_EQ(md.find("| none |"), std::string::npos) << "none is no column\n" << md;
-    EXPECT_NE(md.find("volume cost (frame − none) **beamtree** 3.0 ms [2.5–3.5]: ×1.67 against "
-                      "**epipolar** 5.0 ms; ×4.17 against **march** 12.5 ms."),
+    // beamtree's timer lies outside its difference's interval: no ratio by difference.
+    EXPECT_NE(md.find("volume cost (frame − none) **beamtree** 3.0 ms [2.5–3.5]: against "
+                      "**epipolar** 5.0 ms [4.5–5.5]: not resolved (beamtree's timer and "
+                      "difference disagree); against **march** 12.5 ms [12.0–13.0]: not resolved"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("(Fixed passes: `none`'s frame 100.0 ms, its shadow map 0.0 ms.)"),
               std::string::npos)
         << md;
     EXPECT_NE(md.find("| 1% | toplight | 32x16 | beamtree |  | 20.0 ms | 3.0 ms [2.5–3.5] | "
@@ -337,6 +345,74 @@ expensive = 1
                       "[4.5–5.5] | |"),
               std::string::npos)
         << md;
+}
+
+// Paired cells (harness.md, "Paired"): the volume cost by difference is the median of the
+// pooled per-pair differences with their bootstrap interval, a ratio only where both intervals
+// lie above zero and each timer inside its interval; an interval holding zero is not resolved.
+TEST(Report, PairedDifferencesGiveARatioOnlyWhereTheyAreResolved) {
+    const Experiment x = parse_experiment(R"(
+name = "t"
+[protocol]
+paired = true
+[sweep]
+scenes = ["toplight"]
+methods = ["epipolar", "beamtree", "none"]
+sizes = ["32x16"]
+[reference]
+method = "reference"
+[equal_error]
+targets = [0.01]
+baselines = ["epipolar"]
+plain = "epipolar"
+tolerance = 0.02
+[equal_error.search.epipolar]
+parameter = "max_step"
+cheap = 64
+expensive = 1
+)",
+                                          "t.toml");
+    ASSERT_TRUE(x.protocol.paired);
+    // Frames as in the test above; each paired cell's differences d - 0.25, d, d + 0.25 about its
+    // frame less none's, its timer d. beamtree's differences: `spread` about 3 ms.
+    auto report = [&](double spread) {
+        std::vector<experiments::StoredRow> rows;
+        const auto add = [&](const Cell& cell, double ms, double error, double d, double s) {
+            nlohmann::ordered_json row = {{"frame_ms_median", ms},
+                                          {"frame_ms_samples", {ms - 0.25, ms, ms + 0.25}},
+                                          {"rel_rmse", error},
+                                          {"volume_cost_ms", d}};
+            if (cell.method != "none") {
+                row["paired_difference_ms_samples"] = {d - s, d, d + s};
+            }
+            rows.push_back({cell, 0, row});
+        };
+        for (const Cell& group : experiments::search_groups(x)) {
+            if (group.method == "epipolar") {
+                for (int step = 1; step <= 64; ++step) {
+                    const double ms = 100.0 + 40.0 / step;
+                    add(experiments::with_setting(group, "max_step", std::to_string(step)), ms,
+                        step / 800.0, ms - 100.0, 0.25);
+                }
+            } else if (group.method == "beamtree") {
+                add(group, 103.0, 0.005, 3.0, spread);
+            } else {
+                add(group, 100.0, 1.0, 0.0, 0.0);
+            }
+        }
+        return experiments::equal_error_report(x, rows).first;
+    };
+    const std::string resolved = report(0.25);
+    EXPECT_NE(resolved.find("volume cost (frame − none, paired) **beamtree** 3.0 ms [2.8–3.2]: "
+                            "×1.67 against **epipolar** 5.0 ms [4.8–5.2] (epipolar is the plain "
+                            "method)."),
+              std::string::npos)
+        << resolved;
+    const std::string noisy = report(4.0);
+    EXPECT_NE(noisy.find("**beamtree** 3.0 ms [-1.0–7.0]: against **epipolar** 5.0 ms [4.8–5.2]: "
+                         "not resolved (beamtree's interval holds zero)"),
+              std::string::npos)
+        << noisy;
 }
 
 TEST(Report, TableRepeatsParameterlessMethodsInEveryRowInListedOrder) {
