@@ -7,6 +7,8 @@
 #include <fstream>
 #include <iostream>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
@@ -16,6 +18,7 @@
 #include "experiments/bench.h"
 #include "experiments/report.h"
 #include "experiments/tables.h"
+#include "scenes/toml_reader.h"
 
 namespace sl::app {
 
@@ -23,6 +26,10 @@ namespace {
 
 struct BenchArguments {
     std::string experiment;
+    // A quick comparison without a file: one scene, methods, one size.
+    std::string scene;
+    std::vector<std::string> methods;
+    std::string size = "320x180";
     std::string out;
     std::vector<std::string> presets;
     std::vector<std::string> settings;
@@ -43,9 +50,40 @@ std::string self_executable() {
     return self.string();
 }
 
+// The experiment of `bench --scene S --methods a,b --size WxH`: those cells against the reference
+// at the default protocol, as a file would give them (validated the same way).
+std::string quick_experiment(const BenchArguments& args) {
+    auto quoted_list = [](const std::vector<std::string>& items) {
+        std::string list;
+        for (const std::string& item : items) {
+            list += (list.empty() ? "" : ", ") + toml_quoted(item);
+        }
+        return "[" + list + "]";
+    };
+    return fmt::format(
+        "name = \"quick\"\n"
+        "description = \"A quick comparison from the command line: {} on {} at {}.\"\n"
+        "[protocol]\nwarmup = 2\nframes = 6\n"
+        "[sweep]\nscenes = {}\nmethods = {}\nsizes = {}\n"
+        "[reference]\nmethod = \"reference\"\n",
+        fmt::join(args.methods, ", "), args.scene, args.size, quoted_list({args.scene}),
+        quoted_list(args.methods), quoted_list({args.size}));
+}
+
 int run_bench_command(const BenchArguments& args) {
+    const bool quick = !args.scene.empty() || !args.methods.empty();
+    if (quick == !args.experiment.empty()) {
+        fail(
+            "bench: give an experiment file, or --scene and --methods (a quick comparison), not "
+            "both");
+    }
+    if (quick && (args.scene.empty() || args.methods.empty())) {
+        fail("bench: a quick comparison needs both --scene and --methods");
+    }
     const experiments::Experiment experiment =
-        experiments::load_experiment(args.experiment, args.presets, args.settings);
+        quick ? experiments::parse_experiment(quick_experiment(args), "bench --scene", args.presets,
+                                              args.settings)
+              : experiments::load_experiment(args.experiment, args.presets, args.settings);
     const std::filesystem::path out =
         args.out.empty() ? experiment.output_directory() : std::filesystem::path(args.out);
     if (!args.cell.empty()) {
@@ -70,7 +108,16 @@ int run_bench_command(const BenchArguments& args) {
     experiments::BenchOptions options;
     options.out = out;
     options.shard = experiments::parse_shard(args.shard);
-    options.relaunch = {self_executable(), "bench", args.experiment, "--out", out.string()};
+    options.relaunch = {self_executable(), "bench"};
+    if (quick) {
+        options.relaunch.insert(
+            options.relaunch.end(),
+            {"--scene", args.scene, "--methods", fmt::format("{}", fmt::join(args.methods, ",")),
+             "--size", args.size});
+    } else {
+        options.relaunch.push_back(args.experiment);
+    }
+    options.relaunch.insert(options.relaunch.end(), {"--out", out.string()});
     for (const std::string& preset : args.presets) {
         options.relaunch.insert(options.relaunch.end(), {"--preset", preset});
     }
@@ -91,7 +138,7 @@ int run_bench_command(const BenchArguments& args) {
         files.commit();
         std::cout << "\n" << comparison << std::flush;
     }
-    fmt::print(stderr, "bench: results.csv, table.md, env.json{} in {}\n",
+    fmt::print(stderr, "bench: results.csv, summary.json, table.md, env.json{} in {}\n",
                experiment.plots ? ", plots/" : "", out.string());
     return failed ? 1 : 0;
 }
@@ -104,8 +151,15 @@ Command add_bench_command(CLI::App& app) {
         "Run an experiment (TOML): every cell's timings and error into DIR/results.csv, "
         "table.md, env.json, plots/, images/; resumes where a previous run stopped");
     auto args = std::make_shared<BenchArguments>();
-    command->add_option("experiment", args->experiment, "Experiment file (experiments/*.toml)")
-        ->required();
+    command->add_option("experiment", args->experiment,
+                        "Experiment file (experiments/*.toml); or a quick comparison with "
+                        "--scene and --methods");
+    command->add_option("--scene", args->scene,
+                        "Quick comparison: the scene (a name or a .toml file), no experiment file");
+    command->add_option("--methods", args->methods, "Quick comparison: the methods, a,b,c")
+        ->delimiter(',');
+    command->add_option("--size", args->size, "Quick comparison: the image size, WxH")
+        ->capture_default_str();
     command->add_option("--out", args->out,
                         "Output directory (default: the experiment's `out`, out/{name}, "
                         "git-ignored; committed runs go to results/NAME with --out)");

@@ -72,6 +72,10 @@ int run_render(const RenderArguments& args) {
     const methods::RegionStatistics regions =
         methods::region_statistics(scene, options.width, options.height);
     const double regions_ms = ms_since(start);
+    if (!regions.unavailable.empty()) {
+        std::fprintf(stderr, "shaftlab: warning: no region statistics: %s\n",
+                     regions.unavailable.c_str());
+    }
 
     // Error against the reference on the I_s buffer, rendered by the same renderer (and cached).
     std::optional<ErrorMetrics> error;

@@ -21,6 +21,7 @@
 #include "core/cache.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/progress.h"
 
 namespace sl::bt {
 
@@ -559,7 +560,16 @@ std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
             }
         }
     }
-    tbb::parallel_for(size_t(0), missing.size(), [&](size_t i) { entry(missing[i]); });
+    {
+        // Hulls and pieces of a large model take seconds (cached afterwards): said so.
+        Progress progress(fmt::format("bounding volumes of {} meshes (computed once, then cached)",
+                                      missing.size()),
+                          missing.size());
+        tbb::parallel_for(size_t(0), missing.size(), [&](size_t i) {
+            entry(missing[i]);
+            progress.advance();
+        });
+    }
     std::vector<ObjectVolumes> result;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const Object& object = scene.objects[i];

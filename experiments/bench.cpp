@@ -530,6 +530,9 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
         fail("{}: the sweep is empty (every cell excluded)", x.source.string());
     }
     validate_cells(x);
+    for (const std::string& warning : x.warnings) {
+        fmt::print(stderr, "bench: warning: {}\n", warning);
+    }
     claim_directory(x, out);
     Caches caches;
     const auto started = Clock::now();

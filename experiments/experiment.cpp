@@ -486,14 +486,25 @@ void read_sweep(TomlTableReader& top, const std::string& origin, Experiment& x) 
                 }
             }
             if (!declared) {
-                // A parameter of no swept method is fine when some method has it (the sweep's
-                // methods may have been overridden); otherwise it is a typo.
+                // A parameter of no swept method is no error when some method has it (the
+                // sweep's methods may have been overridden), but it takes no effect: said so.
+                // When no method has it, it is a typo.
                 const auto known = methods::volume_method_names();
-                if (std::none_of(known.begin(), known.end(), [&](const std::string& m) {
-                        return methods::create_volume_method(m)->has_parameter(key);
-                    })) {
-                    p.error(key, "no method has this parameter (see `shaftlab methods`)");
+                std::vector<std::string> all;
+                for (const std::string& m : known) {
+                    const auto method = methods::create_volume_method(m);
+                    for (const frame::Parameter& parameter : method->parameters()) {
+                        all.push_back(parameter.name);
+                    }
                 }
+                if (std::find(all.begin(), all.end(), key) == all.end()) {
+                    p.error(key, fmt::format("no method has this parameter{} (see `shaftlab "
+                                             "methods`)",
+                                             did_you_mean(key, all)));
+                }
+                x.warnings.push_back(fmt::format(
+                    "{}: [sweep.params] {}: no method of this sweep ({}) has it: not applied",
+                    origin, key, fmt::join(x.methods, ", ")));
                 continue;
             }
             x.params.emplace_back(key, std::move(texts));

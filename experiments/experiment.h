@@ -137,6 +137,9 @@ struct Experiment {
     std::vector<std::string> overrides;  // presets and --set, in order applied
     std::string effective;               // the document after overrides, as TOML
     std::string out = "out/{name}";
+    // Settings that take no effect in this sweep but are no error (a parameter of no swept
+    // method, once --set changed the methods): `bench` prints them before it runs.
+    std::vector<std::string> warnings;
 
     Protocol protocol;
     RenderSettings render;

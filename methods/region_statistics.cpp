@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "analytic/in_scattering.h"
 #include "beamtree/beam_tree.h"
 #include "beamtree/regions.h"
+#include "core/error.h"
 #include "core/statistics.h"
 #include "reference/reference.h"
 
@@ -20,7 +22,14 @@ constexpr double kWholeRay = 1e7;
 RegionStatistics region_statistics(const Scene& scene, int width, int height) {
     const auto start = std::chrono::steady_clock::now();
     RegionStatistics stats;
-    const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
+    std::optional<bt::BeamTree> built;
+    try {
+        built.emplace(bt::build_scene_beam_tree(scene));
+    } catch (const Error& e) {
+        stats.unavailable = e.what();
+        return stats;
+    }
+    const bt::BeamTree& tree = *built;
     const bt::Regions regions = bt::extract_regions(tree);
     stats.build_ms = ms_since(start);
     stats.beams = regions.beam_count;

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
 
 #include "scenes/scene.h"
 
@@ -34,6 +35,9 @@ struct RegionStatistics {
     size_t region_faces = 0;  // faces of all region polyhedra
     double build_ms = 0.0;    // beam tree build + region extraction
     double ms = 0.0;          // the whole computation
+    // Empty, or why the scene has no beam tree (the light inside an outer volume): the
+    // statistics are then left empty, and only the methods that use the tree refuse the scene.
+    std::string unavailable;
 };
 RegionStatistics region_statistics(const Scene& scene, int width, int height);
 

@@ -50,12 +50,16 @@ double statistic(const frame::MethodStatistics& statistics, const std::string& n
 
 void add_regions(Row& row, const RegionStatistics& regions,
                  const frame::MethodStatistics& statistics) {
-    row["cpu_ms_beamtree_regions"] = regions.build_ms;
     for (const auto& [name, value] : statistics) {
         if (name.starts_with("cpu_ms_")) {
             row[name] = value;
         }
     }
+    if (!regions.unavailable.empty()) {
+        row["regions_unavailable"] = regions.unavailable;  // the columns below stay empty
+        return;
+    }
+    row["cpu_ms_beamtree_regions"] = regions.build_ms;
     for (size_t r = 0; r < 3; ++r) {
         const char* region = std::array{"lit", "uncertain", "unlit"}[r];
         row[fmt::format("ray_frac_{}", region)] = regions.ray_fraction[r];

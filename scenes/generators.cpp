@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <string_view>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -160,7 +161,10 @@ std::string generate_boxes_scene(int seed) {
     // The medium: either model, isotropic or Henyey-Greenstein or Schlick at any asymmetry.
     const char* phases[] = {"isotropic", "henyey-greenstein", "schlick"};
     const char* phase = phases[rng() % 3];
-    const float g = uniform(rng, -0.9f, 0.9f);
+    // Drawn for every phase so that the rest of the scene does not depend on it, and written
+    // only for the phases that take it (a scene file refuses a g its phase would ignore).
+    const float drawn_g = uniform(rng, -0.9f, 0.9f);
+    const float g = std::string_view(phase) == "isotropic" ? 0.0f : drawn_g;
     std::string medium =
         fmt::format("model = \"{}\"\nsigma_s = {}\nphase = \"{}\"\ng = {:.4f}\n",
                     physical ? "physical" : "simplified",

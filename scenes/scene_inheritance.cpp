@@ -13,7 +13,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-
 // Keys of `over` replace those of `base`; tables merge key by key, arrays ([[objects]]) replace.
 // Done as `base` filling in what `over` lacks, so that `over`'s own nodes keep their lines for
 // error messages (a copied node loses its source).

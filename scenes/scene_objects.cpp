@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/error.h"
 #include "core/glob.h"
@@ -15,15 +16,23 @@ namespace fs = std::filesystem;
 
 fs::path resolve_mesh_path(const std::string& file, const fs::path& base_dir,
                            const SceneSearchPaths& paths, TableReader& r) {
-    const fs::path candidates[] = {base_dir / file, paths.data / "meshes" / file,
-                                   paths.data / file};
+    // An absolute path is taken as it is; a relative one is looked for beside the scene file,
+    // then among the extracted meshes.
+    std::vector<fs::path> candidates;
+    if (fs::path(file).is_absolute()) {
+        candidates = {fs::path(file)};
+    } else {
+        candidates = {base_dir / file, paths.data / "meshes" / file, paths.data / file};
+    }
+    std::string tried;
     for (const fs::path& candidate : candidates) {
-        if (fs::is_regular_file(candidate)) {
+        std::error_code ec;
+        if (fs::is_regular_file(candidate, ec)) {
             return candidate;
         }
+        tried += (tried.empty() ? "" : ", ") + candidate.string();
     }
-    r.error("file", fmt::format("mesh {} not found (looked in {}, {}/meshes, {})", quote(file),
-                                base_dir.string(), paths.data.string(), paths.data.string()));
+    r.error("file", fmt::format("mesh {} not found (tried {})", quote(file), tried));
 }
 
 std::shared_ptr<const Mesh> read_shape(TableReader& r, const fs::path& base_dir,

@@ -78,6 +78,14 @@ Medium read_medium(TableReader r) {
                           {"mie-murky", PhaseFunction::mie_murky},
                           {"nishita-hazy", PhaseFunction::nishita_hazy}});
     m.g = float(r.number_in("g", m.g, -1.0, 1.0, true, true));
+    // Only Henyey-Greenstein and Schlick have an asymmetry to set: a g the phase function would
+    // ignore is refused rather than dropped.
+    if (m.g != 0.0f && m.phase != PhaseFunction::henyey_greenstein &&
+        m.phase != PhaseFunction::schlick) {
+        r.error("g", fmt::format("g = {} is ignored by phase {}: only \"henyey-greenstein\" and "
+                                 "\"schlick\" take g (set phase to one of them, or g = 0)",
+                                 m.g, quote(to_string(m.phase))));
+    }
     m.model =
         parse_enum(r, "model", m.model,
                    {{"simplified", MediumModel::simplified}, {"physical", MediumModel::physical}});

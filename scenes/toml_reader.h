@@ -10,10 +10,12 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "core/error.h"
+#include "core/suggest.h"
 
 namespace sl {
 
@@ -185,12 +187,20 @@ public:
         used_.insert(std::string(key));
         return table_.get(key);
     }
+    // Every key of the table was read: an unknown one is an error naming it, the nearest known
+    // key where it looks misspelt, and the keys this table takes.
     void finish() const {
         for (const auto& [key, node] : table_) {
             if (!used_.contains(std::string(key.str()))) {
                 const std::string name(key.str());
-                fail("{}: {}{}: unknown key", where(node.source().begin.line), prefix(),
-                     clipped(name));
+                const std::vector<std::string> known(used_.begin(), used_.end());
+                std::string list;
+                for (const std::string& k : known) {
+                    list += (list.empty() ? "" : ", ") + k;
+                }
+                fail("{}: {}{}: unknown key{} ({})", where(node.source().begin.line), prefix(),
+                     clipped(name), did_you_mean(name, known),
+                     known.empty() ? "this table takes no keys" : "known: " + list);
             }
         }
     }

@@ -587,8 +587,45 @@ TEST(Cli, RegionsClassifiesPoints) {
         << bad.output;
 }
 
-// A light inside an object's outer volume is one clear error, with no output.
-TEST(Cli, RegionsRejectsALightInsideABoundingVolume) {
+// A quick comparison without an experiment file: `bench --scene S --methods a,b --size WxH`
+// measures those cells against the reference like a one-scene experiment, and every bench run
+// writes summary.json (one entry per cell: its frame time with the interval, FPS, error). Half a
+// quick comparison, or one beside a file, is refused.
+TEST(Cli, BenchComparesMethodsFromTheCommandLineAndSummarisesInJson) {
+    TempDir out;
+    const CommandResult run = run_shaftlab(
+        "bench --scene toplight --methods none,march --size "
+        "48x27 --set protocol.frames=2 --out " +
+        out.path().string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    std::ifstream in(out / "summary.json");
+    const nlohmann::json summary = nlohmann::json::parse(in);
+    EXPECT_EQ(summary["experiment"], "quick");
+    ASSERT_EQ(summary["cells"].size(), 2u);
+    EXPECT_EQ(summary["cells"][0]["method"], "none");
+    EXPECT_EQ(summary["cells"][1]["method"], "march");
+    for (const nlohmann::json& cell : summary["cells"]) {
+        EXPECT_EQ(cell["scene"], "toplight");
+        EXPECT_EQ(cell["width"], 48);
+        EXPECT_GT(cell["fps"].get<double>(), 0.0);
+        EXPECT_TRUE(cell["rel_rmse"].is_number());
+        EXPECT_EQ(cell["frame_ms_interval"].size(), 2u);
+    }
+    EXPECT_TRUE(std::filesystem::exists(out / "table.md"));
+    for (const auto& [arguments, words] : std::vector<std::pair<std::string, std::string>>{
+             {"bench --scene toplight", "needs both --scene and --methods"},
+             {"bench experiments/smoke.toml --methods march", "not both"},
+             {"bench --scene toplight --methods merch", "unknown method 'merch' (did you mean"}}) {
+        const CommandResult bad = run_shaftlab(arguments + " --out " + (out / "bad").string());
+        EXPECT_NE(bad.exit_code, 0) << arguments;
+        EXPECT_NE(bad.output.find(words), std::string::npos) << arguments << ": " << bad.output;
+        EXPECT_FALSE(std::filesystem::exists(out / "bad")) << arguments;
+    }
+}
+
+// A light inside an object's outer volume: `regions` is one clear error with no output, and so
+// is a method that uses the beam tree; a method that does not renders it.
+TEST(Cli, ALightInsideABoundingVolumeStopsOnlyTheMethodsThatUseTheTree) {
     TempDir dir;
     write_text(dir / "inside.toml",
                "[camera]\nposition = [0.0, 1.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n"
@@ -601,6 +638,23 @@ TEST(Cli, RegionsRejectsALightInsideABoundingVolume) {
               std::string::npos)
         << run.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "regions.json"));
+    // Only the methods that use the tree refuse the scene, and say what to do; the others render
+    // it with a warning that its region statistics are left out.
+    for (const char* method : {"none", "march"}) {
+        const CommandResult render = run_shaftlab(
+            fmt::format("render --scene {} --method {} --size 32x18 --warmup 0 "
+                        "--frames 1 --out {}",
+                        (dir / "inside.toml").string(), method, (dir / "render").string()));
+        EXPECT_EQ(render.exit_code, 0) << method << ": " << render.output;
+        EXPECT_NE(render.output.find("warning: no region statistics"), std::string::npos)
+            << render.output;
+    }
+    const CommandResult refused =
+        run_shaftlab("render --scene " + (dir / "inside.toml").string() +
+                     " --method beamtree --size 32x18 --out " + (dir / "refused").string());
+    EXPECT_NE(refused.exit_code, 0);
+    EXPECT_NE(refused.output.find("[beamtree] pieces = true"), std::string::npos) << refused.output;
+    EXPECT_NE(refused.output.find("a method without regions"), std::string::npos) << refused.output;
 }
 
 // `ibl prefilter` writes one EXR and PNG per level and a JSON summary whose levels halve in size
