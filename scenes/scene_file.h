@@ -1,7 +1,7 @@
 #pragma once
-// Scene files (TOML). Every key is read in scene_file.cpp, next to its documentation and its
-// validation; an unknown key, a wrong type or an out-of-range value is an error naming the file,
-// line, table and key. The format:
+// Scene files (TOML); docs/scenes.md is the full reference. Every key is read in one of the
+// scene_*.cpp files, next to its documentation and its validation; an unknown key, a wrong type
+// or an out-of-range value is an error naming the file, line, table and key. The format:
 //
 //   [scene]     name, ambient = [r, g, b], base = "toplight" (optional: start from that scene, a
 //               canonical name, multiple:N or a file relative to this one, and let this file's
