@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include "experiments/aggregate.h"
+#include "experiments/equal_error_report.h"
 #include "experiments/tables.h"
 
 namespace sl::experiments {

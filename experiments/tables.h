@@ -1,7 +1,7 @@
 #pragma once
 // The Markdown tables of table.md, from a bench directory's rows (rows.h): Nilsson Table 6.1's
-// layout of a sweep, the animation table, the equal-error report and its probes, the regions and
-// fragments tables, and the line that states the protocol.
+// layout of a sweep, the animation table, the equal-error search's probes (the report itself is
+// equal_error_report.h), the regions and fragments tables, and the line that states the protocol.
 
 #include <string>
 #include <utility>
@@ -18,9 +18,6 @@ std::string sweep_table(const Experiment& experiment, const std::vector<StoredRo
 // Animation cells (docs/design.md §11): frame times with intervals, the CPU update, the error per
 // frame and the temporal metrics; "" for a still experiment.
 std::string animation_table(const Experiment& experiment, const std::vector<Entry>& entries);
-// The equal-error search's report (Markdown) and equal_error.csv's text.
-std::pair<std::string, std::string> equal_error_report(const Experiment& experiment,
-                                                       const std::vector<StoredRow>& rows);
 // Every probe of an equal-error search, one row each.
 std::string probes_table(const Experiment& experiment, const std::vector<StoredRow>& rows);
 // The beam tree and the eye-ray fractions of each scene and size; the analytic passes' fragments.

@@ -17,6 +17,7 @@
 #include "experiments/baseline.h"
 #include "experiments/bench.h"
 #include "experiments/equal_error.h"
+#include "experiments/equal_error_report.h"
 #include "experiments/experiment.h"
 #include "experiments/report.h"
 #include "experiments/tables.h"
