@@ -207,16 +207,11 @@ size_t close_cracks(std::vector<BoundaryFace>& faces) {
     return cycles;
 }
 
-}  // namespace
-
-std::vector<BoundaryFace> boundary_faces(const BeamTree& tree, const Regions& regions,
-                                         Region region, BoundaryStats* stats) {
-    const auto start = std::chrono::steady_clock::now();
-    const std::vector<RegionPiece>& pieces = regions.pieces[size_t(region)];
-    // Each piece face's plane: a split node on the piece's path (and on which side of it the
-    // piece lies), or none (a range, the occluder, the stopper: another type beyond).
+// Each piece face's plane: a split node on the piece's path (and on which side of it the piece
+// lies), or none (a range, the occluder, the stopper: another type beyond).
+std::vector<std::vector<BeamTree::FacePlane>> piece_face_planes(
+    const BeamTree& tree, const std::vector<RegionPiece>& pieces, double tolerance) {
     std::vector<std::vector<BeamTree::FacePlane>> planes(pieces.size());
-    const double tolerance = 1e-2 * tree.epsilon();
     tbb::parallel_for(size_t(0), pieces.size(), [&](size_t i) {
         dvec3 interior(0.0);
         size_t corners = 0;
@@ -231,17 +226,29 @@ std::vector<BoundaryFace> boundary_faces(const BeamTree& tree, const Regions& re
             planes[i].push_back(tree.face_plane(interior, face, tolerance));
         }
     });
-    std::vector<BoundaryFace> faces;
-    BoundaryStats s;
-    // Faces on one split plane from its front side and its back side: the boundary there is
-    // the parts covered from one side only.
-    struct Group {
-        dvec3 normal{0.0};  // the split plane's
-        Plane plane;        // for a group of one face on its own plane
-        std::vector<Face> front, back;
-    };
-    std::map<int32_t, Group> groups;
+    return planes;
+}
+
+// Faces on one plane from its front side and its back side: the boundary there is the parts
+// covered from one side only.
+struct Group {
+    dvec3 normal{0.0};  // the split plane's
+    Plane plane;        // for a group of one face on its own plane
+    std::vector<Face> front, back;
+};
+
+// The piece faces by plane: on a split plane, grouped by its node; on any other plane, one group
+// each; faces of no area are kept whole at once (into `kept`).
+struct FaceGroups {
+    std::map<int32_t, Group> by_split;
     std::deque<Group> own_plane;
+};
+
+FaceGroups group_faces(const BeamTree& tree, const std::vector<RegionPiece>& pieces,
+                       double tolerance, std::vector<BoundaryFace>& kept, BoundaryStats& s) {
+    const std::vector<std::vector<BeamTree::FacePlane>> planes =
+        piece_face_planes(tree, pieces, tolerance);
+    FaceGroups groups;
     for (size_t i = 0; i < pieces.size(); ++i) {
         const std::vector<Polygon>& piece_faces = pieces[i].polyhedron.faces;
         s.piece_faces += piece_faces.size();
@@ -256,11 +263,11 @@ std::vector<BoundaryFace> boundary_faces(const BeamTree& tree, const Regions& re
                 const dvec3 area = area_vector(piece_faces[f]);
                 const double a = glm::length(area);
                 if (!(a > tolerance * tolerance)) {
-                    faces.push_back({pieces[i].beam, piece_faces[f]});
+                    kept.push_back({pieces[i].beam, piece_faces[f]});
                     ++s.kept_whole;
                     continue;
                 }
-                Group& group = own_plane.emplace_back();
+                Group& group = groups.own_plane.emplace_back();
                 group.plane = Plane{area / a, -glm::dot(area / a, centroid(piece_faces[f]))};
                 group.back.push_back({&piece_faces[f], pieces[i].beam});  // piece behind it
                 continue;
@@ -268,7 +275,7 @@ std::vector<BoundaryFace> boundary_faces(const BeamTree& tree, const Regions& re
             // The side of the piece: by the face's own outward direction where it has one
             // (a sliver piece's interior point lies on the plane to round-off), else as the
             // tree found it.
-            Group& group = groups[plane.split];
+            Group& group = groups.by_split[plane.split];
             const double along =
                 glm::dot(area_vector(piece_faces[f]), tree.node_plane(plane.split).normal);
             const bool in_front =
@@ -276,11 +283,15 @@ std::vector<BoundaryFace> boundary_faces(const BeamTree& tree, const Regions& re
             (in_front ? group.front : group.back).push_back({&piece_faces[f], pieces[i].beam});
         }
     }
-    // The same plane can be split by several nodes (polygons sharing an edge insert it once
-    // each, a flat polygon twice): their faces meet across one geometric plane, so groups whose
-    // planes lie within the tolerance of each other over the influence volume (every split plane
-    // passes through the light: directions within tolerance / range, distances from the light
-    // within the tolerance) are merged, the front and back of a flipped copy swapped.
+    return groups;
+}
+
+// The same plane can be split by several nodes (polygons sharing an edge insert it once each, a
+// flat polygon twice): their faces meet across one geometric plane, so groups whose planes lie
+// within the tolerance of each other over the influence volume (every split plane passes through
+// the light: directions within tolerance / range, distances from the light within the
+// tolerance) are merged, the front and back of a flipped copy swapped.
+std::vector<Group> merge_coincident(const BeamTree& tree, FaceGroups& groups) {
     const double range = tree.epsilon() / BeamTree::kRelativeEpsilon;
     const double coincide = 3e-2 * tree.epsilon();
     const double angle = coincide / range;
@@ -301,10 +312,10 @@ std::vector<BoundaryFace> boundary_faces(const BeamTree& tree, const Regions& re
         const double at_light = plane.distance(tree.apex());
         keyed.push_back({flip ? -n : n, flip ? -at_light : at_light, &group, flip});
     };
-    for (auto& [node, group] : groups) {
+    for (auto& [node, group] : groups.by_split) {
         add_keyed(tree.node_plane(node), group);
     }
-    for (Group& group : own_plane) {
+    for (Group& group : groups.own_plane) {
         add_keyed(group.plane, group);
     }
     std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
@@ -333,56 +344,70 @@ std::vector<BoundaryFace> boundary_faces(const BeamTree& tree, const Regions& re
         }
         merged.push_back(std::move(g));
     }
-    std::vector<Group*> work;
-    for (Group& group : merged) {
-        work.push_back(&group);
+    return merged;
+}
+
+// What the two sides of one group do not cancel, with what became of each piece face.
+struct Uncovered {
+    std::vector<BoundaryFace> faces;
+    size_t kept_whole = 0, split = 0, dropped = 0;
+};
+
+Uncovered uncovered_faces(const Group& group, size_t index, double epsilon) {
+    Uncovered result;
+    std::vector<Fragment> front, back;
+    std::vector<const Polygon*> origins;
+    for (const bool is_front : {true, false}) {
+        for (const Face& face : is_front ? group.front : group.back) {
+            (is_front ? front : back)
+                .push_back({*face.polygon, face.beam, uint32_t(origins.size())});
+            origins.push_back(face.polygon);
+        }
     }
-    // What the two sides of each group do not cancel, per group in parallel.
+    // A face behind the plane points along its normal.
+    cancel(front, back, group.normal, epsilon);
+    std::vector<uint32_t> parts(origins.size(), 0);
+    std::vector<bool> whole(origins.size(), false);
+    for (const std::vector<Fragment>* side : {&front, &back}) {
+        for (const Fragment& f : *side) {
+            ++parts[f.origin];
+            whole[f.origin] = f.polygon.vertices == origins[f.origin]->vertices;
+        }
+    }
+    for (size_t o = 0; o < origins.size(); ++o) {
+        if (parts[o] == 0) {
+            ++result.dropped;
+        } else if (parts[o] == 1 && whole[o]) {
+            ++result.kept_whole;
+        } else {
+            ++result.split;
+        }
+    }
+    for (std::vector<Fragment>* side : {&front, &back}) {
+        const auto plane = int32_t(2 * index + (side == &front ? 1 : 0));
+        for (Fragment& f : *side) {
+            result.faces.push_back({f.beam, std::move(f.polygon), plane});
+        }
+    }
+    return result;
+}
+
+}  // namespace
+
+std::vector<BoundaryFace> boundary_faces(const BeamTree& tree, const Regions& regions,
+                                         Region region, BoundaryStats* stats) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<BoundaryFace> faces;
+    BoundaryStats s;
+    FaceGroups groups =
+        group_faces(tree, regions.pieces[size_t(region)], 1e-2 * tree.epsilon(), faces, s);
+    const std::vector<Group> merged = merge_coincident(tree, groups);
+    // Per group in parallel.
     const double epsilon = Regions::kCutEpsilon * tree.epsilon();
-    struct Result {
-        std::vector<BoundaryFace> faces;
-        size_t kept_whole = 0, split = 0, dropped = 0;
-    };
-    std::vector<Result> results(work.size());
-    tbb::parallel_for(size_t(0), work.size(), [&](size_t g) {
-        const Group& group = *work[g];
-        Result& result = results[g];
-        std::vector<Fragment> front, back;
-        std::vector<const Polygon*> origins;
-        for (const bool is_front : {true, false}) {
-            for (const Face& face : is_front ? group.front : group.back) {
-                (is_front ? front : back)
-                    .push_back({*face.polygon, face.beam, uint32_t(origins.size())});
-                origins.push_back(face.polygon);
-            }
-        }
-        // A face behind the plane points along its normal.
-        cancel(front, back, group.normal, epsilon);
-        std::vector<uint32_t> parts(origins.size(), 0);
-        std::vector<bool> whole(origins.size(), false);
-        for (const std::vector<Fragment>* side : {&front, &back}) {
-            for (const Fragment& f : *side) {
-                ++parts[f.origin];
-                whole[f.origin] = f.polygon.vertices == origins[f.origin]->vertices;
-            }
-        }
-        for (size_t o = 0; o < origins.size(); ++o) {
-            if (parts[o] == 0) {
-                ++result.dropped;
-            } else if (parts[o] == 1 && whole[o]) {
-                ++result.kept_whole;
-            } else {
-                ++result.split;
-            }
-        }
-        for (std::vector<Fragment>* side : {&front, &back}) {
-            const auto plane = int32_t(2 * g + (side == &front ? 1 : 0));
-            for (Fragment& f : *side) {
-                result.faces.push_back({f.beam, std::move(f.polygon), plane});
-            }
-        }
-    });
-    for (Result& result : results) {
+    std::vector<Uncovered> results(merged.size());
+    tbb::parallel_for(size_t(0), merged.size(),
+                      [&](size_t g) { results[g] = uncovered_faces(merged[g], g, epsilon); });
+    for (Uncovered& result : results) {
         s.kept_whole += result.kept_whole;
         s.split += result.split;
         s.dropped += result.dropped;

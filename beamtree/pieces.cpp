@@ -11,6 +11,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/check.h"
+
 namespace sl::bt {
 
 namespace {
@@ -289,34 +291,48 @@ void append(Mesh& to, const Mesh& from) {
     }
 }
 
-// Cells between the cut planes, each with the triangles clipped to it, merged.
-Pieces cut_and_merge(const Mesh& mesh, const Voxels& voxels, const PieceOptions& options,
-                     const std::array<std::vector<double>, 3>& cuts, double extent) {
-    Pieces result;
-    auto allowed = [&](int all) {
-        return std::max(double(options.slack_voxels), options.slack * double(all));
-    };
-    auto bound = [&](int a, size_t i, bool upper) {
-        const std::vector<double>& c = cuts[size_t(a)];
+using CellIndex = std::array<size_t, 3>;
+
+// The cells between the cut planes of each axis, by index (slot i of axis a lies between cut i-1
+// and cut i), each with the parts of the mesh's triangles inside it.
+class CellGrid {
+public:
+    CellGrid(const std::array<std::vector<double>, 3>& cuts, double extent)
+        : cuts_(cuts), min_area_(1e-14 * extent * extent) {}
+
+    // Clips every triangle into the cells; a polygon on a cut goes to the cell on its solid side.
+    std::map<CellIndex, Mesh> cut(const Mesh& mesh, const Voxels& voxels) const {
+        std::map<CellIndex, Mesh> cells;
+        for (const glm::uvec3& t : mesh.triangles) {
+            for (auto& [index, polygon] :
+                 clip({dvec3(mesh.positions[t.x]), dvec3(mesh.positions[t.y]),
+                       dvec3(mesh.positions[t.z])})) {
+                to_solid_side(polygon, voxels, index);
+                add(cells[index], polygon);
+            }
+        }
+        return cells;
+    }
+
+private:
+    double bound(int a, size_t i, bool upper) const {
+        const std::vector<double>& c = cuts_[size_t(a)];
         if (upper) {
             return i < c.size() ? c[i] : std::numeric_limits<double>::infinity();
         }
         return i > 0 ? c[i - 1] : -std::numeric_limits<double>::infinity();
-    };
-    auto slot = [&](int a, double v) {
-        const std::vector<double>& c = cuts[size_t(a)];
+    }
+    size_t slot(int a, double v) const {
+        const std::vector<double>& c = cuts_[size_t(a)];
         return size_t(std::upper_bound(c.begin(), c.end(), v) - c.begin());
-    };
-    const double min_area = 1e-14 * extent * extent;
-    std::map<std::array<size_t, 3>, Mesh> cells;
-    for (const glm::uvec3& t : mesh.triangles) {
-        const std::vector<dvec3> triangle = {dvec3(mesh.positions[t.x]), dvec3(mesh.positions[t.y]),
-                                             dvec3(mesh.positions[t.z])};
-        // Recursive over the axes, as an explicit loop: x slabs, then y, then z.
-        std::vector<std::pair<std::array<size_t, 3>, std::vector<dvec3>>> level{
-            {{0, 0, 0}, triangle}};
+    }
+
+    // The triangle's parts in each cell: x slabs, then y, then z.
+    std::vector<std::pair<CellIndex, std::vector<dvec3>>> clip(
+        const std::vector<dvec3>& triangle) const {
+        std::vector<std::pair<CellIndex, std::vector<dvec3>>> level{{{0, 0, 0}, triangle}};
         for (int a = 0; a < 3; ++a) {
-            std::vector<std::pair<std::array<size_t, 3>, std::vector<dvec3>>> next;
+            std::vector<std::pair<CellIndex, std::vector<dvec3>>> next;
             for (auto& [index, polygon] : level) {
                 double lo = std::numeric_limits<double>::max(),
                        hi = std::numeric_limits<double>::lowest();
@@ -331,7 +347,7 @@ Pieces cut_and_merge(const Mesh& mesh, const Voxels& voxels, const PieceOptions&
                             ? polygon
                             : clip_slab(polygon, a, bound(a, i, false), bound(a, i, true));
                     if (part.size() >= 3) {
-                        std::array<size_t, 3> cell = index;
+                        CellIndex cell = index;
                         cell[size_t(a)] = i;
                         next.emplace_back(cell, std::move(part));
                     }
@@ -339,46 +355,59 @@ Pieces cut_and_merge(const Mesh& mesh, const Voxels& voxels, const PieceOptions&
             }
             level = std::move(next);
         }
-        for (auto& [index, polygon] : level) {
-            // A polygon on its cell's lower cut plane (polygons on a cut go to the upper cell)
-            // belongs to the cell on its solid side: a window's reveal or sill would otherwise
-            // span the opening's cell. Probed at its centroid, past the voxels it touches.
-            dvec3 centre(0.0);
-            for (const dvec3& p : polygon) {
-                centre += p / double(polygon.size());
+        return level;
+    }
+
+    // A polygon on its cell's lower cut plane (polygons on a cut go to the upper cell) belongs to
+    // the cell on its solid side: a window's reveal or sill would otherwise span the opening's
+    // cell. Probed at its centroid, past the voxels it touches.
+    void to_solid_side(const std::vector<dvec3>& polygon, const Voxels& voxels,
+                       CellIndex& index) const {
+        dvec3 centre(0.0);
+        for (const dvec3& p : polygon) {
+            centre += p / double(polygon.size());
+        }
+        for (int a = 0; a < 3; ++a) {
+            const size_t i = index[size_t(a)];
+            if (i == 0 || std::any_of(polygon.begin(), polygon.end(), [&](const dvec3& p) {
+                    return p[a] != cuts_[size_t(a)][i - 1];
+                })) {
+                continue;
             }
-            for (int a = 0; a < 3; ++a) {
-                const size_t i = index[size_t(a)];
-                if (i == 0 || std::any_of(polygon.begin(), polygon.end(), [&](const dvec3& p) {
-                        return p[a] != cuts[size_t(a)][i - 1];
-                    })) {
-                    continue;
-                }
-                dvec3 step(0.0);
-                step[a] = 1.5 * voxels.cell();
-                if (voxels.empty_at(centre + step) && !voxels.empty_at(centre - step)) {
-                    --index[size_t(a)];
-                }
-            }
-            Mesh& cell = cells[index];
-            const auto base = uint32_t(cell.positions.size());
-            for (const dvec3& p : polygon) {
-                cell.positions.emplace_back(p);
-            }
-            for (uint32_t k = 1; k + 1 < polygon.size(); ++k) {
-                const dvec3 n = glm::cross(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]);
-                if (0.5 * glm::length(n) > min_area) {
-                    cell.triangles.emplace_back(base, base + k, base + k + 1);
-                }
+            dvec3 step(0.0);
+            step[a] = 1.5 * voxels.cell();
+            if (voxels.empty_at(centre + step) && !voxels.empty_at(centre - step)) {
+                --index[size_t(a)];
             }
         }
     }
 
+    // The polygon fanned into the cell's mesh, without triangles of no area.
+    void add(Mesh& cell, const std::vector<dvec3>& polygon) const {
+        const auto base = uint32_t(cell.positions.size());
+        for (const dvec3& p : polygon) {
+            cell.positions.emplace_back(p);
+        }
+        for (uint32_t k = 1; k + 1 < polygon.size(); ++k) {
+            const dvec3 n = glm::cross(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]);
+            if (0.5 * glm::length(n) > min_area_) {
+                cell.triangles.emplace_back(base, base + k, base + k + 1);
+            }
+        }
+    }
+
+    const std::array<std::vector<double>, 3>& cuts_;
+    double min_area_;
+};
+
+// One piece per cell that holds a triangle (slivers of no area hold nothing a ray can meet),
+// each the neighbour of the pieces of the cells beside it.
+std::vector<Piece> cell_pieces(const std::map<CellIndex, Mesh>& cells, const Voxels& voxels) {
     std::vector<Piece> pieces;
-    std::map<std::array<size_t, 3>, int> piece_of;
-    for (auto& [index, cell] : cells) {
+    std::map<CellIndex, int> piece_of;
+    for (const auto& [index, cell] : cells) {
         if (cell.triangles.empty()) {
-            continue;  // slivers of no area: nothing a ray can meet
+            continue;
         }
         Piece piece;
         piece.hull = convex_hull(cell, 0);
@@ -387,10 +416,9 @@ Pieces cut_and_merge(const Mesh& mesh, const Voxels& voxels, const PieceOptions&
         piece_of[index] = int(pieces.size());
         pieces.push_back(std::move(piece));
     }
-    result.cells = int(pieces.size());
     for (const auto& [index, p] : piece_of) {
         for (int a = 0; a < 3; ++a) {
-            std::array<size_t, 3> next = index;
+            CellIndex next = index;
             ++next[size_t(a)];
             if (const auto it = piece_of.find(next); it != piece_of.end()) {
                 pieces[size_t(p)].neighbours.insert(it->second);
@@ -398,9 +426,69 @@ Pieces cut_and_merge(const Mesh& mesh, const Voxels& voxels, const PieceOptions&
             }
         }
     }
+    return pieces;
+}
 
-    // Greedy merging, least added empty space first (ties: fewer triangles), stale entries
-    // skipped by their versions.
+// Merges neighbouring pieces greedily, least added empty space first (ties: fewer triangles),
+// while the merged hull adds no more empty voxels than the slack, and beyond the budget of pieces
+// the least bad merges anyway. Stale queue entries are skipped by their versions.
+class PieceMerger {
+public:
+    PieceMerger(std::vector<Piece> pieces, const Voxels& voxels, const PieceOptions& options)
+        : pieces_(std::move(pieces)),
+          voxels_(voxels),
+          options_(options),
+          alive_(int(pieces_.size())) {}
+
+    void merge_neighbours() {
+        for (int p = 0; p < int(pieces_.size()); ++p) {
+            for (const int n : pieces_[size_t(p)].neighbours) {
+                if (n > p) {
+                    consider(p, n);
+                }
+            }
+        }
+        while (!queue_.empty()) {
+            const Candidate top = queue_.top();
+            queue_.pop();
+            const Piece& pa = pieces_[size_t(top.a)];
+            const Piece& pb = pieces_[size_t(top.b)];
+            if (!pa.alive || !pb.alive || pa.version != top.version_a ||
+                pb.version != top.version_b) {
+                continue;
+            }
+            Piece merged = merged_of(top.a, top.b);
+            if (double(added(merged, top.a, top.b)) > allowed(merged.all) &&
+                alive_ <= options_.max_pieces) {
+                continue;  // too loose, and no need to merge it
+            }
+            merge(top.a, top.b, std::move(merged));
+        }
+    }
+
+    // Pieces in no contact with each other (separate parts) can still exceed the budget: the
+    // least-added-space pairs among all are merged.
+    void merge_to_budget() {
+        while (alive_ > options_.max_pieces) {
+            int best_a = -1, best_b = -1, best_added = std::numeric_limits<int>::max();
+            for (int a = 0; a < int(pieces_.size()); ++a) {
+                for (int c = a + 1; c < int(pieces_.size()) && pieces_[size_t(a)].alive; ++c) {
+                    if (pieces_[size_t(c)].alive) {
+                        const int d = added(merged_of(a, c), a, c);
+                        if (d < best_added) {
+                            std::tie(best_a, best_b, best_added) = std::tie(a, c, d);
+                        }
+                    }
+                }
+            }
+            SL_CHECK(best_a >= 0);
+            merge(best_a, best_b, merged_of(best_a, best_b));
+        }
+    }
+
+    std::vector<Piece>& pieces() { return pieces_; }
+
+private:
     struct Candidate {
         int added;
         size_t triangles;
@@ -409,84 +497,65 @@ Pieces cut_and_merge(const Mesh& mesh, const Voxels& voxels, const PieceOptions&
             return std::tie(added, triangles, a, b) > std::tie(o.added, o.triangles, o.a, o.b);
         }
     };
-    auto merged_of = [&](int a, int c) {
+
+    double allowed(int all) const {
+        return std::max(double(options_.slack_voxels), options_.slack * double(all));
+    }
+    Piece merged_of(int a, int c) const {
         Piece merged;
-        merged.mesh = pieces[size_t(a)].mesh;
-        append(merged.mesh, pieces[size_t(c)].mesh);
+        merged.mesh = pieces_[size_t(a)].mesh;
+        append(merged.mesh, pieces_[size_t(c)].mesh);
         merged.hull = convex_hull(merged.mesh, 0);
-        std::tie(merged.all, merged.empty) = voxels.count_inside(merged.hull);
+        std::tie(merged.all, merged.empty) = voxels_.count_inside(merged.hull);
         merged.mesh = hull_mesh(merged.hull);
         return merged;
-    };
-    auto added = [&](const Piece& merged, int a, int c) {
-        return merged.empty - pieces[size_t(a)].empty - pieces[size_t(c)].empty;
-    };
-    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue;
-    auto consider = [&](int a, int c) {
-        const Piece merged = merged_of(a, c);
-        queue.push({added(merged, a, c), merged.mesh.triangles.size(), std::min(a, c),
-                    std::max(a, c), pieces[size_t(std::min(a, c))].version,
-                    pieces[size_t(std::max(a, c))].version});
-    };
-    for (int p = 0; p < int(pieces.size()); ++p) {
-        for (const int n : pieces[size_t(p)].neighbours) {
-            if (n > p) {
-                consider(p, n);
-            }
-        }
     }
-    int alive = int(pieces.size());
-    auto merge = [&](int a, int c, Piece merged) {
-        merged.neighbours = pieces[size_t(a)].neighbours;
-        merged.neighbours.insert(pieces[size_t(c)].neighbours.begin(),
-                                 pieces[size_t(c)].neighbours.end());
+    int added(const Piece& merged, int a, int c) const {
+        return merged.empty - pieces_[size_t(a)].empty - pieces_[size_t(c)].empty;
+    }
+    void consider(int a, int c) {
+        const Piece merged = merged_of(a, c);
+        queue_.push({added(merged, a, c), merged.mesh.triangles.size(), std::min(a, c),
+                     std::max(a, c), pieces_[size_t(std::min(a, c))].version,
+                     pieces_[size_t(std::max(a, c))].version});
+    }
+    void merge(int a, int c, Piece merged) {
+        merged.neighbours = pieces_[size_t(a)].neighbours;
+        merged.neighbours.insert(pieces_[size_t(c)].neighbours.begin(),
+                                 pieces_[size_t(c)].neighbours.end());
         merged.neighbours.erase(a);
         merged.neighbours.erase(c);
-        merged.version = pieces[size_t(a)].version + 1;
-        pieces[size_t(c)].alive = false;
-        ++pieces[size_t(c)].version;
+        merged.version = pieces_[size_t(a)].version + 1;
+        pieces_[size_t(c)].alive = false;
+        ++pieces_[size_t(c)].version;
         for (const int n : merged.neighbours) {
-            pieces[size_t(n)].neighbours.erase(c);
-            pieces[size_t(n)].neighbours.insert(a);
+            pieces_[size_t(n)].neighbours.erase(c);
+            pieces_[size_t(n)].neighbours.insert(a);
         }
-        pieces[size_t(a)] = std::move(merged);
-        --alive;
-        for (const int n : pieces[size_t(a)].neighbours) {
+        pieces_[size_t(a)] = std::move(merged);
+        --alive_;
+        for (const int n : pieces_[size_t(a)].neighbours) {
             consider(a, n);
         }
-    };
-    while (!queue.empty()) {
-        const Candidate top = queue.top();
-        queue.pop();
-        const Piece& pa = pieces[size_t(top.a)];
-        const Piece& pb = pieces[size_t(top.b)];
-        if (!pa.alive || !pb.alive || pa.version != top.version_a || pb.version != top.version_b) {
-            continue;
-        }
-        Piece merged = merged_of(top.a, top.b);
-        if (double(added(merged, top.a, top.b)) > allowed(merged.all) &&
-            alive <= options.max_pieces) {
-            continue;  // too loose, and no need to merge it
-        }
-        merge(top.a, top.b, std::move(merged));
     }
-    // Pieces in no contact with each other (separate parts) can still exceed the budget: the
-    // least-added-space pairs among all are merged.
-    while (alive > options.max_pieces) {
-        int best_a = -1, best_b = -1, best_added = std::numeric_limits<int>::max();
-        for (int a = 0; a < int(pieces.size()); ++a) {
-            for (int c = a + 1; c < int(pieces.size()) && pieces[size_t(a)].alive; ++c) {
-                if (pieces[size_t(c)].alive) {
-                    const int d = added(merged_of(a, c), a, c);
-                    if (d < best_added) {
-                        std::tie(best_a, best_b, best_added) = std::tie(a, c, d);
-                    }
-                }
-            }
-        }
-        merge(best_a, best_b, merged_of(best_a, best_b));
-    }
-    for (Piece& piece : pieces) {
+
+    std::vector<Piece> pieces_;
+    const Voxels& voxels_;
+    const PieceOptions& options_;
+    int alive_;
+    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue_;
+};
+
+// Cells between the cut planes, each with the triangles clipped to it, merged.
+Pieces cut_and_merge(const Mesh& mesh, const Voxels& voxels, const PieceOptions& options,
+                     const std::array<std::vector<double>, 3>& cuts, double extent) {
+    PieceMerger merger(cell_pieces(CellGrid(cuts, extent).cut(mesh, voxels), voxels), voxels,
+                       options);
+    Pieces result;
+    result.cells = int(merger.pieces().size());
+    merger.merge_neighbours();
+    merger.merge_to_budget();
+    for (Piece& piece : merger.pieces()) {
         if (piece.alive) {
             result.empty_voxels_pieces += piece.empty;
             result.parts.push_back(std::move(piece.mesh));
