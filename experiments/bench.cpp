@@ -523,99 +523,36 @@ void run_cell(const Experiment& x, const fs::path& out, const nlohmann::json& ce
     write_row(out, cell, rep, measure_cell(x, cell, rep, out, caches));
 }
 
-int run_bench(const Experiment& x, const BenchOptions& options) {
-    const fs::path& out = options.out;
-    // Everything that can be refused is refused before the directory is claimed.
-    if (x.cells().empty()) {
-        fail("{}: the sweep is empty (every cell excluded)", x.source.string());
-    }
-    validate_cells(x);
-    for (const std::string& warning : x.warnings) {
-        fmt::print(stderr, "bench: warning: {}\n", warning);
-    }
-    claim_directory(x, out);
-    Caches caches;
-    const auto started = Clock::now();
-    int failed = 0, measured = 0;
-    double measured_seconds = 0.0;
+namespace {
 
-    // Measures (or loads) every repetition of a cell; nullopt when one failed.
-    auto ensure = [&](const Cell& cell, const std::string& progress) -> std::optional<CellSummary> {
-        std::vector<double> errors, times, volume_times;
-        for (int rep = 0; rep < x.protocol.repetitions; ++rep) {
-            const fs::path path = row_path(out, cell, rep);
-            std::optional<Json> row = read_row(path);
-            const bool fresh = !row;
-            if (!row) {
-                const auto cell_start = Clock::now();
-                try {
-                    if (x.protocol.isolation == Isolation::process) {
-                        std::vector<std::string> args = options.relaunch;
-                        args.insert(args.end(), {"--cell", cell_to_json(cell).dump(), "--rep",
-                                                 std::to_string(rep)});
-                        if (const int code = spawn_and_wait(args); code != 0) {
-                            fail("the cell's process exited with status {}", code);
-                        }
-                        row = read_row(path);
-                        if (!row) {
-                            fail("the cell's process wrote no row");
-                        }
-                    } else {
-                        const Json measured_row = measure_cell(x, cell, rep, out, caches, &options);
-                        write_row(out, cell, rep, measured_row);
-                        row = Json{{"row", measured_row}};
-                    }
-                } catch (const Interrupted&) {
-                    throw;  // the run stops here, as if killed: the cell left nothing behind
-                } catch (const std::exception& e) {
-                    ++failed;
-                    fmt::print(stderr, "  FAILED {} rep {}: {}\n", cell_label(cell), rep, e.what());
-                    return std::nullopt;
-                }
-                ++measured;
-                measured_seconds += ms_since(cell_start) / 1000.0;
-            }
-            const Json& r = row->at("row");
-            times.push_back(r.at("frame_ms_median").get<double>());
-            volume_times.push_back(r.value("volume_cost_ms", 0.0));
-            errors.push_back(r.at("rel_rmse").is_number() ? r.at("rel_rmse").get<double>() : 0.0);
-            const double elapsed = ms_since(started) / 1000.0;
-            std::string temporal;
-            if (r.contains("flicker")) {
-                temporal = fmt::format(", p95 frame {:.1f} ms, flicker {:.3g}%, {} pops",
-                                       r.value("frame_ms_p95", 0.0),
-                                       100.0 * r.value("flicker", 0.0), r.value("pops", 0));
-            }
-            fmt::print(stderr, "{} {} rep {}: {:.2f} fps{}{}  [{} elapsed{}]\n", progress,
-                       cell_label(cell), rep, 1000.0 / times.back(),
-                       r.at("rel_rmse").is_number()
-                           ? fmt::format(", rel_rmse {:.3g}%", 100.0 * errors.back())
-                           : std::string(),
-                       temporal, duration_text(elapsed), fresh ? "" : ", from an earlier run");
+// The indices this shard runs (i/n: every n-th from the i-th).
+std::vector<size_t> shard_indices(size_t total, const Shard& shard) {
+    std::vector<size_t> mine;
+    for (size_t i = 0; i < total; ++i) {
+        if (int(i % size_t(shard.count)) == shard.index - 1) {
+            mine.push_back(i);
         }
-        double error = 0.0;
-        for (const double e : errors) {
-            error += e / double(errors.size());
-        }
-        return CellSummary{error, median(times), median(volume_times)};
-    };
+    }
+    return mine;
+}
 
-    if (x.equal_error) {
+// One run of an experiment into its directory: the cells measured (or their rows loaded from an
+// earlier run), with progress, counting what failed.
+class BenchRun {
+public:
+    BenchRun(const Experiment& x, const BenchOptions& options) : x_(x), options_(options) {}
+
+    void run_searches() {
         // One unit per search group; each runs its bisections for every target.
-        const std::vector<Cell> groups = search_groups(x);
-        std::vector<size_t> mine;
-        for (size_t i = 0; i < groups.size(); ++i) {
-            if (int(i % size_t(options.shard.count)) == options.shard.index - 1) {
-                mine.push_back(i);
-            }
-        }
+        const std::vector<Cell> groups = search_groups(x_);
+        const std::vector<size_t> mine = shard_indices(groups.size(), options_.shard);
         for (size_t k = 0; k < mine.size(); ++k) {
             const Cell& group = groups[mine[k]];
-            for (const double target : x.equal_error->targets) {
+            for (const double target : x_.equal_error->targets) {
                 const std::string progress =
                     fmt::format("[search {}/{}, target {:.3g}%]", k + 1, mine.size(), 100 * target);
                 const SearchOutcome outcome = search_equal_error(
-                    x, group, target, [&](const Cell& cell) { return ensure(cell, progress); });
+                    x_, group, target, [&](const Cell& cell) { return ensure(cell, progress); });
                 const std::string setting =
                     outcome.parameter.empty()
                         ? std::string("as is")
@@ -627,36 +564,141 @@ int run_bench(const Experiment& x, const BenchOptions& options) {
                                : "target not reached");
             }
         }
-    } else {
-        std::vector<Cell> cells = x.cells();
-        std::vector<size_t> mine;
-        for (size_t i = 0; i < cells.size(); ++i) {
-            if (int(i % size_t(options.shard.count)) == options.shard.index - 1) {
-                mine.push_back(i);
-            }
-        }
-        if (x.protocol.order_shuffled) {
-            std::mt19937_64 random(x.protocol.seed);
+    }
+
+    void run_sweep() {
+        const std::vector<Cell> cells = x_.cells();
+        std::vector<size_t> mine = shard_indices(cells.size(), options_.shard);
+        if (x_.protocol.order_shuffled) {
+            std::mt19937_64 random(x_.protocol.seed);
             std::shuffle(mine.begin(), mine.end(), random);
         }
         for (size_t k = 0; k < mine.size(); ++k) {
             // Remaining time from the cells measured in this run (rows from an earlier run are
             // free).
             const std::string remaining =
-                measured ? fmt::format(", ~{} left", duration_text(measured_seconds / measured *
-                                                                   double(mine.size() - k)))
-                         : std::string();
+                measured_ ? fmt::format(", ~{} left", duration_text(measured_seconds_ / measured_ *
+                                                                    double(mine.size() - k)))
+                          : std::string();
             ensure(cells[mine[k]], fmt::format("[{}/{}{}]", k + 1, mine.size(), remaining));
         }
     }
+
+    int failed() const { return failed_; }
+
+private:
+    // Measures (or loads) every repetition of a cell; nullopt when one failed.
+    std::optional<CellSummary> ensure(const Cell& cell, const std::string& progress) {
+        std::vector<double> errors, times, volume_times;
+        for (int rep = 0; rep < x_.protocol.repetitions; ++rep) {
+            const fs::path path = row_path(options_.out, cell, rep);
+            std::optional<Json> row = read_row(path);
+            const bool fresh = !row;
+            if (fresh) {
+                row = measure(cell, rep, path);
+                if (!row) {
+                    return std::nullopt;
+                }
+            }
+            const Json& r = row->at("row");
+            times.push_back(r.at("frame_ms_median").get<double>());
+            volume_times.push_back(r.value("volume_cost_ms", 0.0));
+            errors.push_back(r.at("rel_rmse").is_number() ? r.at("rel_rmse").get<double>() : 0.0);
+            print_progress(progress, cell, rep, r, fresh);
+        }
+        double error = 0.0;
+        for (const double e : errors) {
+            error += e / double(errors.size());
+        }
+        return CellSummary{error, median(times), median(volume_times)};
+    }
+
+    // One repetition of a cell, measured here or in a process of its own; nullopt when it failed.
+    std::optional<Json> measure(const Cell& cell, int rep, const fs::path& path) {
+        const auto cell_start = Clock::now();
+        std::optional<Json> row;
+        try {
+            if (x_.protocol.isolation == Isolation::process) {
+                std::vector<std::string> args = options_.relaunch;
+                args.insert(args.end(),
+                            {"--cell", cell_to_json(cell).dump(), "--rep", std::to_string(rep)});
+                if (const int code = spawn_and_wait(args); code != 0) {
+                    fail("the cell's process exited with status {}", code);
+                }
+                row = read_row(path);
+                if (!row) {
+                    fail("the cell's process wrote no row");
+                }
+            } else {
+                const Json measured_row =
+                    measure_cell(x_, cell, rep, options_.out, caches_, &options_);
+                write_row(options_.out, cell, rep, measured_row);
+                row = Json{{"row", measured_row}};
+            }
+        } catch (const Interrupted&) {
+            throw;  // the run stops here, as if killed: the cell left nothing behind
+        } catch (const std::exception& e) {
+            ++failed_;
+            fmt::print(stderr, "  FAILED {} rep {}: {}\n", cell_label(cell), rep, e.what());
+            return std::nullopt;
+        }
+        ++measured_;
+        measured_seconds_ += ms_since(cell_start) / 1000.0;
+        return row;
+    }
+
+    void print_progress(const std::string& progress, const Cell& cell, int rep, const Json& r,
+                        bool fresh) const {
+        const double elapsed = ms_since(started_) / 1000.0;
+        std::string temporal;
+        if (r.contains("flicker")) {
+            temporal = fmt::format(", p95 frame {:.1f} ms, flicker {:.3g}%, {} pops",
+                                   r.value("frame_ms_p95", 0.0), 100.0 * r.value("flicker", 0.0),
+                                   r.value("pops", 0));
+        }
+        fmt::print(stderr, "{} {} rep {}: {:.2f} fps{}{}  [{} elapsed{}]\n", progress,
+                   cell_label(cell), rep, 1000.0 / r.at("frame_ms_median").get<double>(),
+                   r.at("rel_rmse").is_number()
+                       ? fmt::format(", rel_rmse {:.3g}%", 100.0 * r.at("rel_rmse").get<double>())
+                       : std::string(),
+                   temporal, duration_text(elapsed), fresh ? "" : ", from an earlier run");
+    }
+
+    const Experiment& x_;
+    const BenchOptions& options_;
+    Caches caches_;
+    const Clock::time_point started_ = Clock::now();
+    int failed_ = 0;
+    int measured_ = 0;
+    double measured_seconds_ = 0.0;
+};
+
+}  // namespace
+
+int run_bench(const Experiment& x, const BenchOptions& options) {
+    // Everything that can be refused is refused before the directory is claimed.
+    if (x.cells().empty()) {
+        fail("{}: the sweep is empty (every cell excluded)", x.source.string());
+    }
+    validate_cells(x);
+    for (const std::string& warning : x.warnings) {
+        fmt::print(stderr, "bench: warning: {}\n", warning);
+    }
+    claim_directory(x, options.out);
+    BenchRun run(x, options);
+    if (x.equal_error) {
+        run.run_searches();
+    } else {
+        run.run_sweep();
+    }
     if (options.write_outputs) {
-        write_summary(x, out);
+        write_summary(x, options.out);
     }
-    if (failed) {
+    if (run.failed()) {
         fmt::print(stderr, "{} cell(s) failed; running the same command again retries them\n",
-                   failed);
+                   run.failed());
     }
-    return failed;
+    return run.failed();
 }
 
 }  // namespace sl::experiments

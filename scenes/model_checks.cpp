@@ -130,6 +130,9 @@ int ply_type_size(std::string_view type) {
     return 0;
 }
 
+// Fails naming the header line and the reason.
+using PlyError = std::function<void(int line, const std::string& reason)>;
+
 struct PlyProperty {
     int size = 0;        // a scalar's bytes, or a list's items' bytes
     int count_size = 0;  // a list's count's bytes; 0 for a scalar
@@ -176,22 +179,68 @@ void check_ply_binary_data(std::ifstream& in, const std::vector<PlyElement>& ele
     }
 }
 
-}  // namespace
-
-void check_ply_header(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        fail("{}: cannot open model file", path.string());
-    }
-    auto error = [&](int line, const std::string& reason) -> void {
-        fail("{}:{}: {}", path.string(), line, reason);
-    };
-    std::string text;
-    int line = 0;
+// A PLY header: its format and elements, read up to end_header.
+struct PlyHeader {
     std::string format;
     std::vector<PlyElement> elements;
+    int lines = 0;  // the header's lines
+};
+
+constexpr std::string_view kPlyTypes =
+    "char, uchar, short, ushort, int, uint, float, double or their sized names";
+
+// An `element NAME COUNT` line, its count held to the mesh limits.
+PlyElement ply_element(std::istringstream& words, int line, const PlyError& error) {
+    PlyElement element;
+    std::string count;
+    words >> element.name >> count;
+    const auto [end, code] =
+        std::from_chars(count.data(), count.data() + count.size(), element.count);
+    if (code != std::errc() || end != count.data() + count.size() || element.count < 0) {
+        error(line, fmt::format("element {}: count {} is not a non-negative integer",
+                                quote(element.name), quote(count)));
+    }
+    const long long limit = element.name == "face" ? kMaxMeshTriangles : kMaxMeshVertices;
+    if (element.count > limit) {
+        error(line, fmt::format("element {} declares {} items, at most {} (scenes/mesh.h)",
+                                quote(element.name), element.count, limit));
+    }
+    element.line = line;
+    return element;
+}
+
+// A `property TYPE NAME` or `property list COUNT_TYPE ITEM_TYPE NAME` line.
+PlyProperty ply_property(std::istringstream& words, int line, const PlyError& error) {
+    std::string type;
+    words >> type;
+    if (type != "list") {
+        if (ply_type_size(type) == 0) {
+            error(line,
+                  fmt::format("unknown property type {} (expected {})", quote(type), kPlyTypes));
+        }
+        return {ply_type_size(type), 0};
+    }
+    std::string count_type, item_type;
+    words >> count_type >> item_type;
+    for (const std::string& t : {count_type, item_type}) {
+        if (ply_type_size(t) == 0) {
+            error(line, fmt::format("unknown list type {} (expected {})", quote(t), kPlyTypes));
+        }
+    }
+    if (count_type == "float" || count_type == "float32" || count_type == "double" ||
+        count_type == "float64") {
+        error(line,
+              fmt::format("a list's count must be an integer type, not {}", quote(count_type)));
+    }
+    return {ply_type_size(item_type), ply_type_size(count_type)};
+}
+
+// The header is text up to end_header; a real one is a few dozen lines.
+PlyHeader read_ply_header(std::ifstream& in, const PlyError& error) {
+    PlyHeader header;
+    std::string text;
+    int& line = header.lines;
     bool ended = false;
-    // The header is text up to end_header; a real one is a few dozen lines.
     while (!ended && line < 10000 && std::getline(in, text)) {
         ++line;
         if (!text.empty() && text.back() == '\r') {
@@ -204,67 +253,22 @@ void check_ply_header(const fs::path& path) {
             if (keyword != "ply") {
                 error(line, "not a PLY file (the first line is not 'ply')");
             }
-            continue;
-        }
-        if (keyword == "format") {
-            words >> format;
-            if (format != "ascii" && format != "binary_little_endian" &&
-                format != "binary_big_endian") {
+        } else if (keyword == "format") {
+            words >> header.format;
+            if (header.format != "ascii" && header.format != "binary_little_endian" &&
+                header.format != "binary_big_endian") {
                 error(line, fmt::format("unknown format {} (expected ascii, binary_little_endian "
                                         "or binary_big_endian)",
-                                        quote(format)));
+                                        quote(header.format)));
             }
         } else if (keyword == "element") {
-            PlyElement element;
-            std::string count;
-            words >> element.name >> count;
-            const auto [end, code] =
-                std::from_chars(count.data(), count.data() + count.size(), element.count);
-            if (code != std::errc() || end != count.data() + count.size() || element.count < 0) {
-                error(line, fmt::format("element {}: count {} is not a non-negative integer",
-                                        quote(element.name), quote(count)));
-            }
-            const long long limit = element.name == "face" ? kMaxMeshTriangles : kMaxMeshVertices;
-            if (element.count > limit) {
-                error(line, fmt::format("element {} declares {} items, at most {} (scenes/mesh.h)",
-                                        quote(element.name), element.count, limit));
-            }
-            element.line = line;
-            elements.push_back(element);
+            header.elements.push_back(ply_element(words, line, error));
         } else if (keyword == "property") {
-            if (elements.empty()) {
+            if (header.elements.empty()) {
                 error(line, "a property before any element");
             }
-            std::string type;
-            words >> type;
-            PlyElement& element = elements.back();
-            if (type == "list") {
-                std::string count_type, item_type;
-                words >> count_type >> item_type;
-                for (const std::string& t : {count_type, item_type}) {
-                    if (ply_type_size(t) == 0) {
-                        error(line, fmt::format("unknown list type {} (expected char, uchar, "
-                                                "short, ushort, int, uint, float, double or their "
-                                                "sized names)",
-                                                quote(t)));
-                    }
-                }
-                if (count_type == "float" || count_type == "float32" || count_type == "double" ||
-                    count_type == "float64") {
-                    error(line, fmt::format("a list's count must be an integer type, not {}",
-                                            quote(count_type)));
-                }
-                element.properties.push_back({ply_type_size(item_type), ply_type_size(count_type)});
-            } else {
-                if (ply_type_size(type) == 0) {
-                    error(line, fmt::format("unknown property type {} (expected char, uchar, "
-                                            "short, ushort, int, uint, float, double or their "
-                                            "sized names)",
-                                            quote(type)));
-                }
-                element.properties.push_back({ply_type_size(type), 0});
-            }
-            ++element.min_tokens;
+            header.elements.back().properties.push_back(ply_property(words, line, error));
+            ++header.elements.back().min_tokens;
         } else if (keyword == "end_header") {
             ended = true;
         } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
@@ -274,18 +278,17 @@ void check_ply_header(const fs::path& path) {
     if (!ended) {
         error(line, "no end_header line");
     }
-    if (format.empty()) {
+    if (header.format.empty()) {
         error(line, "the header has no format line");
     }
-    if (format != "ascii") {
-        check_ply_binary_data(in, elements, format == "binary_big_endian",
-                              [&](const std::string& reason) { error(line, reason); });
-        return;
-    }
-    // ASCII: at least one number per scalar property and list count of every item.
+    return header;
+}
+
+// ASCII data: at least one number per scalar property and list count of every item.
+void check_ply_ascii_data(std::ifstream& in, const PlyHeader& header, const PlyError& error) {
     long long tokens_needed = 0;
     std::string declared;
-    for (const PlyElement& element : elements) {
+    for (const PlyElement& element : header.elements) {
         tokens_needed += element.count * element.min_tokens;
         declared += fmt::format("{}{} {} (line {})", declared.empty() ? "" : ", ", element.count,
                                 element.name, element.line);
@@ -296,10 +299,30 @@ void check_ply_header(const fs::path& path) {
         ++tokens;
     }
     if (tokens < tokens_needed) {
-        error(line, fmt::format("the header declares {}, which need at least {} numbers, but "
-                                "{} follow end_header: the file is truncated or its counts "
-                                "are wrong",
-                                declared, tokens_needed, tokens));
+        error(header.lines,
+              fmt::format("the header declares {}, which need at least {} numbers, but "
+                          "{} follow end_header: the file is truncated or its counts "
+                          "are wrong",
+                          declared, tokens_needed, tokens));
+    }
+}
+
+}  // namespace
+
+void check_ply_header(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        fail("{}: cannot open model file", path.string());
+    }
+    const PlyError error = [&](int line, const std::string& reason) {
+        fail("{}:{}: {}", path.string(), line, reason);
+    };
+    const PlyHeader header = read_ply_header(in, error);
+    if (header.format == "ascii") {
+        check_ply_ascii_data(in, header, error);
+    } else {
+        check_ply_binary_data(in, header.elements, header.format == "binary_big_endian",
+                              [&](const std::string& reason) { error(header.lines, reason); });
     }
 }
 
