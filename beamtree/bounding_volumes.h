@@ -18,6 +18,7 @@
 
 #include "beamtree/convex_volume.h"
 #include "beamtree/geometry.h"
+#include "core/check.h"
 #include "scenes/scene.h"
 
 namespace sl::bt {
@@ -73,7 +74,10 @@ struct VolumeLibraryStats {
 // Thread-safe: the pipelined frame loop builds on a worker thread.
 class VolumeLibrary {
 public:
-    explicit VolumeLibrary(BoundsSettings options = {}) : options_(options) {}
+    // Pieces are cut from full hulls (the scene reader refuses them with reduced hulls).
+    explicit VolumeLibrary(BoundsSettings options = {}) : options_(options) {
+        SL_CHECK(!(options.pieces && options.max_outer_planes > 0));
+    }
     VolumeLibrary(const VolumeLibrary&) = delete;
     VolumeLibrary& operator=(const VolumeLibrary&) = delete;
 

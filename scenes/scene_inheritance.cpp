@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/suggest.h"
 #include "core/text.h"
 
 namespace sl {
@@ -54,10 +55,10 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
         return list;
     };
     fail(
-        "unknown scene {} (canonical: {}, multiple:N; random: boxes:SEED; animated: {}; effects: "
-        "{}; real: {}; or a .toml file)",
-        quote(name), listed(canonical_scene_names()), listed(animated_scene_names()),
-        listed(effect_scene_names()), listed(real_scene_names()));
+        "unknown scene {}{} (canonical: {}, multiple:N; random: boxes:SEED; animated: {}; "
+        "effects: {}; real: {}; or a .toml file)",
+        quote(name), did_you_mean(name, names), listed(canonical_scene_names()),
+        listed(animated_scene_names()), listed(effect_scene_names()), listed(real_scene_names()));
 }
 
 toml::table parse_toml(const std::string& text, const std::string& origin) {

@@ -267,6 +267,13 @@ BoundsSettings read_bounds(TableReader r) {
     }
     b.automatic_inner = r.boolean("automatic_inner", true);
     b.pieces = r.boolean("pieces", false);
+    if (b.pieces && b.max_outer_planes > 0) {
+        // Pieces are cut from full hulls: reduced hulls would silently take their place.
+        r.error("pieces", fmt::format("convex pieces need full hulls, but max_outer_planes = {} "
+                                      "reduces every hull; set max_outer_planes = 0 (a base "
+                                      "scene may set it) or pieces = false",
+                                      b.max_outer_planes));
+    }
     r.finish();
     return b;
 }

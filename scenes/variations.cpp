@@ -5,7 +5,10 @@
 #include <cstdlib>
 #include <regex>
 
+#include <fmt/ranges.h>
+
 #include "core/error.h"
+#include "core/suggest.h"
 #include "core/text.h"
 
 namespace sl {
@@ -62,11 +65,12 @@ std::string scene_variation_error(const std::string& name, const std::string& va
     const auto found = std::find_if(all.begin(), all.end(),
                                     [&](const SceneVariation& v) { return v.name == name; });
     if (found == all.end()) {
-        std::string known;
+        std::vector<std::string> names;
         for (const SceneVariation& v : all) {
-            known += (known.empty() ? "" : ", ") + v.name;
+            names.push_back(v.name);
         }
-        return fmt::format("unknown scene variation {} (known: {})", quote(name), known);
+        return fmt::format("unknown scene variation {}{} (known: {})", quote(name),
+                           did_you_mean(name, names), fmt::join(names, ", "));
     }
     int n = 0, m = 0;
     double factor = 0.0;

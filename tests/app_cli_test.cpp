@@ -309,7 +309,8 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
         {"--scene " + dir + "/directory-base.toml", "directory-base.toml:2: [scene] base: " + dir +
                                                         ": cannot read scene file (it is a "
                                                         "directory)"},
-        {"--scene nowhere", "unknown scene 'nowhere'"},
+        {"--scene nowhere", "unknown scene 'nowhere' (canonical"},
+        {"--scene paralel", "unknown scene 'paralel' (did you mean 'parallel'?)"},
         {"--scene " + dir + "/absent.toml", "absent.toml: cannot read scene file"},
         {"--scene " + dir + "/nan.toml", "nan.toml:4: [camera] fov: value nan is not finite"},
         {"--scene " + dir + "/zero-fov.toml", "[camera] fov: must be in (0, 180)"},
@@ -470,6 +471,9 @@ TEST(Cli, EveryCommandsEarlyFailureWritesNothing) {
         {"render --scene " + d + "/bad.toml --out " + out, "malformed TOML"},
         {"regions --scene nowhere --out " + out, "unknown scene 'nowhere'"},
         {"regions --scene toplight --size 0x9 --out " + out, "width and height"},
+        {"regions --scene " + std::string(SHAFTLAB_SOURCE_DIR) +
+             "/tests/data/terrain-pieces/scene.toml --max-planes 24 --out " + out,
+         "--max-planes 24: terrain-pieces cuts its objects into convex pieces"},
         {"compare " + d + "/a.exr " + d + "/b.exr --difference " + out + "/d.png",
          "cannot compare"},
         {"bench " + smoke +

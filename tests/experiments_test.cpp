@@ -507,7 +507,7 @@ samples = [4, 8]
     EXPECT_NE(cells.front().id().find("camera_distance=1"), std::string::npos);
     const std::string unknown = parse_error(text, {"sweep.scene.sss_gird=\"8x8\""});
     EXPECT_NE(unknown.find("bad.toml"), std::string::npos) << unknown;
-    EXPECT_NE(unknown.find("sss_gird"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("sss_gird' (did you mean 'sss_grid'?)"), std::string::npos) << unknown;
     EXPECT_NE(unknown.find("sss_grid, sss_model"), std::string::npos) << unknown;
     const std::string grid = parse_error(text, {"sweep.scene.sss_grid=\"8by8\""});
     EXPECT_NE(grid.find("NxM"), std::string::npos) << grid;

@@ -172,6 +172,9 @@ TEST(SceneFile, BadInputsGiveOneClearError) {
         {replace(s, "shape = \"box\"", "shape = \"box\"\nrotate = [0.0, 1e39, 0.0]"),
          "rotate: component 1 is 1e+39"},
         {s + "[medium]\na0 = 1e39\n", "[medium] a0: must be in [0, "},
+        // Pieces are cut from full hulls; with reduced hulls they were ignored without a word.
+        {s + "[beamtree]\nmax_outer_planes = 24\npieces = true\n",
+         "[beamtree] pieces: convex pieces need full hulls, but max_outer_planes = 24"},
         {replace(s, "cone_angle = 30.0", "cone_angle = 95.0"), "[light] cone_angle: must be in"},
         {replace(s, "cone_angle = 30.0", "cone_angle = 30.0\nintensity = [1.0, -1.0, 1.0]"),
          "[light] intensity: components must not be negative"},
