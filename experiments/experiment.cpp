@@ -408,23 +408,11 @@ void read_render(const toml::table& table, const std::string& origin, Experiment
 }
 
 // [sweep]: scenes, methods, sizes, [sweep.params] (global and per method) and [sweep.scene].
-void read_sweep(TomlTableReader& top, const std::string& origin, Experiment& x) {
-    const toml::table* sweep = top.table("sweep");
-    if (!sweep) {
-        top.error("sweep", "missing: an experiment needs [sweep] scenes, methods and sizes");
-    }
-    TomlTableReader r(*sweep, origin, "[sweep]");
-    x.scenes = strings(r, "scenes");
-    x.methods = strings(r, "methods");
-    for (const auto& [key, list] :
-         {std::pair{"scenes", &x.scenes}, std::pair{"methods", &x.methods}}) {
-        if (list->empty()) {
-            r.error(key, "missing: the sweep needs at least one");
-        }
-    }
+// Every scene of the sweep loads (and fits the protocol's animation), every method exists. A scene
+// file named relative to the experiment file is found beside it first.
+void check_scenes_and_methods(TomlTableReader& r, const std::string& origin, Experiment& x) {
     const fs::path folder = fs::path(origin).parent_path();
     for (std::string& scene : x.scenes) {
-        // A scene file named relative to the experiment file is found beside it first.
         std::error_code ec;
         if (scene.ends_with(".toml") && fs::path(scene).is_relative() && !folder.empty() &&
             fs::is_regular_file(folder / scene, ec)) {
@@ -446,6 +434,79 @@ void read_sweep(TomlTableReader& top, const std::string& origin, Experiment& x) 
             r.error("methods", e.what());
         }
     }
+}
+
+// `[sweep.params.METHOD]`: parameters of one method, applied where the sweep has it.
+void read_method_params(TomlTableReader& p, const std::string& origin, const std::string& method,
+                        const toml::table& own, Experiment& x) {
+    p.take(method);
+    const auto known = methods::volume_method_names();
+    if (std::find(known.begin(), known.end(), method) == known.end()) {
+        p.error(method, fmt::format("a table of parameters must be named after a method (known: "
+                                    "{})",
+                                    fmt::join(known, ", ")));
+    }
+    if (std::find(x.methods.begin(), x.methods.end(), method) == x.methods.end()) {
+        return;  // not swept (e.g. --set sweep.methods=...): not applied
+    }
+    TomlTableReader m(own, origin, "[sweep.params." + method + "]");
+    for (const auto& [name_node, value] : own) {
+        const std::string name(name_node.str());
+        std::vector<std::string> texts = values(m, name);
+        check_method_parameter(method, name, texts, m);
+        x.method_params[method].emplace_back(name, std::move(texts));
+    }
+}
+
+// `[sweep.params] KEY = [...]`: a parameter of every swept method that has it.
+void read_shared_param(TomlTableReader& p, const std::string& origin, const std::string& key,
+                       Experiment& x) {
+    std::vector<std::string> texts = values(p, key);
+    bool declared = false;
+    for (const std::string& method : x.methods) {
+        if (methods::create_volume_method(method)->has_parameter(key)) {
+            check_method_parameter(method, key, texts, p);
+            declared = true;
+        }
+    }
+    if (declared) {
+        x.params.emplace_back(key, std::move(texts));
+        return;
+    }
+    // A parameter of no swept method is no error when some method has it (the sweep's methods
+    // may have been overridden), but it takes no effect: said so. When no method has it, it is
+    // a typo.
+    std::vector<std::string> all;
+    for (const std::string& m : methods::volume_method_names()) {
+        const auto method = methods::create_volume_method(m);
+        for (const frame::Parameter& parameter : method->parameters()) {
+            all.push_back(parameter.name);
+        }
+    }
+    if (std::find(all.begin(), all.end(), key) == all.end()) {
+        p.error(key, fmt::format("no method has this parameter{} (see `shaftlab methods`)",
+                                 did_you_mean(key, all)));
+    }
+    x.warnings.push_back(
+        fmt::format("{}: [sweep.params] {}: no method of this sweep ({}) has it: not applied",
+                    origin, key, fmt::join(x.methods, ", ")));
+}
+
+void read_sweep(TomlTableReader& top, const std::string& origin, Experiment& x) {
+    const toml::table* sweep = top.table("sweep");
+    if (!sweep) {
+        top.error("sweep", "missing: an experiment needs [sweep] scenes, methods and sizes");
+    }
+    TomlTableReader r(*sweep, origin, "[sweep]");
+    x.scenes = strings(r, "scenes");
+    x.methods = strings(r, "methods");
+    for (const auto& [key, list] :
+         {std::pair{"scenes", &x.scenes}, std::pair{"methods", &x.methods}}) {
+        if (list->empty()) {
+            r.error(key, "missing: the sweep needs at least one");
+        }
+    }
+    check_scenes_and_methods(r, origin, x);
     std::vector<std::string> sizes = values(r, "sizes");
     if (sizes.empty()) {
         r.error("sizes", "missing: the sweep needs at least one size, e.g. [\"256x256\"]");
@@ -458,56 +519,10 @@ void read_sweep(TomlTableReader& top, const std::string& origin, Experiment& x) 
         for (const auto& [key_node, node] : *params) {
             const std::string key(key_node.str());
             if (const toml::table* own = node.as_table()) {
-                p.take(key);
-                const auto known = methods::volume_method_names();
-                if (std::find(known.begin(), known.end(), key) == known.end()) {
-                    p.error(key, fmt::format("a table of parameters must be named after a "
-                                             "method (known: {})",
-                                             fmt::join(known, ", ")));
-                }
-                if (std::find(x.methods.begin(), x.methods.end(), key) == x.methods.end()) {
-                    continue;  // not swept (e.g. --set sweep.methods=...): not applied
-                }
-                TomlTableReader m(*own, origin, "[sweep.params." + key + "]");
-                for (const auto& [name_node, value] : *own) {
-                    const std::string name(name_node.str());
-                    std::vector<std::string> texts = values(m, name);
-                    check_method_parameter(key, name, texts, m);
-                    x.method_params[key].emplace_back(name, std::move(texts));
-                }
-                continue;
+                read_method_params(p, origin, key, *own, x);
+            } else {
+                read_shared_param(p, origin, key, x);
             }
-            std::vector<std::string> texts = values(p, key);
-            bool declared = false;
-            for (const std::string& method : x.methods) {
-                if (methods::create_volume_method(method)->has_parameter(key)) {
-                    check_method_parameter(method, key, texts, p);
-                    declared = true;
-                }
-            }
-            if (!declared) {
-                // A parameter of no swept method is no error when some method has it (the
-                // sweep's methods may have been overridden), but it takes no effect: said so.
-                // When no method has it, it is a typo.
-                const auto known = methods::volume_method_names();
-                std::vector<std::string> all;
-                for (const std::string& m : known) {
-                    const auto method = methods::create_volume_method(m);
-                    for (const frame::Parameter& parameter : method->parameters()) {
-                        all.push_back(parameter.name);
-                    }
-                }
-                if (std::find(all.begin(), all.end(), key) == all.end()) {
-                    p.error(key, fmt::format("no method has this parameter{} (see `shaftlab "
-                                             "methods`)",
-                                             did_you_mean(key, all)));
-                }
-                x.warnings.push_back(fmt::format(
-                    "{}: [sweep.params] {}: no method of this sweep ({}) has it: not applied",
-                    origin, key, fmt::join(x.methods, ", ")));
-                continue;
-            }
-            x.params.emplace_back(key, std::move(texts));
         }
     }
     if (const toml::table* scene = r.table("scene")) {

@@ -133,11 +133,14 @@ std::string fragments_table(const std::vector<StoredRow>& rows) {
            md;
 }
 
-// Animation cells (docs/design.md §11): per cell, over its repetitions, the frame time's median
-// with its interval, p95 and worst frame, the CPU update and what of it the frame waited for, the
-// error per frame (median, p95, worst) and the temporal metrics (core/temporal_metrics.h).
-std::string animation_table(const Experiment& x, const std::vector<Entry>& entries) {
-    // The fastest cell of each scene (and size), marked only when significant.
+namespace {
+
+bool is_animation(const Entry& e) {
+    return !e.rows.empty() && e.rows.front()->row.contains("per_frame");
+}
+
+// The cells of each scene (and size) whose frame time is significantly the fastest.
+std::set<const Entry*> fastest_per_view(const std::vector<Entry>& entries) {
     std::map<std::pair<std::string, std::string>, std::vector<const Entry*>> by_view;
     for (const Entry& e : entries) {
         by_view[{e.cell.scene, e.cell.size()}].push_back(&e);
@@ -148,89 +151,111 @@ std::string animation_table(const Experiment& x, const std::vector<Entry>& entri
             fastest.insert(f);
         }
     }
+    return fastest;
+}
+
+// A column of an animation cell over its repetitions: the median, and the worst with the
+// frame it came from.
+class OverRepetitions {
+public:
+    explicit OverRepetitions(const Entry& e) : e_(e) {}
+
+    std::optional<double> median_of(const char* key) const {
+        std::vector<double> values;
+        for (const StoredRow* r : e_.rows) {
+            if (r->row.contains(key) && r->row[key].is_number()) {
+                values.push_back(r->row[key].get<double>());
+            }
+        }
+        if (values.empty()) {
+            return std::nullopt;
+        }
+        return median(values);
+    }
+    std::string worst(const char* key, const char* frame_key) const {
+        const StoredRow* at = nullptr;
+        for (const StoredRow* r : e_.rows) {
+            if (r->row.contains(key) && r->row[key].is_number() &&
+                (!at || r->row[key].get<double>() > at->row[key].get<double>())) {
+                at = r;
+            }
+        }
+        if (!at) {
+            return "–";
+        }
+        const double v = at->row[key].get<double>();
+        return fmt::format("{} (#{})",
+                           std::string(key).find("rel_rmse") != std::string::npos
+                               ? format_error("rel_rmse", v)
+                               : fmt::format("{:.1f}", v),
+                           at->row.value(frame_key, -1));
+    }
+    std::string percent(const char* key) const {
+        const auto v = median_of(key);
+        return v ? fmt::format("{:.3f}%", 100.0 * *v) : std::string("–");
+    }
+
+private:
+    const Entry& e_;
+};
+
+// One animation cell's row.
+std::string animation_row(const Entry& e, bool fastest) {
+    // The CPU update per frame, pooled over the repetitions, with its interval.
+    std::vector<std::vector<double>> updates;
+    for (const StoredRow* r : e.rows) {
+        std::vector<double> u;
+        for (const Json& v : r->row["per_frame"].value("update_ms", Json::array())) {
+            u.push_back(v.get<double>());
+        }
+        updates.push_back(std::move(u));
+    }
+    std::vector<double> pooled_updates;
+    for (const auto& u : updates) {
+        pooled_updates.insert(pooled_updates.end(), u.begin(), u.end());
+    }
+    const Interval update_interval = median_interval(updates);
+    const OverRepetitions reps(e);
+    const auto pops = reps.median_of("pops");
+    const std::string frame_ms = fmt::format("{:.1f} [{:.1f}–{:.1f}]", e.frame_ms,
+                                             e.frame_ms_interval.low, e.frame_ms_interval.high);
+    return fmt::format(
+        "| {} | {} | {} | {} | {:.1f} | {} | {:.1f} [{:.1f}–{:.1f}] / {:.2f} | {} | {} | {} "
+        "| {} | {} | {} |\n",
+        scene_label(e.cell.scene), e.cell.method, e.cell.settings_text(),
+        fastest ? "**" + frame_ms + "**" : frame_ms, reps.median_of("frame_ms_p95").value_or(0.0),
+        reps.worst("frame_ms_worst", "frame_worst"), median(pooled_updates), update_interval.low,
+        update_interval.high, reps.median_of("cpu_ms_critical").value_or(0.0),
+        reps.percent("rel_rmse"), reps.percent("rel_rmse_p95"),
+        reps.worst("rel_rmse_worst", "error_worst_frame"), reps.percent("temporal_error"),
+        reps.percent("flicker"), pops ? fmt::format("{:g}", *pops) : "–");
+}
+
+}  // namespace
+
+// Animation cells (docs/design.md §11): per cell, over its repetitions, the frame time's median
+// with its interval, p95 and worst frame, the CPU update and what of it the frame waited for, the
+// error per frame (median, p95, worst) and the temporal metrics (core/temporal_metrics.h).
+std::string animation_table(const Experiment& x, const std::vector<Entry>& entries) {
+    const std::set<const Entry*> fastest = fastest_per_view(entries);
     std::string md;
-    for (const Entry& e : entries) {
-        if (e.rows.empty() || !e.rows.front()->row.contains("per_frame")) {
-            continue;
-        }
-        // The CPU update per frame, pooled over the repetitions, with its interval.
-        std::vector<std::vector<double>> updates;
-        for (const StoredRow* r : e.rows) {
-            std::vector<double> u;
-            for (const Json& v : r->row["per_frame"].value("update_ms", Json::array())) {
-                u.push_back(v.get<double>());
-            }
-            updates.push_back(std::move(u));
-        }
-        std::vector<double> pooled_updates;
-        for (const auto& u : updates) {
-            pooled_updates.insert(pooled_updates.end(), u.begin(), u.end());
-        }
-        const Interval update_interval = median_interval(updates);
-        auto over_reps = [&](const char* key) -> std::optional<double> {
-            std::vector<double> values;
-            for (const StoredRow* r : e.rows) {
-                if (r->row.contains(key) && r->row[key].is_number()) {
-                    values.push_back(r->row[key].get<double>());
-                }
-            }
-            if (values.empty()) {
-                return std::nullopt;
-            }
-            return median(values);
-        };
-        auto worst = [&](const char* key, const char* frame_key) -> std::string {
-            const StoredRow* at = nullptr;
-            for (const StoredRow* r : e.rows) {
-                if (r->row.contains(key) && r->row[key].is_number() &&
-                    (!at || r->row[key].get<double>() > at->row[key].get<double>())) {
-                    at = r;
-                }
-            }
-            if (!at) {
-                return "–";
-            }
-            const double v = at->row[key].get<double>();
-            return fmt::format("{} (#{})",
-                               std::string(key).find("rel_rmse") != std::string::npos
-                                   ? format_error("rel_rmse", v)
-                                   : fmt::format("{:.1f}", v),
-                               at->row.value(frame_key, -1));
-        };
-        auto percent = [&](const char* key) {
-            const auto v = over_reps(key);
-            return v ? fmt::format("{:.3f}%", 100.0 * *v) : std::string("–");
-        };
-        const auto pops = over_reps("pops");
-        const std::string frame_ms = fmt::format("{:.1f} [{:.1f}–{:.1f}]", e.frame_ms,
-                                                 e.frame_ms_interval.low, e.frame_ms_interval.high);
-        md += fmt::format(
-            "| {} | {} | {} | {} | {:.1f} | {} | {:.1f} [{:.1f}–{:.1f}] / {:.2f} | {} | {} | {} "
-            "| {} | {} | {} |\n",
-            scene_label(e.cell.scene), e.cell.method, e.cell.settings_text(),
-            fastest.contains(&e) ? "**" + frame_ms + "**" : frame_ms,
-            over_reps("frame_ms_p95").value_or(0.0), worst("frame_ms_worst", "frame_worst"),
-            median(pooled_updates), update_interval.low, update_interval.high,
-            over_reps("cpu_ms_critical").value_or(0.0), percent("rel_rmse"),
-            percent("rel_rmse_p95"), worst("rel_rmse_worst", "error_worst_frame"),
-            percent("temporal_error"), percent("flicker"), pops ? fmt::format("{:g}", *pops) : "–");
-    }
-    if (md.empty()) {
-        return md;
-    }
     // What each scene played (its animation, or an orbit of a still scene).
     std::vector<std::string> played;
     const StoredRow* any = nullptr;
     for (const Entry& e : entries) {
-        if (e.rows.empty() || !e.rows.front()->row.contains("per_frame")) {
+        if (!is_animation(e)) {
             continue;
         }
+        md += animation_row(e, fastest.contains(&e));
         any = e.rows.front();
         const std::string text = fmt::format("{}: {}", scene_label(e.cell.scene),
                                              any->row.value("sequence", std::string("?")));
         if (rank(played, text) == played.size()) {
             played.push_back(text);
         }
+    }
+    if (md.empty()) {
+        return md;
     }
     return fmt::format(
                "\n## Along the animation\n\nEach cell played its scene ({}; {} frame mode), every "

@@ -31,6 +31,33 @@ float uniform(std::mt19937& rng, float lo, float hi) {
 
 }  // namespace
 
+namespace {
+
+// A shape of a multiple scene of half-extent `size`: its parameters, and the height of its
+// centre above the floor it rests on.
+std::pair<std::string, float> multiple_shape(std::mt19937& rng, std::string_view shape,
+                                             float size) {
+    if (shape == "box") {
+        const float h = size * uniform(rng, 0.8f, 2.0f);
+        return {fmt::format("size = [{:.4f}, {:.4f}, {:.4f}]", 1.4f * size, h, 1.4f * size),
+                0.5f * h};
+    }
+    if (shape == "sphere") {
+        return {fmt::format("radius = {:.4f}\nsegments = 24", size), size};
+    }
+    if (shape == "cylinder") {
+        const float h = size * uniform(rng, 1.0f, 3.0f);
+        return {fmt::format("radius = {:.4f}\nheight = {:.4f}\nsegments = 24", 0.7f * size, h),
+                0.5f * h};
+    }
+    return {fmt::format("major_radius = {:.4f}\nminor_radius = {:.4f}\nmajor_segments = 24\n"
+                        "minor_segments = 12",
+                        0.7f * size, 0.3f * size),
+            0.3f * size};
+}
+
+}  // namespace
+
 std::string generate_multiple_scene(int count) {
     const std::string name =
         count == kMultipleDefaultCount ? "multiple" : fmt::format("multiple-{}", count);
@@ -93,27 +120,7 @@ material = "floor"
         const float z = -half_extent + (float(row) + 0.5f) * cell + uniform(rng, -slack, slack);
         const float yaw = uniform(rng, 0.0f, 180.0f);
         const char* shape = shapes[rng() % 4];
-        std::string parameters;
-        float height = size;  // y of the centre so that the object rests on the floor
-        if (shape == std::string("box")) {
-            const float h = size * uniform(rng, 0.8f, 2.0f);
-            parameters =
-                fmt::format("size = [{:.4f}, {:.4f}, {:.4f}]", 1.4f * size, h, 1.4f * size);
-            height = 0.5f * h;
-        } else if (shape == std::string("sphere")) {
-            parameters = fmt::format("radius = {:.4f}\nsegments = 24", size);
-        } else if (shape == std::string("cylinder")) {
-            const float h = size * uniform(rng, 1.0f, 3.0f);
-            parameters =
-                fmt::format("radius = {:.4f}\nheight = {:.4f}\nsegments = 24", 0.7f * size, h);
-            height = 0.5f * h;
-        } else {
-            parameters = fmt::format(
-                "major_radius = {:.4f}\nminor_radius = {:.4f}\nmajor_segments = 24\n"
-                "minor_segments = 12",
-                0.7f * size, 0.3f * size);
-            height = 0.3f * size;
-        }
+        const auto [parameters, height] = multiple_shape(rng, shape, size);
         toml += fmt::format(
             "\n[[objects]]\nname = \"{}{}\"\nshape = \"{}\"\n{}\nmaterial = \"object\"\n"
             "translate = [{:.4f}, {:.4f}, {:.4f}]\nrotate = [0.0, {:.2f}, 0.0]\n",
@@ -146,19 +153,9 @@ glm::vec3 tilted(std::mt19937& rng, glm::vec3 d, float degrees) {
     return glm::normalize(std::cos(a) * d + std::sin(a) * glm::normalize(side));
 }
 
-}  // namespace
-
-std::string generate_boxes_scene(int seed) {
-    std::mt19937 rng(0xb0c5 + unsigned(seed));
-    const bool eye_inside = seed % 2 == 1;
-    const bool physical = (seed / 2) % 2 == 1;
-    // The light: above the floor, aimed at it, any cone and range.
-    const glm::vec3 light(uniform(rng, -2, 2), uniform(rng, 4, 7), uniform(rng, -2, 2));
-    const glm::vec3 target(uniform(rng, -1.5f, 1.5f), 0.0f, uniform(rng, -1.5f, 1.5f));
-    const glm::vec3 axis = glm::normalize(target - light);
-    const float cone = uniform(rng, 15, 45), near = uniform(rng, 0.1f, 1.0f);
-    const float far = uniform(rng, 7, 12);
-    // The medium: either model, isotropic or Henyey-Greenstein or Schlick at any asymmetry.
+// The medium of a box scene: either model, isotropic or Henyey-Greenstein or Schlick at any
+// asymmetry.
+std::string boxes_medium(std::mt19937& rng, bool physical) {
     const char* phases[] = {"isotropic", "henyey-greenstein", "schlick"};
     const char* phase = phases[rng() % 3];
     // Drawn for every phase so that the rest of the scene does not depend on it, and written
@@ -179,16 +176,27 @@ std::string generate_boxes_scene(int seed) {
             fmt::format("a0 = {:.4f}\na1 = {:.4f}\n",
                         rng() % 4 == 0 ? 0.0f : uniform(rng, 0.2f, 2.0f), uniform(rng, 0.5f, 2.0f));
     }
-    // Boxes: in the cone, at any height and turn; on one seed in three a small one between the
-    // light and its near plane. None holds the light.
-    struct Placed {
-        glm::vec3 centre, size, turn;
-    };
-    std::vector<Placed> boxes;
+    return medium;
+}
+
+struct BoxesLight {
+    glm::vec3 position, target, axis;
+    float cone, near, far;
+};
+
+struct PlacedBox {
+    glm::vec3 centre, size, turn;
+};
+
+// Boxes: in the cone, at any height and turn; on one seed in three a small one between the
+// light and its near plane. None holds the light.
+std::vector<PlacedBox> place_boxes(std::mt19937& rng, const BoxesLight& l) {
+    std::vector<PlacedBox> boxes;
     const int count = 2 + int(rng() % 6);
     for (int i = 0; i < count; ++i) {
-        const float along = uniform(rng, 1.0f, glm::length(target - light) - 0.3f);
-        const glm::vec3 centre = light + along * tilted(rng, axis, uniform(rng, 0, 0.8f * cone));
+        const float along = uniform(rng, 1.0f, glm::length(l.target - l.position) - 0.3f);
+        const glm::vec3 centre =
+            l.position + along * tilted(rng, l.axis, uniform(rng, 0, 0.8f * l.cone));
         const glm::vec3 size(uniform(rng, 0.2f, 1.4f), uniform(rng, 0.2f, 1.4f),
                              uniform(rng, 0.2f, 1.4f));
         boxes.push_back(
@@ -197,21 +205,25 @@ std::string generate_boxes_scene(int seed) {
     }
     if (rng() % 3 == 0) {
         const glm::vec3 centre =
-            light + 0.6f * near * tilted(rng, axis, uniform(rng, 0, 0.5f * cone));
-        boxes.push_back({centre, glm::vec3(0.35f * near), glm::vec3(uniform(rng, 0, 90), 0, 0)});
+            l.position + 0.6f * l.near * tilted(rng, l.axis, uniform(rng, 0, 0.5f * l.cone));
+        boxes.push_back({centre, glm::vec3(0.35f * l.near), glm::vec3(uniform(rng, 0, 90), 0, 0)});
     }
-    std::erase_if(boxes, [&](const Placed& b) {
-        return glm::length(light - b.centre) < 0.5f * glm::length(b.size) + 0.05f;
+    std::erase_if(boxes, [&](const PlacedBox& b) {
+        return glm::length(l.position - b.centre) < 0.5f * glm::length(b.size) + 0.05f;
     });
-    // The eye: inside the cone and its range looking away from the light, down or anywhere; or
-    // outside it, looking at the cone's middle.
+    return boxes;
+}
+
+// The eye: inside the cone and its range looking away from the light, down or anywhere; or
+// outside it, looking at the cone's middle. Returns the eye and the point it looks at.
+std::pair<glm::vec3, glm::vec3> place_eye(std::mt19937& rng, const BoxesLight& l, bool inside) {
     glm::vec3 eye, look;
-    if (eye_inside) {
-        const float along = uniform(rng, std::max(1.5f * near, 0.8f), 0.45f * far);
-        eye = light + along * tilted(rng, axis, uniform(rng, 0, 0.6f * cone));
+    if (inside) {
+        const float along = uniform(rng, std::max(1.5f * l.near, 0.8f), 0.45f * l.far);
+        eye = l.position + along * tilted(rng, l.axis, uniform(rng, 0, 0.6f * l.cone));
         eye.y = std::max(eye.y, 0.3f);
         const int view = int(rng() % 3);
-        const glm::vec3 away = glm::normalize(eye - light);
+        const glm::vec3 away = glm::normalize(eye - l.position);
         look = view == 0   ? eye + tilted(rng, away, uniform(rng, 0, 20))
                : view == 1 ? glm::vec3(uniform(rng, -2, 2), 0.0f, uniform(rng, -2, 2))
                            : eye + random_direction(rng);
@@ -219,14 +231,34 @@ std::string generate_boxes_scene(int seed) {
         eye = glm::vec3(uniform(rng, -9, 9), uniform(rng, 0.5f, 8), uniform(rng, 6, 11));
         if (rng() % 2)
             eye.z = -eye.z;
-        look = light + 0.5f * glm::length(target - light) * axis;
+        look = l.position + 0.5f * glm::length(l.target - l.position) * l.axis;
     }
-    // No box holds the eye either (with room to see past it).
-    std::erase_if(boxes, [&](const Placed& b) {
-        return glm::length(eye - b.centre) < 0.5f * glm::length(b.size) + 0.5f;
-    });
     if (glm::length(look - eye) < 1e-3f)
         look = eye + glm::vec3(0, -1, 0);
+    return {eye, look};
+}
+
+}  // namespace
+
+std::string generate_boxes_scene(int seed) {
+    std::mt19937 rng(0xb0c5 + unsigned(seed));
+    const bool eye_inside = seed % 2 == 1;
+    const bool physical = (seed / 2) % 2 == 1;
+    // The light: above the floor, aimed at it, any cone and range.
+    BoxesLight l;
+    l.position = glm::vec3(uniform(rng, -2, 2), uniform(rng, 4, 7), uniform(rng, -2, 2));
+    l.target = glm::vec3(uniform(rng, -1.5f, 1.5f), 0.0f, uniform(rng, -1.5f, 1.5f));
+    l.axis = glm::normalize(l.target - l.position);
+    l.cone = uniform(rng, 15, 45);
+    l.near = uniform(rng, 0.1f, 1.0f);
+    l.far = uniform(rng, 7, 12);
+    const std::string medium = boxes_medium(rng, physical);
+    std::vector<PlacedBox> boxes = place_boxes(rng, l);
+    const auto [eye, look] = place_eye(rng, l, eye_inside);
+    // No box holds the eye either (with room to see past it).
+    std::erase_if(boxes, [&](const PlacedBox& b) {
+        return glm::length(eye - b.centre) < 0.5f * glm::length(b.size) + 0.5f;
+    });
     const glm::vec3 view = glm::normalize(look - eye);
     const char* up = std::abs(view.y) > 0.99f ? "[0.0, 0.0, 1.0]" : "[0.0, 1.0, 0.0]";
     std::string toml = fmt::format(
@@ -260,7 +292,7 @@ shape = "plane"
 size = [40.0, 0.0, 40.0]
 )",
         seed, eye_inside ? "inside" : "outside", toml_vec3(eye), toml_vec3(look), up,
-        uniform(rng, 40, 70), toml_vec3(light), toml_vec3(target), cone, near, far,
+        uniform(rng, 40, 70), toml_vec3(l.position), toml_vec3(l.target), l.cone, l.near, l.far,
         toml_vec3(glm::vec3(uniform(rng, 50, 200))), medium);
     for (size_t i = 0; i < boxes.size(); ++i) {
         toml += fmt::format(

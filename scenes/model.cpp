@@ -86,33 +86,23 @@ std::string lower_extension(const fs::path& path) {
     return extension;
 }
 
-}  // namespace
+// Fails with assimp's reason.
+[[noreturn]] void refuse(const Assimp::Importer& importer, const fs::path& path) {
+    const std::string reason = importer.GetErrorString();
+    fail("{}: cannot read the model ({})", path.string(),
+         reason.empty() ? "assimp gave no reason" : reason);
+}
 
-Model load_model(const fs::path& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
-        fail("{}: cannot open model file", path.string());
-    }
-    if (const std::string extension = lower_extension(path); extension == ".obj") {
-        check_obj_indices(path);
-    } else if (extension == ".ply") {
-        check_ply_header(path);
-    }
-    Assimp::Importer importer;
+// Reads and validates the file first, so that the limits of scenes/mesh.h hold before
+// triangulation runs (its ear clipping is quadratic in a polygon's size), then triangulates.
+const aiScene* read_checked(Assimp::Importer& importer, const fs::path& path) {
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     importer.SetPropertyBool(AI_CONFIG_PP_FD_REMOVE, true);
     importer.SetPropertyBool(AI_CONFIG_PP_FD_CHECKAREA, false);  // ours drops zero area only
-    // Read and validate first, so that the limits hold before triangulation runs (its ear
-    // clipping is quadratic in a polygon's size).
     const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
-    auto refuse = [&] {
-        const std::string reason = importer.GetErrorString();
-        fail("{}: cannot read the model ({})", path.string(),
-             reason.empty() ? "assimp gave no reason" : reason);
-    };
     if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
-        refuse();
+        refuse(importer, path);
     }
     long long vertices = 0, triangles = 0;
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
@@ -137,49 +127,53 @@ Model load_model(const fs::path& path) {
         aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
         aiProcess_FindDegenerates | aiProcess_FindInvalidData | aiProcess_ValidateDataStructure);
     if (!scene || !scene->mRootNode) {
-        refuse();
+        refuse(importer, path);
     }
+    return scene;
+}
 
-    std::vector<std::shared_ptr<const Mesh>> meshes(scene->mNumMeshes);
-    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-        meshes[m] = convert(*scene->mMeshes[m], fmt::format("{}: mesh {}", path.string(), m));
+// The part's material name, diffuse colour and opacity, where the file gives finite ones.
+void read_material(const aiMaterial& material, ModelPart& part) {
+    aiString name;
+    if (material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) {
+        part.material = name.C_Str();
     }
-    Model model;
-    std::map<std::string, int> names;  // keeps part names unique
-    // Depth-first over the node tree with an explicit stack (a deep hierarchy cannot overflow it);
-    // assimp's validation has refused cycles.
-    std::vector<std::pair<const aiNode*, glm::mat4>> stack{{scene->mRootNode, glm::mat4(1.0f)}};
+    aiColor3D diffuse;
+    if (material.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS) {
+        const glm::vec3 d(diffuse.r, diffuse.g, diffuse.b);
+        if (finite(d)) {
+            part.diffuse = glm::clamp(d, 0.0f, 1.0f);
+        }
+    }
+    float opacity = 1.0f;
+    if (material.Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS && std::isfinite(opacity)) {
+        part.opacity = std::clamp(opacity, 0.0f, 1.0f);
+    }
+}
+
+// One part per (node, mesh), depth-first over the node tree with an explicit stack (a deep
+// hierarchy cannot overflow it; assimp's validation has refused cycles), named after its node
+// (and its material or index where a node has several meshes), names kept unique.
+std::vector<ModelPart> model_parts(const aiScene& scene,
+                                   const std::vector<std::shared_ptr<const Mesh>>& meshes) {
+    std::vector<ModelPart> parts;
+    std::map<std::string, int> names;
+    std::vector<std::pair<const aiNode*, glm::mat4>> stack{{scene.mRootNode, glm::mat4(1.0f)}};
     while (!stack.empty()) {
         const auto [node, parent] = stack.back();
         stack.pop_back();
         const glm::mat4 transform = parent * to_glm(node->mTransformation);
         for (unsigned k = 0; k < node->mNumMeshes; ++k) {
             const unsigned index = node->mMeshes[k];
-            if (index >= scene->mNumMeshes || !meshes[index]) {
+            if (index >= scene.mNumMeshes || !meshes[index]) {
                 continue;
             }
-            const aiMesh& mesh = *scene->mMeshes[index];
+            const aiMesh& mesh = *scene.mMeshes[index];
             ModelPart part;
             part.mesh = meshes[index];
             part.transform = transform;
-            if (mesh.mMaterialIndex < scene->mNumMaterials) {
-                const aiMaterial& material = *scene->mMaterials[mesh.mMaterialIndex];
-                aiString name;
-                if (material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) {
-                    part.material = name.C_Str();
-                }
-                aiColor3D diffuse;
-                if (material.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS) {
-                    const glm::vec3 d(diffuse.r, diffuse.g, diffuse.b);
-                    if (finite(d)) {
-                        part.diffuse = glm::clamp(d, 0.0f, 1.0f);
-                    }
-                }
-                float opacity = 1.0f;
-                if (material.Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS &&
-                    std::isfinite(opacity)) {
-                    part.opacity = std::clamp(opacity, 0.0f, 1.0f);
-                }
+            if (mesh.mMaterialIndex < scene.mNumMaterials) {
+                read_material(*scene.mMaterials[mesh.mMaterialIndex], part);
             }
             std::string name = node->mName.length > 0 ? node->mName.C_Str() : "node";
             if (node->mNumMeshes > 1) {
@@ -190,12 +184,35 @@ Model load_model(const fs::path& path) {
                 name = fmt::format("{}#{}", name, seen + 1);
             }
             part.name = printable(name);
-            model.parts.push_back(std::move(part));
+            parts.push_back(std::move(part));
         }
         for (unsigned c = node->mNumChildren; c-- > 0;) {
             stack.emplace_back(node->mChildren[c], transform);
         }
     }
+    return parts;
+}
+
+}  // namespace
+
+Model load_model(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        fail("{}: cannot open model file", path.string());
+    }
+    if (const std::string extension = lower_extension(path); extension == ".obj") {
+        check_obj_indices(path);
+    } else if (extension == ".ply") {
+        check_ply_header(path);
+    }
+    Assimp::Importer importer;
+    const aiScene& scene = *read_checked(importer, path);
+    std::vector<std::shared_ptr<const Mesh>> meshes(scene.mNumMeshes);
+    for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+        meshes[m] = convert(*scene.mMeshes[m], fmt::format("{}: mesh {}", path.string(), m));
+    }
+    Model model;
+    model.parts = model_parts(scene, meshes);
     if (model.parts.empty()) {
         fail("{}: the model holds no triangle", path.string());
     }
