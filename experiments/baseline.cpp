@@ -15,30 +15,43 @@ namespace sl::experiments {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-std::string baseline_comparison(const Experiment& x, const fs::path& out,
-                                const fs::path& baseline) {
-    // The baseline's rows by cell id; its experiment file may be an older version of this one.
-    struct Cells {
-        std::vector<double> fps, error;
-        std::vector<std::vector<double>> samples;  // frame ms per repetition
-        bool complete = true;                      // every row kept its frames
-        void add(const Json& row) {
-            fps.push_back(row.at("fps").get<double>());
-            if (row.contains("rel_rmse") && row["rel_rmse"].is_number()) {
-                error.push_back(row["rel_rmse"].get<double>());
-            }
-            samples.push_back(frame_samples(row, complete));
+namespace {
+
+// One cell's rows in a run: FPS, error, frame times.
+struct Cells {
+    std::vector<double> fps, error;
+    std::vector<std::vector<double>> samples;  // frame ms per repetition
+    bool complete = true;                      // every row kept its frames
+    void add(const Json& row) {
+        fps.push_back(row.at("fps").get<double>());
+        if (row.contains("rel_rmse") && row["rel_rmse"].is_number()) {
+            error.push_back(row["rel_rmse"].get<double>());
         }
-        // FPS with the interval of the median frame time inverted, when the frames were kept.
-        std::string fps_text() const {
-            if (!complete) {
-                return fmt::format("{:.2f}", median(fps));
-            }
-            const Interval i = median_interval(samples);
-            return fmt::format("{:.2f} [{:.2f}–{:.2f}]", median(fps), 1000.0 / i.high,
-                               1000.0 / i.low);
+        samples.push_back(frame_samples(row, complete));
+    }
+    // FPS with the interval of the median frame time inverted, when the frames were kept.
+    std::string fps_text() const {
+        if (!complete) {
+            return fmt::format("{:.2f}", median(fps));
         }
-    };
+        const Interval i = median_interval(samples);
+        return fmt::format("{:.2f} [{:.2f}–{:.2f}]", median(fps), 1000.0 / i.high, 1000.0 / i.low);
+    }
+    // The mean rel_rmse in percent, or "" without one.
+    std::string error_text() const {
+        if (error.empty()) {
+            return "";
+        }
+        double sum = 0.0;
+        for (const double e : error) {
+            sum += e / double(error.size());
+        }
+        return fmt::format("{:.3g}%", 100 * sum);
+    }
+};
+
+// The baseline's rows by cell id (its experiment file may be an older version of this one).
+std::map<std::string, Cells> baseline_cells(const fs::path& baseline) {
     std::map<std::string, Cells> theirs;
     if (fs::is_directory(baseline / "cells")) {
         for (const auto& entry : fs::directory_iterator(baseline / "cells")) {
@@ -58,6 +71,25 @@ std::string baseline_comparison(const Experiment& x, const fs::path& out,
     if (theirs.empty()) {
         fail("{}: no result rows (cells/*.json) to compare with", baseline.string());
     }
+    return theirs;
+}
+
+std::string machine(const fs::path& dir) {
+    std::ifstream file(dir / "env.json");
+    try {
+        const Json env = Json::parse(file);
+        return fmt::format("{} ({} cores), GL {}", env.at("cpu").value("model", "?"),
+                           env.at("cpu").value("cores", 0), env.at("gl").value("renderer", "?"));
+    } catch (const std::exception&) {
+        return std::string("an unrecorded machine");
+    }
+}
+
+}  // namespace
+
+std::string baseline_comparison(const Experiment& x, const fs::path& out,
+                                const fs::path& baseline) {
+    const std::map<std::string, Cells> theirs = baseline_cells(baseline);
     std::map<std::string, Cells> ours;
     std::vector<std::string> order;
     for (const StoredRow& r : load_rows(x, out)) {
@@ -67,24 +99,6 @@ std::string baseline_comparison(const Experiment& x, const fs::path& out,
         }
         ours[id].add(r.row);
     }
-    auto machine = [](const fs::path& dir) {
-        std::ifstream file(dir / "env.json");
-        try {
-            const Json env = Json::parse(file);
-            return fmt::format("{} ({} cores), GL {}", env.at("cpu").value("model", "?"),
-                               env.at("cpu").value("cores", 0),
-                               env.at("gl").value("renderer", "?"));
-        } catch (const std::exception&) {
-            return std::string("an unrecorded machine");
-        }
-    };
-    auto mean = [](const std::vector<double>& v) {
-        double sum = 0.0;
-        for (const double e : v) {
-            sum += e / double(v.size());
-        }
-        return sum;
-    };
     std::string md = fmt::format(
         "# {}: this machine beside {}\n\nHere: {}.\nThere: {}.\n\nFPS is the median over "
         "the cell's repetitions, with the 95% interval of the median frame time (inverted) "
@@ -98,10 +112,9 @@ std::string baseline_comparison(const Experiment& x, const fs::path& out,
     for (const std::string& id : order) {
         const Cells& here = ours.at(id);
         const auto it = theirs.find(id);
-        const std::string error_here =
-            here.error.empty() ? "" : fmt::format("{:.3g}%", 100 * mean(here.error));
         if (it == theirs.end()) {
-            md += fmt::format("| {} | {} | (none) | | {} | |\n", id, here.fps_text(), error_here);
+            md += fmt::format("| {} | {} | (none) | | {} | |\n", id, here.fps_text(),
+                              here.error_text());
             continue;
         }
         const Cells& there = it->second;
@@ -111,10 +124,8 @@ std::string baseline_comparison(const Experiment& x, const fs::path& out,
             here.complete && there.complete &&
             !median_interval(here.samples).overlaps(median_interval(there.samples));
         md += fmt::format("| {} | {} | {} | {:.2f}x{} | {} | {} |\n", id, here.fps_text(),
-                          there.fps_text(), ratio, significant ? " *" : "", error_here,
-                          it->second.error.empty()
-                              ? std::string()
-                              : fmt::format("{:.3g}%", 100 * mean(it->second.error)));
+                          there.fps_text(), ratio, significant ? " *" : "", here.error_text(),
+                          there.error_text());
     }
     for (const auto& [id, cells] : theirs) {
         if (!ours.contains(id)) {
