@@ -647,93 +647,108 @@ void read_table(const toml::table& table, const std::string& origin, Experiment&
 }
 
 // [equal_error]: targets, baselines, tolerance and the searches per method.
-void read_equal_error(TomlTableReader& top, const std::string& origin, Experiment& x) {
-    if (const toml::table* table = top.table("equal_error")) {
-        TomlTableReader r(*table, origin, "[equal_error]");
-        EqualError e;
-        for (const std::string& target : values(r, "targets")) {
-            const auto value = parse_number(target);
-            if (!value || !(*value > 0.0 && *value < 1.0)) {
-                r.error("targets", fmt::format("{}: a relative RMSE in (0, 1)", quote(target)));
-            }
-            e.targets.push_back(*value);
+// One method's search: `[equal_error.search.METHOD]`, else dz or samples where the method has
+// them; nullopt for a method measured as is (beamtree has no parameter to trade). The bounds
+// must be numbers in the parameter's range.
+std::optional<Search> read_search(const std::string& origin, const std::string& method,
+                                  const toml::table* own) {
+    const auto instance = methods::create_volume_method(method);
+    Search search;
+    if (own) {
+        TomlTableReader s(*own, origin, "[equal_error.search." + method + "]");
+        search.parameter = s.string("parameter");
+        if (!instance->has_parameter(search.parameter)) {
+            s.error("parameter", fmt::format("method '{}' has no parameter {}", method,
+                                             quote(search.parameter)));
         }
-        if (e.targets.empty()) {
-            r.error("targets", "missing: the relative RMSE to reach, e.g. [0.01]");
-        }
-        if (x.reference.empty()) {
-            r.error("targets", "equal error needs a [reference] method");
-        }
-        e.baselines = strings(r, "baselines");
-        for (const std::string& baseline : e.baselines) {
-            if (std::find(x.methods.begin(), x.methods.end(), baseline) == x.methods.end()) {
-                r.error("baselines",
-                        fmt::format("{} is not a method of the sweep", quote(baseline)));
-            }
-        }
-        // The plain method: `plain`, or march where the sweep has it.
-        const bool has_march =
-            std::find(x.methods.begin(), x.methods.end(), "march") != x.methods.end();
-        e.plain = r.has("plain") ? r.string("plain") : has_march ? "march" : "";
-        if (!e.plain.empty() &&
-            std::find(x.methods.begin(), x.methods.end(), e.plain) == x.methods.end()) {
-            r.error("plain", fmt::format("{} is not a method of the sweep", quote(e.plain)));
-        }
-        e.tolerance = r.number_in("tolerance", e.tolerance, 1e-3, 10.0);
-        const toml::table* searches = r.table("search");
-        for (const std::string& method : x.methods) {
-            const auto instance = methods::create_volume_method(method);
-            const toml::table* own = searches ? (*searches)[method].as_table() : nullptr;
-            Search search;
-            if (own) {
-                TomlTableReader s(*own, origin, "[equal_error.search." + method + "]");
-                search.parameter = s.string("parameter");
-                if (!instance->has_parameter(search.parameter)) {
-                    s.error("parameter", fmt::format("method '{}' has no parameter {}", method,
-                                                     quote(search.parameter)));
-                }
-                search.cheap = s.number("cheap");
-                search.expensive = s.number("expensive");
-                s.finish();
-            } else if (instance->has_parameter("dz")) {
-                search = {"dz", 1.0, 0.01};  // slab depth, metres
-            } else if (instance->has_parameter("samples")) {
-                search = {"samples", 4, 1024};  // march steps
-            } else {
-                continue;  // measured as is (beamtree has no parameter to trade)
-            }
-            for (const frame::Parameter& p : instance->parameters()) {
-                if (p.name != search.parameter) {
-                    continue;
-                }
-                if (p.type == frame::Parameter::Type::choice ||
-                    p.type == frame::Parameter::Type::boolean) {
-                    fail("{}: [equal_error.search.{}]: '{}' is {}, not a number", origin, method,
-                         p.name, p.type == frame::Parameter::Type::choice ? "a choice" : "a flag");
-                }
-                search.integer = p.type == frame::Parameter::Type::integer;
-                auto inside = [&](double v) { return v >= p.min && v <= p.max; };
-                if (!inside(search.cheap) || !inside(search.expensive) || !(search.cheap > 0.0) ||
-                    !(search.expensive > 0.0) || search.cheap == search.expensive) {
-                    fail(
-                        "{}: [equal_error.search.{}]: cheap and expensive must differ and lie in "
-                        "{}'s range [{}, {}]",
-                        origin, method, p.name, p.min, p.max);
-                }
-            }
-            e.search[method] = search;
-        }
-        if (searches) {
-            for (const auto& [key, node] : *searches) {
-                if (!e.search.contains(std::string(key.str())) || !node.is_table()) {
-                    fail("{}: [equal_error.search]: {} is not a method of the sweep", origin,
-                         quote(key.str()));
-                }
-            }
-        }
-        r.finish();
-        x.equal_error = std::move(e);
+        search.cheap = s.number("cheap");
+        search.expensive = s.number("expensive");
+        s.finish();
+    } else if (instance->has_parameter("dz")) {
+        search = {"dz", 1.0, 0.01};  // slab depth, metres
+    } else if (instance->has_parameter("samples")) {
+        search = {"samples", 4, 1024};  // march steps
+    } else {
+        return std::nullopt;
     }
+    for (const frame::Parameter& p : instance->parameters()) {
+        if (p.name != search.parameter) {
+            continue;
+        }
+        if (p.type == frame::Parameter::Type::choice || p.type == frame::Parameter::Type::boolean) {
+            fail("{}: [equal_error.search.{}]: '{}' is {}, not a number", origin, method, p.name,
+                 p.type == frame::Parameter::Type::choice ? "a choice" : "a flag");
+        }
+        search.integer = p.type == frame::Parameter::Type::integer;
+        auto inside = [&](double v) { return v >= p.min && v <= p.max; };
+        if (!inside(search.cheap) || !inside(search.expensive) || !(search.cheap > 0.0) ||
+            !(search.expensive > 0.0) || search.cheap == search.expensive) {
+            fail(
+                "{}: [equal_error.search.{}]: cheap and expensive must differ and lie in {}'s "
+                "range [{}, {}]",
+                origin, method, p.name, p.min, p.max);
+        }
+    }
+    return search;
+}
+
+// Targets, baselines and the plain method of `[equal_error]`.
+void read_equal_error_targets(TomlTableReader& r, const Experiment& x, EqualError& e) {
+    for (const std::string& target : values(r, "targets")) {
+        const auto value = parse_number(target);
+        if (!value || !(*value > 0.0 && *value < 1.0)) {
+            r.error("targets", fmt::format("{}: a relative RMSE in (0, 1)", quote(target)));
+        }
+        e.targets.push_back(*value);
+    }
+    if (e.targets.empty()) {
+        r.error("targets", "missing: the relative RMSE to reach, e.g. [0.01]");
+    }
+    if (x.reference.empty()) {
+        r.error("targets", "equal error needs a [reference] method");
+    }
+    auto in_sweep = [&](const std::string& method) {
+        return std::find(x.methods.begin(), x.methods.end(), method) != x.methods.end();
+    };
+    e.baselines = strings(r, "baselines");
+    for (const std::string& baseline : e.baselines) {
+        if (!in_sweep(baseline)) {
+            r.error("baselines", fmt::format("{} is not a method of the sweep", quote(baseline)));
+        }
+    }
+    // The plain method: `plain`, or march where the sweep has it.
+    e.plain = r.has("plain") ? r.string("plain") : in_sweep("march") ? "march" : "";
+    if (!e.plain.empty() && !in_sweep(e.plain)) {
+        r.error("plain", fmt::format("{} is not a method of the sweep", quote(e.plain)));
+    }
+}
+
+void read_equal_error(TomlTableReader& top, const std::string& origin, Experiment& x) {
+    const toml::table* table = top.table("equal_error");
+    if (!table) {
+        return;
+    }
+    TomlTableReader r(*table, origin, "[equal_error]");
+    EqualError e;
+    read_equal_error_targets(r, x, e);
+    e.tolerance = r.number_in("tolerance", e.tolerance, 1e-3, 10.0);
+    const toml::table* searches = r.table("search");
+    for (const std::string& method : x.methods) {
+        if (const std::optional<Search> search =
+                read_search(origin, method, searches ? (*searches)[method].as_table() : nullptr)) {
+            e.search[method] = *search;
+        }
+    }
+    if (searches) {
+        for (const auto& [key, node] : *searches) {
+            if (!e.search.contains(std::string(key.str())) || !node.is_table()) {
+                fail("{}: [equal_error.search]: {} is not a method of the sweep", origin,
+                     quote(key.str()));
+            }
+        }
+    }
+    r.finish();
+    x.equal_error = std::move(e);
 }
 
 }  // namespace
