@@ -105,6 +105,73 @@ const toml::table& key_table(const toml::array& keys, size_t i, const std::strin
 
 }  // namespace
 
+namespace {
+
+void read_light_key(TomlTableReader& k, double t, Animation& a) {
+    if (k.has("position"))
+        add_key(a.light_position, t, k.vec3("position"));
+    if (k.has("target"))
+        add_key(a.light_target, t, k.vec3("target"));
+    if (k.has("cone_angle"))
+        add_key(a.cone_angle, t, float(k.number_in("cone_angle", 0, 0, 89, true)));
+    if (k.has("intensity"))
+        add_key(a.light_intensity, t, k.non_negative_vec3("intensity", glm::vec3(0)));
+}
+
+void read_camera_key(TomlTableReader& k, double t, Animation& a) {
+    if (k.has("position"))
+        add_key(a.camera_position, t, k.vec3("position"));
+    if (k.has("target"))
+        add_key(a.camera_target, t, k.vec3("target"));
+    if (k.has("fov"))
+        add_key(a.fov, t, float(k.number_in("fov", 0, 0, 180, true, true)));
+}
+
+// The keys of [[animation.objects]]: each names an object of the scene, whose tracks are made at
+// its first key; each object's key times rise on their own.
+class ObjectKeys {
+public:
+    ObjectKeys(const Scene& scene, const KeyReader& keys)
+        : scene_(scene),
+          keys_(keys),
+          previous_(scene.objects.size(), 0.0),
+          tracks_of_(scene.objects.size(), -1) {}
+
+    double read(TomlTableReader& k, Animation& a) {
+        const std::string name = k.string("name");
+        const auto it = std::find_if(scene_.objects.begin(), scene_.objects.end(),
+                                     [&](const Object& o) { return o.name == name; });
+        if (it == scene_.objects.end()) {
+            k.error("name", fmt::format("the scene has no object {}", quote(name)));
+        }
+        const size_t object = size_t(it - scene_.objects.begin());
+        int& index = tracks_of_[object];
+        const double t = keys_.time(k, previous_[object], index < 0);
+        if (index < 0) {
+            index = int(a.objects.size());
+            a.objects.push_back(
+                {.object = int(object), .translate = {}, .rotate = {}, .scale = {}});
+        }
+        Animation::ObjectTracks& tracks = a.objects[size_t(index)];
+        const Placement placement = read_placement(k, it->placement);
+        if (k.has("translate"))
+            add_key(tracks.translate, t, placement.translate);
+        if (k.has("rotate"))
+            add_key(tracks.rotate, t, placement.rotate_degrees);
+        if (k.has("scale"))
+            add_key(tracks.scale, t, placement.scale);
+        return t;
+    }
+
+private:
+    const Scene& scene_;
+    const KeyReader& keys_;
+    std::vector<double> previous_;
+    std::vector<int> tracks_of_;
+};
+
+}  // namespace
+
 Animation read_animation(const toml::table& table, const std::string& origin, const Scene& scene) {
     TomlTableReader r(table, origin, "[animation]");
     Animation a;
@@ -136,53 +203,16 @@ Animation read_animation(const toml::table& table, const std::string& origin, co
     double light_previous = 0.0, camera_previous = 0.0;
     each_key("light", [&](TomlTableReader& k, size_t i) {
         const double t = keys.time(k, light_previous, i == 0);
-        if (k.has("position"))
-            add_key(a.light_position, t, k.vec3("position"));
-        if (k.has("target"))
-            add_key(a.light_target, t, k.vec3("target"));
-        if (k.has("cone_angle"))
-            add_key(a.cone_angle, t, float(k.number_in("cone_angle", 0, 0, 89, true)));
-        if (k.has("intensity"))
-            add_key(a.light_intensity, t, k.non_negative_vec3("intensity", glm::vec3(0)));
+        read_light_key(k, t, a);
         return t;
     });
     each_key("camera", [&](TomlTableReader& k, size_t i) {
         const double t = keys.time(k, camera_previous, i == 0);
-        if (k.has("position"))
-            add_key(a.camera_position, t, k.vec3("position"));
-        if (k.has("target"))
-            add_key(a.camera_target, t, k.vec3("target"));
-        if (k.has("fov"))
-            add_key(a.fov, t, float(k.number_in("fov", 0, 0, 180, true, true)));
+        read_camera_key(k, t, a);
         return t;
     });
-    std::vector<double> object_previous(scene.objects.size(), 0.0);
-    std::vector<int> tracks_of(scene.objects.size(), -1);
-    each_key("objects", [&](TomlTableReader& k, size_t) {
-        const std::string name = k.string("name");
-        const auto it = std::find_if(scene.objects.begin(), scene.objects.end(),
-                                     [&](const Object& o) { return o.name == name; });
-        if (it == scene.objects.end()) {
-            k.error("name", fmt::format("the scene has no object {}", quote(name)));
-        }
-        const size_t object = size_t(it - scene.objects.begin());
-        int& index = tracks_of[object];
-        const double t = keys.time(k, object_previous[object], index < 0);
-        if (index < 0) {
-            index = int(a.objects.size());
-            a.objects.push_back(
-                {.object = int(object), .translate = {}, .rotate = {}, .scale = {}});
-        }
-        Animation::ObjectTracks& tracks = a.objects[size_t(index)];
-        const Placement placement = read_placement(k, it->placement);
-        if (k.has("translate"))
-            add_key(tracks.translate, t, placement.translate);
-        if (k.has("rotate"))
-            add_key(tracks.rotate, t, placement.rotate_degrees);
-        if (k.has("scale"))
-            add_key(tracks.scale, t, placement.scale);
-        return t;
-    });
+    ObjectKeys objects(scene, keys);
+    each_key("objects", [&](TomlTableReader& k, size_t) { return objects.read(k, a); });
     if (!any) {
         fail(
             "{}: [animation] needs at least one key ([[animation.light]], [[animation.camera]] "
