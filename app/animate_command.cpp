@@ -28,6 +28,63 @@ struct AnimateArguments : CommonOptions {
     int frames = 0;  // 0: the whole animation
 };
 
+// Frame 0 pays for the first build; the medians are over the frames after it.
+template <class Get>
+double median_after_first(const std::vector<frame::FrameRecord>& records, Get get) {
+    std::vector<double> v;
+    for (size_t i = records.size() > 1 ? 1 : 0; i < records.size(); ++i)
+        v.push_back(get(records[i]));
+    return sl::median(std::move(v));
+}
+
+// Plays the animation's first `frames` frames in one mode: its frames.csv and last picture into
+// `outputs`, one summary line printed.
+void play_mode(const Scene& scene, frame::VolumeMethod& method, const frame::RenderOptions& options,
+               frame::FrameMode mode, int warmup, int frames, const gl::ContextInfo& context,
+               OutputFiles& outputs) {
+    const Animation& animation = *scene.animation;
+    Scene live = scene_at(scene, animation.frame_time(0));
+    frame::SceneRenderer renderer(live, options);
+    method.prepare(live);
+    for (int i = 0; i < warmup; ++i) {
+        renderer.draw(method);  // shader compilation and first-use costs
+    }
+    std::vector<frame::FrameRecord> records;
+    std::string csv =
+        "frame,time_s,update_ms,update_on_worker,apply_ms,wait_ms,draw_ms,frame_ms,"
+        "overlap_ms,critical_cpu_ms,gpu_ms\n";
+    frame::FrameLoop loop(renderer, method, live, mode);
+    loop.play(
+        frames, [&](int k) { return scene_at(scene, animation.frame_time(k)); },
+        [&](const frame::FrameRecord& r) {
+            records.push_back(r);
+            csv += fmt::format(
+                "{},{:.6f},{:.4f},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},"
+                "{:.4f}\n",
+                r.frame, animation.frame_time(r.frame), r.update_ms, int(r.update_on_worker),
+                r.apply_ms, r.wait_ms, r.draw_ms, r.frame_ms, r.overlap_ms, r.critical_cpu_ms(),
+                r.gpu.total_ms());
+        });
+    const frame::Frame last = renderer.read_back();
+    const std::string stem =
+        fmt::format("{}.{}.{}", scene.name, method.name(), frame::to_string(mode));
+    outputs.add_text(stem + ".frames.csv", csv);
+    outputs.add(stem + ".last.png", [&](const std::filesystem::path& path) {
+        write_png(last.display_srgb8, options.width, options.height, path);
+    });
+    fmt::print(
+        "{} {} {} ({} frames, {}x{}, {}): median frame {:.2f} ms, CPU critical path {:.2f} "
+        "ms, update {:.2f} ms, GPU {:.2f} ms, overlap {:.2f} ms\n",
+        scene.name, method.name(), frame::to_string(mode), frames, options.width, options.height,
+        context.renderer,
+        median_after_first(records, [](const frame::FrameRecord& r) { return r.frame_ms; }),
+        median_after_first(records,
+                           [](const frame::FrameRecord& r) { return r.critical_cpu_ms(); }),
+        median_after_first(records, [](const frame::FrameRecord& r) { return r.update_ms; }),
+        median_after_first(records, [](const frame::FrameRecord& r) { return r.gpu.total_ms(); }),
+        median_after_first(records, [](const frame::FrameRecord& r) { return r.overlap_ms; }));
+}
+
 int run_animate(const AnimateArguments& args) {
     frame::RenderOptions options;
     parse_size(args.size, options.width, options.height);
@@ -59,52 +116,7 @@ int run_animate(const AnimateArguments& args) {
     const gl::ContextInfo context = platform->info();
     OutputFiles outputs(args.out);
     for (const frame::FrameMode mode : modes) {
-        Scene live = scene_at(scene, animation.frame_time(0));
-        frame::SceneRenderer renderer(live, options);
-        method->prepare(live);
-        for (int i = 0; i < args.warmup; ++i) {
-            renderer.draw(*method);  // shader compilation and first-use costs
-        }
-        std::vector<frame::FrameRecord> records;
-        std::string csv =
-            "frame,time_s,update_ms,update_on_worker,apply_ms,wait_ms,draw_ms,frame_ms,"
-            "overlap_ms,critical_cpu_ms,gpu_ms\n";
-        frame::FrameLoop loop(renderer, *method, live, mode);
-        loop.play(
-            frames, [&](int k) { return scene_at(scene, animation.frame_time(k)); },
-            [&](const frame::FrameRecord& r) {
-                records.push_back(r);
-                csv += fmt::format(
-                    "{},{:.6f},{:.4f},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},"
-                    "{:.4f}\n",
-                    r.frame, animation.frame_time(r.frame), r.update_ms, int(r.update_on_worker),
-                    r.apply_ms, r.wait_ms, r.draw_ms, r.frame_ms, r.overlap_ms, r.critical_cpu_ms(),
-                    r.gpu.total_ms());
-            });
-        const frame::Frame last = renderer.read_back();
-        const std::string stem =
-            fmt::format("{}.{}.{}", scene.name, method->name(), frame::to_string(mode));
-        outputs.add_text(stem + ".frames.csv", csv);
-        outputs.add(stem + ".last.png", [&](const std::filesystem::path& path) {
-            write_png(last.display_srgb8, options.width, options.height, path);
-        });
-        // Frame 0 pays for the first build; the medians are over the frames after it.
-        auto column = [&](auto get) {
-            std::vector<double> v;
-            for (size_t i = records.size() > 1 ? 1 : 0; i < records.size(); ++i)
-                v.push_back(get(records[i]));
-            return sl::median(std::move(v));
-        };
-        fmt::print(
-            "{} {} {} ({} frames, {}x{}, {}): median frame {:.2f} ms, CPU critical path {:.2f} "
-            "ms, update {:.2f} ms, GPU {:.2f} ms, overlap {:.2f} ms\n",
-            scene.name, method->name(), frame::to_string(mode), frames, options.width,
-            options.height, context.renderer,
-            column([](const frame::FrameRecord& r) { return r.frame_ms; }),
-            column([](const frame::FrameRecord& r) { return r.critical_cpu_ms(); }),
-            column([](const frame::FrameRecord& r) { return r.update_ms; }),
-            column([](const frame::FrameRecord& r) { return r.gpu.total_ms(); }),
-            column([](const frame::FrameRecord& r) { return r.overlap_ms; }));
+        play_mode(scene, *method, options, mode, args.warmup, frames, context, outputs);
     }
     outputs.commit();
     fmt::print("  -> {}/{}.{}.<mode>.{{frames.csv,last.png}}\n", args.out, scene.name,
