@@ -55,7 +55,7 @@ fs::path resolve_environment(const std::string& name) {
     return file;
 }
 
-int run_prefilter(const PrefilterArguments& a) {
+ibl::PrefilterSettings prefilter_settings(const PrefilterArguments& a) {
     ibl::PrefilterSettings settings;
     settings.method = ibl::parse_prefilter_method(a.method);
     settings.distribution = ibl::parse_distribution(a.distribution);
@@ -72,6 +72,41 @@ int run_prefilter(const PrefilterArguments& a) {
     if (a.brute_force_grid < 0 || a.brute_force_grid > 1024) {
         fail("--brute-force {} must be a grid size in 0..1024", a.brute_force_grid);
     }
+    return settings;
+}
+
+// Level l of the chain into `out` (EXR and PNG strips), scored against the brute-force
+// integral of `lobe` where the grid resolves its roughness; its JSON entry.
+nlohmann::json write_level(const PrefilterArguments& a, const ibl::CubeMap& cube,
+                           const ibl::PrefilteredChain& chain, size_t l, ibl::Distribution lobe,
+                           OutputFiles& out) {
+    const ibl::CubeMap& level = chain.levels[l];
+    const std::string name = fmt::format("level_{:02}", l);
+    const Image strip = ibl::faces_to_strip(level);
+    out.add(name + ".exr", [&](const fs::path& file) { write_exr(strip, file); });
+    out.add(name + ".png", [&](const fs::path& file) { write_png(strip, ToneMap{}, file); });
+    nlohmann::json entry = {{"level", l},
+                            {"face_size", level.size},
+                            {"roughness", chain.roughness[l]},
+                            {"seconds", chain.level_seconds[l]}};
+    if (l > 0 && ibl::brute_force_resolves(chain.roughness[l], a.brute_force_grid)) {
+        const auto start = std::chrono::steady_clock::now();
+        const ibl::CubeMap truth =
+            ibl::brute_force_level(cube, level.size, lobe, chain.roughness[l], a.brute_force_grid);
+        entry["rel_rmse_vs_brute_force"] = ibl::relative_rmse(level, truth);
+        entry["brute_force_seconds"] = ms_since(start) / 1000.0;
+        std::printf("  level %zu: %4d^2  alpha %.3f  %.2f s  rel RMSE vs brute force %.4f\n", l,
+                    level.size, chain.roughness[l], chain.level_seconds[l],
+                    entry["rel_rmse_vs_brute_force"].get<double>());
+    } else {
+        std::printf("  level %zu: %4d^2  alpha %.3f  %.2f s\n", l, level.size, chain.roughness[l],
+                    chain.level_seconds[l]);
+    }
+    return entry;
+}
+
+int run_prefilter(const PrefilterArguments& a) {
+    const ibl::PrefilterSettings settings = prefilter_settings(a);
     const fs::path path = resolve_environment(a.environment);
 
     const auto load_start = std::chrono::steady_clock::now();
@@ -92,29 +127,7 @@ int run_prefilter(const PrefilterArguments& a) {
                                        ? ibl::Distribution::beckmann
                                        : settings.distribution;
     for (size_t l = 0; l < chain.levels.size(); ++l) {
-        const ibl::CubeMap& level = chain.levels[l];
-        const std::string name = fmt::format("level_{:02}", l);
-        const Image strip = ibl::faces_to_strip(level);
-        out.add(name + ".exr", [&](const fs::path& file) { write_exr(strip, file); });
-        out.add(name + ".png", [&](const fs::path& file) { write_png(strip, ToneMap{}, file); });
-        nlohmann::json entry = {{"level", l},
-                                {"face_size", level.size},
-                                {"roughness", chain.roughness[l]},
-                                {"seconds", chain.level_seconds[l]}};
-        if (l > 0 && ibl::brute_force_resolves(chain.roughness[l], a.brute_force_grid)) {
-            const auto start = std::chrono::steady_clock::now();
-            const ibl::CubeMap truth = ibl::brute_force_level(
-                cube, level.size, lobe, chain.roughness[l], a.brute_force_grid);
-            entry["rel_rmse_vs_brute_force"] = ibl::relative_rmse(level, truth);
-            entry["brute_force_seconds"] = ms_since(start) / 1000.0;
-            std::printf("  level %zu: %4d^2  alpha %.3f  %.2f s  rel RMSE vs brute force %.4f\n", l,
-                        level.size, chain.roughness[l], chain.level_seconds[l],
-                        entry["rel_rmse_vs_brute_force"].get<double>());
-        } else {
-            std::printf("  level %zu: %4d^2  alpha %.3f  %.2f s\n", l, level.size,
-                        chain.roughness[l], chain.level_seconds[l]);
-        }
-        levels.push_back(entry);
+        levels.push_back(write_level(a, cube, chain, l, lobe, out));
     }
     nlohmann::json sh_json = nlohmann::json::array();
     for (const glm::vec3& c : sh.coefficients)
