@@ -254,7 +254,8 @@ std::string generate_boxes_scene(int seed) {
     l.far = uniform(rng, 7, 12);
     const std::string medium = boxes_medium(rng, physical);
     std::vector<PlacedBox> boxes = place_boxes(rng, l);
-    const auto [eye, look] = place_eye(rng, l, eye_inside);
+    const std::pair<glm::vec3, glm::vec3> placed = place_eye(rng, l, eye_inside);
+    const glm::vec3 eye = placed.first, look = placed.second;
     // No box holds the eye either (with room to see past it).
     std::erase_if(boxes, [&](const PlacedBox& b) {
         return glm::length(eye - b.centre) < 0.5f * glm::length(b.size) + 0.5f;
