@@ -146,11 +146,18 @@ struct PlyElement {
     long long min_tokens = 0;  // per item in ASCII: one per scalar property and list count
 };
 
+// A PLY header: its format and elements, read up to end_header.
+struct PlyHeader {
+    std::string format;
+    std::vector<PlyElement> elements;
+    int lines = 0;  // the header's lines
+};
+
 // Walks the binary data item by item (each list's count read, its items skipped): the element
 // and item where the data ends, if it ends before the header's counts are met.
-void check_ply_binary_data(std::ifstream& in, const std::vector<PlyElement>& elements,
-                           bool big_endian, const std::function<void(const std::string&)>& error) {
-    for (const PlyElement& element : elements) {
+void check_ply_binary_data(std::ifstream& in, const PlyHeader& header, const PlyError& error) {
+    const bool big_endian = header.format == "binary_big_endian";
+    for (const PlyElement& element : header.elements) {
         for (long long item = 0; item < element.count; ++item) {
             for (const PlyProperty& property : element.properties) {
                 long long bytes = property.size;
@@ -168,23 +175,16 @@ void check_ply_binary_data(std::ifstream& in, const std::vector<PlyElement>& ele
                     }
                 }
                 if (bytes < 0 || !in.ignore(bytes) || in.gcount() != bytes) {
-                    error(
-                        fmt::format("the data ends in element {} item {} of {} (line {}): "
-                                    "the file is truncated, or its header's counts or types are "
-                                    "wrong",
-                                    quote(element.name), item + 1, element.count, element.line));
+                    error(header.lines,
+                          fmt::format("the data ends in element {} item {} of {} (line {}): "
+                                      "the file is truncated, or its header's counts or types are "
+                                      "wrong",
+                                      quote(element.name), item + 1, element.count, element.line));
                 }
             }
         }
     }
 }
-
-// A PLY header: its format and elements, read up to end_header.
-struct PlyHeader {
-    std::string format;
-    std::vector<PlyElement> elements;
-    int lines = 0;  // the header's lines
-};
 
 constexpr std::string_view kPlyTypes =
     "char, uchar, short, ushort, int, uint, float, double or their sized names";
@@ -321,8 +321,7 @@ void check_ply_header(const fs::path& path) {
     if (header.format == "ascii") {
         check_ply_ascii_data(in, header, error);
     } else {
-        check_ply_binary_data(in, header.elements, header.format == "binary_big_endian",
-                              [&](const std::string& reason) { error(header.lines, reason); });
+        check_ply_binary_data(in, header, error);
     }
 }
 
