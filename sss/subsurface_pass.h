@@ -73,6 +73,21 @@ private:
         GLsizei count = 0;
         float area_per_sample = 0.0f;
     };
+    // Set-up, in the constructor's order.
+    void upload_profiles();
+    void build_environment_samples();
+    void create_programs();
+    void create_targets();
+    // The frame's passes, in render()'s order.
+    std::vector<size_t> translucent_objects() const;
+    void draw_eye_gbuffer(const DrawObject& draw, const glm::mat4& view_projection,
+                          GLuint surface_depth, const std::vector<size_t>& translucent);
+    void draw_light_maps(const DrawObject& draw, const SpotLight& light,
+                         const std::vector<size_t>& translucent);
+    void splat_light(const SpotLight& light, const std::vector<size_t>& translucent,
+                     uint32_t frame);
+    void splat_environment();
+    void composite(GLuint surface_framebuffer);
     void set_light(GLuint program, const SpotLight& light) const;
     void set_material(GLuint program, size_t object) const;
 
