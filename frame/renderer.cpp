@@ -165,8 +165,21 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     uniforms_ = make_frame_uniforms(scene, options);
     uniform_buffer_ = gl::create_buffer(&uniforms_, sizeof(uniforms_), GL_DYNAMIC_STORAGE_BIT);
     uniform_buffer_.label("frame uniforms");
+    upload_meshes();
+    create_programs();
+    environment_ = std::make_unique<ibl::EnvironmentTextures>(scene);
+    environment_->set_uniforms(uniforms_, scene.environment);
+    if (scene.has_translucent_objects()) {
+        subsurface_ = std::make_unique<sss::SubsurfacePass>(scene, options.width, options.height);
+    }
+    allocate_shadow(options.shadow);
+    create_targets();
+    create_timers();
+    gl::check_errors("creating the scene renderer");
+}
 
-    for (const Object& object : scene.objects) {
+void SceneRenderer::upload_meshes() {
+    for (const Object& object : scene_.objects) {
         const Mesh& mesh = *object.mesh;
         if (meshes_.contains(&mesh)) {
             continue;
@@ -195,7 +208,9 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
         gpu.vertex_array.label(object.name);
         meshes_.emplace(&mesh, std::move(gpu));
     }
+}
 
+void SceneRenderer::create_programs() {
     shadow_program_ = gl::create_program({{GL_VERTEX_SHADER, "frame/shaders/shadow.vert"},
                                           {GL_FRAGMENT_SHADER, "frame/shaders/shadow.frag"}});
     shadow_moments_program_ =
@@ -209,15 +224,10 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     composite_program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                              {GL_FRAGMENT_SHADER, "frame/shaders/composite.frag"}});
     empty_vertex_array_ = gl::create_vertex_array();
-    environment_ = std::make_unique<ibl::EnvironmentTextures>(scene);
-    environment_->set_uniforms(uniforms_, scene.environment);
-    if (scene.has_translucent_objects()) {
-        subsurface_ = std::make_unique<sss::SubsurfacePass>(scene, options.width, options.height);
-    }
+}
 
-    allocate_shadow(options.shadow);
-
-    const int w = options.width, h = options.height;
+void SceneRenderer::create_targets() {
+    const int w = options_.width, h = options_.height;
     surface_color_ = gl::create_texture_2d(GL_RGBA32F, w, h, GL_NEAREST);
     surface_depth_ = gl::create_texture_2d(GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
     surface_framebuffer_ = gl::create_framebuffer();
@@ -241,24 +251,23 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     const GLenum attachments[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     GL.NamedFramebufferDrawBuffers(composite_framebuffer_.id(), 2, attachments);
     require_complete(composite_framebuffer_.id(), "composite", w, h);
+}
 
+void SceneRenderer::create_timers() {
     for (gl::Query& timer : timers_) {
         timer = gl::create_query(GL_TIME_ELAPSED);
     }
     timeline_ = std::make_unique<Timeline>();
     // llvmpipe reports its first GL_TIME_ELAPSED query of a context from time zero (since boot):
     // spend that first query here, on a clear, so that every frame's timings are real.
-    {
-        const gl::Query priming = gl::create_query(GL_TIME_ELAPSED);
-        GL.BeginQuery(GL_TIME_ELAPSED, priming.id());
-        const float one = 1.0f;
-        GL.DepthMask(GL_TRUE);  // depth clears obey the mask
-        GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_DEPTH, 0, &one);
-        GL.EndQuery(GL_TIME_ELAPSED);
-        GLuint64 ns = 0;
-        GL.GetQueryObjectui64v(priming.id(), GL_QUERY_RESULT, &ns);
-    }
-    gl::check_errors("creating the scene renderer");
+    const gl::Query priming = gl::create_query(GL_TIME_ELAPSED);
+    GL.BeginQuery(GL_TIME_ELAPSED, priming.id());
+    const float one = 1.0f;
+    GL.DepthMask(GL_TRUE);  // depth clears obey the mask
+    GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_DEPTH, 0, &one);
+    GL.EndQuery(GL_TIME_ELAPSED);
+    GLuint64 ns = 0;
+    GL.GetQueryObjectui64v(priming.id(), GL_QUERY_RESULT, &ns);
 }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -349,7 +358,6 @@ void SceneRenderer::draw_object(size_t index, GLuint program, bool with_normals)
 
 FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     const auto start = std::chrono::steady_clock::now();
-    const int w = options_.width, h = options_.height;
     uniforms_ = make_frame_uniforms(scene_, options_);
     if (const ShadowSettings wanted = method.shadow_settings(options_.shadow); wanted != shadow_) {
         allocate_shadow(wanted);
@@ -360,73 +368,13 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     GL.NamedBufferSubData(uniform_buffer_.id(), 0, sizeof(uniforms_), &uniforms_);
     GL.Disable(GL_BLEND);
     GL.Disable(GL_CULL_FACE);  // open meshes (planes) must cast shadows from both sides
-
     {
         PassTimer timer(timers_[0], "shadow map");
-        const int size = shadow_.map_size;
-        GL.BindFramebuffer(GL_FRAMEBUFFER, shadow_framebuffer_.id());
-        GL.Viewport(0, 0, size, size);
-        const float one = 1.0f;
-        GL.DepthMask(GL_TRUE);  // depth clears obey the mask
-        GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_DEPTH, 0, &one);
-        const bool vsm = shadow_.filter == ShadowFilter::vsm;
-        if (vsm) {
-            const float far_moments[4] = {1.0f, 1.0f, 0.0f, 0.0f};
-            GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_COLOR, 0, far_moments);
-        }
-        GL.Enable(GL_DEPTH_TEST);
-        GL.DepthFunc(GL_LESS);
-        GL.DepthMask(GL_TRUE);
-        GL.Enable(GL_POLYGON_OFFSET_FILL);
-        GL.PolygonOffset(2.0f, 4.0f);  // slope-scaled bias against shadow acne
-        // The light's range bounds where it scatters, not what casts shadows (the beam tree and
-        // the reference see occluders from the light outward): an occluder between the light
-        // and its near plane is clamped to depth 0 (and keeps its linear depth in the VSM
-        // moments) instead of being clipped away, so it shadows everything in range behind it.
-        GL.Enable(GL_DEPTH_CLAMP);
-        const GLuint program = vsm ? shadow_moments_program_.id() : shadow_program_.id();
-        GL.UseProgram(program);
-        for (size_t i = 0; i < scene_.objects.size(); ++i) {
-            if (scene_.casts_shadow(scene_.objects[i])) {  // glass lets the light through
-                draw_object(i, program, false);
-            }
-        }
-        GL.Disable(GL_DEPTH_CLAMP);
-        GL.Disable(GL_POLYGON_OFFSET_FILL);
-        if (vsm && shadow_.radius > 0) {
-            // Separable Gaussian: moments -> scratch (x), scratch -> moments (y).
-            GL.Disable(GL_DEPTH_TEST);
-            GL.UseProgram(shadow_blur_program_.id());
-            GL.ProgramUniform1i(shadow_blur_program_.id(), SL_SHADOW_BLUR_RADIUS, shadow_.radius);
-            GL.BindVertexArray(empty_vertex_array_.id());
-            const GLuint sources[2] = {shadow_moments_.id(), shadow_scratch_.id()};
-            for (int i = 0; i < 2; ++i) {
-                GL.BindFramebuffer(GL_FRAMEBUFFER, shadow_blur_framebuffer_[i].id());
-                GL.ProgramUniform2i(shadow_blur_program_.id(), SL_SHADOW_BLUR_DIRECTION, i == 0,
-                                    i == 1);
-                GL.BindTextureUnit(SL_SHADOW_BLUR_SOURCE_UNIT, sources[i]);
-                GL.DrawArrays(GL_TRIANGLES, 0, 3);
-            }
-            GL.Enable(GL_DEPTH_TEST);
-        }
+        draw_shadow_map();
     }
     {
         PassTimer timer(timers_[1], "surfaces");
-        GL.BindFramebuffer(GL_FRAMEBUFFER, surface_framebuffer_.id());
-        GL.Viewport(0, 0, w, h);
-        const float black[4] = {0, 0, 0, 0};
-        const float far_depth = 1.0f;
-        GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_COLOR, 0, black);
-        GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_DEPTH, 0, &far_depth);
-        GL.UseProgram(surface_program_.id());
-        GL.BindTextureUnit(SL_SHADOW_MAP_UNIT, shadow_map_.id());
-        GL.BindTextureUnit(SL_SHADOW_MOMENTS_UNIT, shadow_moments_.id());
-        GL.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-        environment_->bind();
-        draw_objects(surface_program_.id(), true);
-        if (environment_->enabled() && scene_.environment.skybox) {
-            environment_->draw_skybox();  // the depth buffer stays as the methods expect
-        }
+        draw_surfaces();
     }
     if (subsurface_) {
         PassTimer timer(timers_[4], "subsurface");
@@ -438,41 +386,124 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         GL.BindTextureUnit(SL_SHADOW_MAP_UNIT, shadow_map_.id());
         GL.BindTextureUnit(SL_SHADOW_MOMENTS_UNIT, shadow_moments_.id());
     }
-    {
-        // Timed by the method's timeline sections (queries of one target cannot nest). The
-        // section's query and the debug group end with the scope, also when the method refuses
-        // its parameters mid-frame (a froxel grid too large for the image).
-        GL.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "volume");
-        timeline_->begin(method.name());
-        struct VolumePassEnd {
-            Timeline& timeline;
-            ~VolumePassEnd() {
-                timeline.end();
-                GL.PopDebugGroup();
-            }
-        } pass_end{*timeline_};
-        GL.BindFramebuffer(GL_FRAMEBUFFER, volume_framebuffer_.id());
-        const float zero[4] = {0, 0, 0, 0};
-        GL.ClearNamedFramebufferfv(volume_framebuffer_.id(), GL_COLOR, 0, zero);
-        GL.Disable(GL_DEPTH_TEST);
-        GL.DepthMask(GL_FALSE);
-        method.render(VolumeInputs{scene_, uniforms_, surface_depth_.id(), shadow_map_.id(), w, h,
-                                   *timeline_});
-    }
+    draw_volume(method);
     {
         PassTimer timer(timers_[3], "composite");
-        GL.BindFramebuffer(GL_FRAMEBUFFER, composite_framebuffer_.id());
-        GL.Viewport(0, 0, w, h);
-        GL.Disable(GL_DEPTH_TEST);
-        GL.Disable(GL_BLEND);
-        GL.UseProgram(composite_program_.id());
-        GL.BindTextureUnit(SL_COMPOSITE_SURFACE_UNIT, surface_color_.id());
-        GL.BindTextureUnit(SL_COMPOSITE_IN_SCATTERING_UNIT, in_scattering_.id());
-        GL.BindVertexArray(empty_vertex_array_.id());
-        GL.DrawArrays(GL_TRIANGLES, 0, 3);
+        draw_composite();
     }
     GL.DepthMask(GL_TRUE);
+    FrameTimings timings = read_timings();
+    gl::check_errors(("rendering with method " + method.name()).c_str());
+    timings.cpu_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return timings;
+}
 
+void SceneRenderer::draw_shadow_map() {
+    const int size = shadow_.map_size;
+    GL.BindFramebuffer(GL_FRAMEBUFFER, shadow_framebuffer_.id());
+    GL.Viewport(0, 0, size, size);
+    const float one = 1.0f;
+    GL.DepthMask(GL_TRUE);  // depth clears obey the mask
+    GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_DEPTH, 0, &one);
+    const bool vsm = shadow_.filter == ShadowFilter::vsm;
+    if (vsm) {
+        const float far_moments[4] = {1.0f, 1.0f, 0.0f, 0.0f};
+        GL.ClearNamedFramebufferfv(shadow_framebuffer_.id(), GL_COLOR, 0, far_moments);
+    }
+    GL.Enable(GL_DEPTH_TEST);
+    GL.DepthFunc(GL_LESS);
+    GL.DepthMask(GL_TRUE);
+    GL.Enable(GL_POLYGON_OFFSET_FILL);
+    GL.PolygonOffset(2.0f, 4.0f);  // slope-scaled bias against shadow acne
+    // The light's range bounds where it scatters, not what casts shadows (the beam tree and
+    // the reference see occluders from the light outward): an occluder between the light
+    // and its near plane is clamped to depth 0 (and keeps its linear depth in the VSM
+    // moments) instead of being clipped away, so it shadows everything in range behind it.
+    GL.Enable(GL_DEPTH_CLAMP);
+    const GLuint program = vsm ? shadow_moments_program_.id() : shadow_program_.id();
+    GL.UseProgram(program);
+    for (size_t i = 0; i < scene_.objects.size(); ++i) {
+        if (scene_.casts_shadow(scene_.objects[i])) {  // glass lets the light through
+            draw_object(i, program, false);
+        }
+    }
+    GL.Disable(GL_DEPTH_CLAMP);
+    GL.Disable(GL_POLYGON_OFFSET_FILL);
+    if (vsm && shadow_.radius > 0) {
+        blur_shadow_moments();
+    }
+}
+
+void SceneRenderer::blur_shadow_moments() {
+    // Separable Gaussian: moments -> scratch (x), scratch -> moments (y).
+    GL.Disable(GL_DEPTH_TEST);
+    GL.UseProgram(shadow_blur_program_.id());
+    GL.ProgramUniform1i(shadow_blur_program_.id(), SL_SHADOW_BLUR_RADIUS, shadow_.radius);
+    GL.BindVertexArray(empty_vertex_array_.id());
+    const GLuint sources[2] = {shadow_moments_.id(), shadow_scratch_.id()};
+    for (int i = 0; i < 2; ++i) {
+        GL.BindFramebuffer(GL_FRAMEBUFFER, shadow_blur_framebuffer_[i].id());
+        GL.ProgramUniform2i(shadow_blur_program_.id(), SL_SHADOW_BLUR_DIRECTION, i == 0, i == 1);
+        GL.BindTextureUnit(SL_SHADOW_BLUR_SOURCE_UNIT, sources[i]);
+        GL.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    GL.Enable(GL_DEPTH_TEST);
+}
+
+void SceneRenderer::draw_surfaces() {
+    GL.BindFramebuffer(GL_FRAMEBUFFER, surface_framebuffer_.id());
+    GL.Viewport(0, 0, options_.width, options_.height);
+    const float black[4] = {0, 0, 0, 0};
+    const float far_depth = 1.0f;
+    GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_COLOR, 0, black);
+    GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_DEPTH, 0, &far_depth);
+    GL.UseProgram(surface_program_.id());
+    GL.BindTextureUnit(SL_SHADOW_MAP_UNIT, shadow_map_.id());
+    GL.BindTextureUnit(SL_SHADOW_MOMENTS_UNIT, shadow_moments_.id());
+    GL.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    environment_->bind();
+    draw_objects(surface_program_.id(), true);
+    if (environment_->enabled() && scene_.environment.skybox) {
+        environment_->draw_skybox();  // the depth buffer stays as the methods expect
+    }
+}
+
+void SceneRenderer::draw_volume(VolumeMethod& method) {
+    // Timed by the method's timeline sections (queries of one target cannot nest). The
+    // section's query and the debug group end with the scope, also when the method refuses
+    // its parameters mid-frame (a froxel grid too large for the image).
+    GL.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "volume");
+    timeline_->begin(method.name());
+    struct VolumePassEnd {
+        Timeline& timeline;
+        ~VolumePassEnd() {
+            timeline.end();
+            GL.PopDebugGroup();
+        }
+    } pass_end{*timeline_};
+    GL.BindFramebuffer(GL_FRAMEBUFFER, volume_framebuffer_.id());
+    const float zero[4] = {0, 0, 0, 0};
+    GL.ClearNamedFramebufferfv(volume_framebuffer_.id(), GL_COLOR, 0, zero);
+    GL.Disable(GL_DEPTH_TEST);
+    GL.DepthMask(GL_FALSE);
+    method.render(VolumeInputs{scene_, uniforms_, surface_depth_.id(), shadow_map_.id(),
+                               options_.width, options_.height, *timeline_});
+}
+
+void SceneRenderer::draw_composite() {
+    GL.BindFramebuffer(GL_FRAMEBUFFER, composite_framebuffer_.id());
+    GL.Viewport(0, 0, options_.width, options_.height);
+    GL.Disable(GL_DEPTH_TEST);
+    GL.Disable(GL_BLEND);
+    GL.UseProgram(composite_program_.id());
+    GL.BindTextureUnit(SL_COMPOSITE_SURFACE_UNIT, surface_color_.id());
+    GL.BindTextureUnit(SL_COMPOSITE_IN_SCATTERING_UNIT, in_scattering_.id());
+    GL.BindVertexArray(empty_vertex_array_.id());
+    GL.DrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+FrameTimings SceneRenderer::read_timings() const {
     FrameTimings timings;
     double* pass_ms[] = {&timings.gpu.shadow_ms, &timings.gpu.surface_ms, nullptr,
                          &timings.gpu.composite_ms};
@@ -490,9 +521,6 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     for (const auto& [name, ms] : timings.gpu.volume_sections) {
         timings.gpu.volume_ms += ms;
     }
-    gl::check_errors(("rendering with method " + method.name()).c_str());
-    timings.cpu_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return timings;
 }
 

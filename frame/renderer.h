@@ -99,6 +99,19 @@ private:
     class PassTimer;
     class Timeline;
 
+    // Set-up, in the constructor's order.
+    void upload_meshes();
+    void create_programs();
+    void create_targets();
+    void create_timers();
+    // The frame's passes, in draw()'s order.
+    void draw_shadow_map();
+    void blur_shadow_moments();
+    void draw_surfaces();
+    void draw_volume(VolumeMethod& method);
+    void draw_composite();
+    FrameTimings read_timings() const;
+
     void draw_objects(GLuint program, bool with_normals);
     void draw_object(size_t index, GLuint program, bool with_normals);
     void allocate_shadow(const ShadowSettings& settings);
