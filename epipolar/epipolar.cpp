@@ -136,9 +136,29 @@ public:
             .light = glm::dvec3(inputs.uniforms.light_position),
             .width = inputs.width,
             .height = inputs.height};
+        set_uniforms(views, grid, texels, levels, direct);
+        GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_EPIPOLAR_COUNTERS_BINDING, counters_.id());
+        valid_slices_ = 0;
+        if (!direct) {
+            place_samples(inputs, views, grid, texels);
+            march_samples(inputs, grid, texels, levels);
+        }
+        apply(inputs, direct);
+        frame_pixels_ = double(inputs.width) * inputs.height;
+        drawn_grid_ = direct ? glm::ivec2(0) : grid;
+        if (overlay_wanted_ && !direct) {
+            draw_overlay(inputs);
+            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+            GL.Viewport(0, 0, inputs.width, inputs.height);
+        }
+    }
+
+    // What every pass shares: the grid, the light on screen and its exit arc, the map and the
+    // march's settings.
+    void set_uniforms(const Views& views, glm::ivec2 grid, int texels, int levels, bool direct) {
         const glm::dvec2 screen = light_screen_position(views);
-        const ExitArc arc = exit_arc(screen, inputs.width, inputs.height);
-        light_on_screen_ = inside_image(screen, inputs.width, inputs.height);
+        const ExitArc arc = exit_arc(screen, views.width, views.height);
+        light_on_screen_ = inside_image(screen, views.width, views.height);
         for (const gl::Program* program : {&coordinates_program_, &refine_program_,
                                            &rectify_program_, &march_program_, &apply_program_}) {
             const GLuint id = program->id();
@@ -153,67 +173,76 @@ public:
             GL.ProgramUniform1i(id, SL_EPIPOLAR_MINMAX_LEVELS, levels);
             GL.ProgramUniform1i(id, SL_EPIPOLAR_DIRECT, direct ? 1 : 0);
         }
-        GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_EPIPOLAR_COUNTERS_BINDING, counters_.id());
-        valid_slices_ = 0;
-        if (!direct) {
-            inputs.timeline.section("slices");
-            GL.BindTextureUnit(SL_EPIPOLAR_LIGHT_DEPTH_UNIT, inputs.shadow_map);
-            GL.BindSampler(SL_EPIPOLAR_LIGHT_DEPTH_UNIT,
-                           plain_sampler_.id());  // depths, not comparisons
-            upload_slices(make_slices(views, grid.y, texels));
-            allocate(grid, texels);
-            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_EPIPOLAR_MARCHED_LIST_BINDING,
-                              marched_list_.id());
-            GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_EPIPOLAR_SLICES_BINDING,
-                              slices_buffer_.id());
+    }
 
-            inputs.timeline.section("coordinates");
-            GL.UseProgram(coordinates_program_.id());
-            GL.BindTextureUnit(SL_EPIPOLAR_SURFACE_DEPTH_UNIT, inputs.surface_depth);
-            GL.BindImageTexture(SL_EPIPOLAR_COORDINATES_IMAGE, coordinates_.id(), 0, GL_FALSE, 0,
-                                GL_WRITE_ONLY, GL_RGBA32F);
-            gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
+    // The epipolar slices, their samples' screen coordinates and depths, and the samples that
+    // must be marched (depth breaks, every max_step-th).
+    void place_samples(const frame::VolumeInputs& inputs, const Views& views, glm::ivec2 grid,
+                       int texels) {
+        inputs.timeline.section("slices");
+        GL.BindTextureUnit(SL_EPIPOLAR_LIGHT_DEPTH_UNIT, inputs.shadow_map);
+        GL.BindSampler(SL_EPIPOLAR_LIGHT_DEPTH_UNIT,
+                       plain_sampler_.id());  // depths, not comparisons
+        upload_slices(make_slices(views, grid.y, texels));
+        allocate(grid, texels);
+        GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_EPIPOLAR_MARCHED_LIST_BINDING,
+                          marched_list_.id());
+        GL.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SL_EPIPOLAR_SLICES_BINDING,
+                          slices_buffer_.id());
 
-            inputs.timeline.section("refine");
-            GL.UseProgram(refine_program_.id());
-            GL.BindTextureUnit(SL_EPIPOLAR_COORDINATES_UNIT, coordinates_.id());
-            GL.BindImageTexture(SL_EPIPOLAR_MARKS_IMAGE, marks_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                                GL_R32I);
-            gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
+        inputs.timeline.section("coordinates");
+        GL.UseProgram(coordinates_program_.id());
+        GL.BindTextureUnit(SL_EPIPOLAR_SURFACE_DEPTH_UNIT, inputs.surface_depth);
+        GL.BindImageTexture(SL_EPIPOLAR_COORDINATES_IMAGE, coordinates_.id(), 0, GL_FALSE, 0,
+                            GL_WRITE_ONLY, GL_RGBA32F);
+        gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
 
-            inputs.timeline.section("min-max trees");
-            GL.UseProgram(rectify_program_.id());
-            GL.BindImageTexture(SL_EPIPOLAR_TREE_IMAGE, tree_.id(), 0, GL_FALSE, 0, GL_READ_WRITE,
-                                GL_RG32F);
-            gl::dispatch_compute({texels / 64, grid.y, 1}, {64, 1, 1});
-            if (levels > 6) {  // 1 to 6 by rectify.comp
-                GL.UseProgram(minmax_program_.id());
-                GL.ProgramUniform3i(minmax_program_.id(), SL_EPIPOLAR_TREE_LEVELS, levels, texels,
-                                    grid.y);
-                gl::dispatch_compute({grid.y, 1, 1}, {64, 1, 1});
-            }
+        inputs.timeline.section("refine");
+        GL.UseProgram(refine_program_.id());
+        GL.BindTextureUnit(SL_EPIPOLAR_COORDINATES_UNIT, coordinates_.id());
+        GL.BindImageTexture(SL_EPIPOLAR_MARKS_IMAGE, marks_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                            GL_R32I);
+        gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
+    }
 
-            inputs.timeline.section("march");
-            GL.UseProgram(march_program_.id());
-            GL.BindTextureUnit(SL_EPIPOLAR_TREE_UNIT, tree_.id());
-            GL.BindTextureUnit(SL_MEDIUM_TABLE_UNIT, closed_form_.medium_table());
-            GL.BindImageTexture(SL_EPIPOLAR_SCATTERING_IMAGE, scattering_.id(), 0, GL_FALSE, 0,
-                                GL_WRITE_ONLY, GL_RGBA32F);
-            GL.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, counters_.id());
-            GL.DispatchComputeIndirect(0);  // refine.comp's count of marched samples
-            GL.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-            GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                             GL_SHADER_STORAGE_BARRIER_BIT);
-
-            inputs.timeline.section("interpolate");
-            GL.UseProgram(interpolate_program_.id());
-            GL.BindTextureUnit(SL_EPIPOLAR_MARKS_UNIT, marks_.id());
-            GL.ProgramUniform2i(interpolate_program_.id(), SL_EPIPOLAR_GRID, grid.x, grid.y);
-            GL.BindImageTexture(SL_EPIPOLAR_SCATTERING_IMAGE, scattering_.id(), 0, GL_FALSE, 0,
-                                GL_READ_WRITE, GL_RGBA32F);
-            gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
+    // The min-max trees of the rectified shadow map, the marched samples, and the rest
+    // interpolated between them.
+    void march_samples(const frame::VolumeInputs& inputs, glm::ivec2 grid, int texels, int levels) {
+        inputs.timeline.section("min-max trees");
+        GL.UseProgram(rectify_program_.id());
+        GL.BindImageTexture(SL_EPIPOLAR_TREE_IMAGE, tree_.id(), 0, GL_FALSE, 0, GL_READ_WRITE,
+                            GL_RG32F);
+        gl::dispatch_compute({texels / 64, grid.y, 1}, {64, 1, 1});
+        if (levels > 6) {  // 1 to 6 by rectify.comp
+            GL.UseProgram(minmax_program_.id());
+            GL.ProgramUniform3i(minmax_program_.id(), SL_EPIPOLAR_TREE_LEVELS, levels, texels,
+                                grid.y);
+            gl::dispatch_compute({grid.y, 1, 1}, {64, 1, 1});
         }
 
+        inputs.timeline.section("march");
+        GL.UseProgram(march_program_.id());
+        GL.BindTextureUnit(SL_EPIPOLAR_TREE_UNIT, tree_.id());
+        GL.BindTextureUnit(SL_MEDIUM_TABLE_UNIT, closed_form_.medium_table());
+        GL.BindImageTexture(SL_EPIPOLAR_SCATTERING_IMAGE, scattering_.id(), 0, GL_FALSE, 0,
+                            GL_WRITE_ONLY, GL_RGBA32F);
+        GL.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, counters_.id());
+        GL.DispatchComputeIndirect(0);  // refine.comp's count of marched samples
+        GL.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        GL.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                         GL_SHADER_STORAGE_BARRIER_BIT);
+
+        inputs.timeline.section("interpolate");
+        GL.UseProgram(interpolate_program_.id());
+        GL.BindTextureUnit(SL_EPIPOLAR_MARKS_UNIT, marks_.id());
+        GL.ProgramUniform2i(interpolate_program_.id(), SL_EPIPOLAR_GRID, grid.x, grid.y);
+        GL.BindImageTexture(SL_EPIPOLAR_SCATTERING_IMAGE, scattering_.id(), 0, GL_FALSE, 0,
+                            GL_READ_WRITE, GL_RGBA32F);
+        gl::dispatch_compute({grid.x, grid.y, 1}, {64, 1, 1});
+    }
+
+    // Each pixel's I_s from its slice's samples (or marched directly), added to the frame's.
+    void apply(const frame::VolumeInputs& inputs, bool direct) {
         inputs.timeline.section("apply");
         GL.UseProgram(apply_program_.id());
         GL.BindTextureUnit(SL_EPIPOLAR_SURFACE_DEPTH_UNIT, inputs.surface_depth);
@@ -228,13 +257,6 @@ public:
         GL.Disable(GL_BLEND);
         GL.BindSampler(SL_EPIPOLAR_LIGHT_DEPTH_UNIT, 0);
         GL.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        frame_pixels_ = double(inputs.width) * inputs.height;
-        drawn_grid_ = direct ? glm::ivec2(0) : grid;
-        if (overlay_wanted_ && !direct) {
-            draw_overlay(inputs);
-            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
-            GL.Viewport(0, 0, inputs.width, inputs.height);
-        }
     }
 
     frame::MethodStatistics statistics() const override {

@@ -138,26 +138,8 @@ public:
         // rest of the buffer keeps its clear, so the image is the same.
         const bool skip_certain = hybrid && march_stencil_;
         if (hybrid) {
-            inputs.timeline.section("region lists");
-            if (skip_certain) {
-                GL.BindFramebuffer(GL_FRAMEBUFFER, march_framebuffer_.id());
-            }
-            if (walk_) {
-                lists_.walk(inputs, tree_, skip_certain,
-                            analytic::RegionLists::kUncertainStencilBit);
-            } else {
-                lists_.build(inputs, skip_certain);
-            }
-            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
-            inputs.timeline.section("analytic");
-            if (walk_) {
-                analytic_.draw_walk(inputs, tree_);
-            } else {
-                analytic_.draw(inputs);
-            }
-            tree_.bind();
+            draw_regions(inputs, GLuint(target), skip_certain);
         }
-
         // A marching buffer of the frame's size without blur needs no resolve (it would copy):
         // the march adds its I_s straight into the frame's target, attached beside the buffer.
         const GLuint direct_target =
@@ -165,14 +147,51 @@ public:
         if (direct_target) {
             attach_frame_target(direct_target);
         }
-
         inputs.timeline.section("march");
+        march(inputs, scale, direct_target != 0, skip_certain);
+        GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+        GL.Viewport(0, 0, inputs.width, inputs.height);
+        if (direct_target) {
+            GL.Disablei(GL_BLEND, 1);
+            attach_frame_target(0);
+            return;
+        }
+        inputs.timeline.section("resolve");
+        resolve(inputs, scale);
+    }
+
+    // hybrid3: the region lists (marking the uncertain pixels when `skip_certain`) and the lit
+    // regions' closed form, into the frame's target.
+    void draw_regions(const frame::VolumeInputs& inputs, GLuint target, bool skip_certain) {
+        inputs.timeline.section("region lists");
+        if (skip_certain) {
+            GL.BindFramebuffer(GL_FRAMEBUFFER, march_framebuffer_.id());
+        }
+        if (walk_) {
+            lists_.walk(inputs, tree_, skip_certain, analytic::RegionLists::kUncertainStencilBit);
+        } else {
+            lists_.build(inputs, skip_certain);
+        }
+        GL.BindFramebuffer(GL_FRAMEBUFFER, target);
+        inputs.timeline.section("analytic");
+        if (walk_) {
+            analytic_.draw_walk(inputs, tree_);
+        } else {
+            analytic_.draw(inputs);
+        }
+        tree_.bind();
+    }
+
+    // The march into the marching buffer (and, when `direct`, added into the frame's I_s
+    // attached beside it).
+    void march(const frame::VolumeInputs& inputs, double scale, bool direct, bool skip_certain) {
+        const bool hybrid = variant_ == MarchVariant::hybrid3;
         GL.BindFramebuffer(GL_FRAMEBUFFER, march_framebuffer_.id());
         GL.Viewport(0, 0, buffer_width_, buffer_height_);
         const float zero[4] = {0, 0, 0, 0};
         GL.ClearNamedFramebufferfv(march_framebuffer_.id(), GL_COLOR, 0, zero);
         GL.Disable(GL_BLEND);
-        if (direct_target) {
+        if (direct) {
             GL.Enablei(GL_BLEND, 1);  // added into the frame's I_s
             GL.BlendFunci(1, GL_ONE, GL_ONE);
         }
@@ -200,18 +219,10 @@ public:
         GL.BindTextureUnit(SL_MARCH_SURFACE_DEPTH_UNIT, inputs.surface_depth);
         GL.BindVertexArray(empty_vertex_array_.id());
         GL.DrawArrays(GL_TRIANGLES, 0, 3);
-        marked.reset();
-        if (direct_target) {
-            GL.Disablei(GL_BLEND, 1);
-            attach_frame_target(0);
-            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
-            GL.Viewport(0, 0, inputs.width, inputs.height);
-            return;
-        }
+    }
 
-        inputs.timeline.section("resolve");
-        GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
-        GL.Viewport(0, 0, inputs.width, inputs.height);
+    // The marching buffer upsampled (and blurred) into the frame's target, added.
+    void resolve(const frame::VolumeInputs& inputs, double scale) {
         GL.UseProgram(resolve_program_.id());
         GL.ProgramUniform1f(resolve_program_.id(), SL_RESOLVE_BUFFER_SCALE, float(scale));
         GL.ProgramUniform1i(resolve_program_.id(), SL_RESOLVE_BLUR, int(*blur_));

@@ -144,54 +144,8 @@ public:
     }
 
     void render(const frame::VolumeInputs& inputs) override {
-        const double dz = *dz_;
-        // CPU: the planes clipped to the influence pyramid, then (hybrids) partitioned by the
-        // beam tree (Nilsson appendix B `partition`, §5.2.1).
-        auto start = std::chrono::steady_clock::now();
-        const std::vector<Slice> slices =
-            influence_slices(inputs.scene.camera, inputs.scene.light, dz);
-        slicing_ms_ = ms_since(start);
-        start = std::chrono::steady_clock::now();
-        // Pieces drawn with the shadow lookup, then (hybrid1) the lit ones drawn without it.
-        std::vector<PlaneVertex> vertices, lit;
-        pieces_ = {};
         const bool classify_on_gpu = tree_ && *partition_ == Partition::gpu;
-        if (!tree_ || classify_on_gpu) {
-            for (const Slice& slice : slices)
-                append_fan(slice.polygon, slice.depth, vertices);
-            pieces_[size_t(bt::Region::uncertain)] = slices.size();
-        } else {
-            const double tolerance = 1e-7 * double(inputs.scene.light.far);
-            for (const Slice& slice : slices) {
-                bt::BeamTree::Partition parts = tree_->partition(slice.polygon);
-                // Only pieces that are drawn can crack against each other.
-                std::vector<bt::Polygon*> drawn;
-                for (bt::Polygon& piece : parts.uncertain)
-                    drawn.push_back(&piece);
-                if (variant_ == PlanesVariant::hybrid1) {
-                    for (bt::Polygon& piece : parts.lit)
-                        drawn.push_back(&piece);
-                }
-                remove_t_junctions(drawn, tolerance);
-                for (const bt::Polygon& piece : parts.uncertain)
-                    append_fan(piece, slice.depth, vertices);
-                if (variant_ == PlanesVariant::hybrid1) {
-                    for (const bt::Polygon& piece : parts.lit)
-                        append_fan(piece, slice.depth, lit);
-                }
-                pieces_[size_t(bt::Region::lit)] += parts.lit.size();
-                pieces_[size_t(bt::Region::uncertain)] += parts.uncertain.size();
-                pieces_[size_t(bt::Region::unlit)] += parts.unlit.size();
-            }
-        }
-        const GLsizei shadowed_count = GLsizei(vertices.size());
-        const GLsizei lit_count = GLsizei(lit.size());
-        vertices.insert(vertices.end(), lit.begin(), lit.end());
-        partition_ms_ = tree_ && !classify_on_gpu ? ms_since(start) : 0.0;
-        slice_count_ = slices.size();
-        GL.NamedBufferData(vertex_buffer_.id(), GLsizeiptr(vertices.size() * sizeof(PlaneVertex)),
-                           vertices.data(), GL_STREAM_DRAW);
-
+        const PlaneDraws draws = upload_planes(inputs, classify_on_gpu);
         GLint target = 0;
         GL.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
         if (classify_on_gpu) {
@@ -203,42 +157,119 @@ public:
             GL.ClearNamedFramebufferfv(own_framebuffer_.id(), GL_COLOR, 0, zero);
             inputs.timeline.section("region lists");
             if (walk_) {
-                lists_.walk(inputs, gpu_tree_, true,
-                            variant_ == PlanesVariant::hybrid1
-                                ? analytic::RegionLists::kLitStencilBit |
-                                      analytic::RegionLists::kUncertainStencilBit
-                                : analytic::RegionLists::kUncertainStencilBit);
+                lists_.walk(inputs, gpu_tree_, true, marked_bits());
             } else {
                 lists_.build(inputs, true);
             }
         }
         if (variant_ == PlanesVariant::hybrid2) {
             GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
-            if (walk_ && !classify_on_gpu) {
-                inputs.timeline.section("region lists");
-                lists_.walk(inputs, gpu_tree_, false, 0);  // for the lit integral alone
-            }
-            inputs.timeline.section("analytic");
-            if (walk_) {
-                analytic_.draw_walk(inputs, gpu_tree_);
-            } else {
-                analytic_.draw(inputs);
-            }
+            draw_lit_integral(inputs, classify_on_gpu);
             if (classify_on_gpu) {
                 GL.BindFramebuffer(GL_FRAMEBUFFER, own_framebuffer_.id());
             }
         }
         inputs.timeline.section("planes");
+        draw_planes(inputs, draws, classify_on_gpu);
+        if (classify_on_gpu) {
+            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+            GL.UseProgram(copy_program_.id());
+            GL.BindTextureUnit(0, own_target_.id());
+            GL.BindVertexArray(empty_vertex_array_.id());
+            GL.Enable(GL_BLEND);
+            GL.BlendFunc(GL_ONE, GL_ONE);
+            GL.DrawArrays(GL_TRIANGLES, 0, 3);  // added into the frame's I_s
+            GL.Disable(GL_BLEND);
+        }
+    }
+
+    // The pixels the region lists mark for the planes: hybrid1 draws its lit pieces too.
+    GLuint marked_bits() const {
+        return variant_ == PlanesVariant::hybrid1 ? analytic::RegionLists::kLitStencilBit |
+                                                        analytic::RegionLists::kUncertainStencilBit
+                                                  : analytic::RegionLists::kUncertainStencilBit;
+    }
+
+    // The vertex buffer's two ranges: pieces drawn with the shadow lookup, then (hybrid1) the
+    // lit pieces drawn without it.
+    struct PlaneDraws {
+        GLsizei shadowed = 0, lit = 0;
+    };
+
+    // CPU: the planes clipped to the influence pyramid, then (hybrids) partitioned by the beam
+    // tree (Nilsson appendix B `partition`, §5.2.1), uploaded as triangle fans.
+    PlaneDraws upload_planes(const frame::VolumeInputs& inputs, bool classify_on_gpu) {
+        auto start = std::chrono::steady_clock::now();
+        const std::vector<Slice> slices =
+            influence_slices(inputs.scene.camera, inputs.scene.light, *dz_);
+        slicing_ms_ = ms_since(start);
+        start = std::chrono::steady_clock::now();
+        std::vector<PlaneVertex> vertices, lit;
+        pieces_ = {};
+        if (!tree_ || classify_on_gpu) {
+            for (const Slice& slice : slices)
+                append_fan(slice.polygon, slice.depth, vertices);
+            pieces_[size_t(bt::Region::uncertain)] = slices.size();
+        } else {
+            const double tolerance = 1e-7 * double(inputs.scene.light.far);
+            for (const Slice& slice : slices) {
+                partition_slice(slice, tolerance, vertices, lit);
+            }
+        }
+        const PlaneDraws draws{GLsizei(vertices.size()), GLsizei(lit.size())};
+        vertices.insert(vertices.end(), lit.begin(), lit.end());
+        partition_ms_ = tree_ && !classify_on_gpu ? ms_since(start) : 0.0;
+        slice_count_ = slices.size();
+        GL.NamedBufferData(vertex_buffer_.id(), GLsizeiptr(vertices.size() * sizeof(PlaneVertex)),
+                           vertices.data(), GL_STREAM_DRAW);
+        return draws;
+    }
+
+    void partition_slice(const Slice& slice, double tolerance, std::vector<PlaneVertex>& vertices,
+                         std::vector<PlaneVertex>& lit) {
+        bt::BeamTree::Partition parts = tree_->partition(slice.polygon);
+        // Only pieces that are drawn can crack against each other.
+        std::vector<bt::Polygon*> drawn;
+        for (bt::Polygon& piece : parts.uncertain)
+            drawn.push_back(&piece);
+        if (variant_ == PlanesVariant::hybrid1) {
+            for (bt::Polygon& piece : parts.lit)
+                drawn.push_back(&piece);
+        }
+        remove_t_junctions(drawn, tolerance);
+        for (const bt::Polygon& piece : parts.uncertain)
+            append_fan(piece, slice.depth, vertices);
+        if (variant_ == PlanesVariant::hybrid1) {
+            for (const bt::Polygon& piece : parts.lit)
+                append_fan(piece, slice.depth, lit);
+        }
+        pieces_[size_t(bt::Region::lit)] += parts.lit.size();
+        pieces_[size_t(bt::Region::uncertain)] += parts.uncertain.size();
+        pieces_[size_t(bt::Region::unlit)] += parts.unlit.size();
+    }
+
+    // hybrid2: the lit regions' closed form, into the frame's I_s.
+    void draw_lit_integral(const frame::VolumeInputs& inputs, bool classify_on_gpu) {
+        if (walk_ && !classify_on_gpu) {
+            inputs.timeline.section("region lists");
+            lists_.walk(inputs, gpu_tree_, false, 0);  // for the lit integral alone
+        }
+        inputs.timeline.section("analytic");
+        if (walk_) {
+            analytic_.draw_walk(inputs, gpu_tree_);
+        } else {
+            analytic_.draw(inputs);
+        }
+    }
+
+    void draw_planes(const frame::VolumeInputs& inputs, PlaneDraws draws, bool classify_on_gpu) {
         std::optional<analytic::RegionLists::MarkedPixelsOnly> marked;
         if (classify_on_gpu) {
-            marked.emplace(variant_ == PlanesVariant::hybrid1
-                               ? analytic::RegionLists::kLitStencilBit |
-                                     analytic::RegionLists::kUncertainStencilBit
-                               : analytic::RegionLists::kUncertainStencilBit);
+            marked.emplace(marked_bits());
         }
         GL.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS, fragments_.id());
         GL.UseProgram(program_.id());
-        GL.ProgramUniform1f(program_.id(), SL_PLANES_DZ, float(dz));
+        GL.ProgramUniform1f(program_.id(), SL_PLANES_DZ, float(*dz_));
         GL.ProgramUniform1i(program_.id(), SL_PLANES_JITTER, int(*jitter_));
         GL.ProgramUniform1i(program_.id(), SL_PLANES_CLASSIFY_MODE,
                             !classify_on_gpu                     ? 0
@@ -253,21 +284,13 @@ public:
         GL.Enable(GL_DEPTH_CLAMP);  // planes beyond the camera's far plane still count
         GL.BindVertexArray(vertex_array_.id());
         GL.ProgramUniform1i(program_.id(), SL_PLANES_KNOWN_LIT, 0);
-        GL.DrawArrays(GL_TRIANGLES, 0, shadowed_count);
-        if (lit_count > 0) {
+        GL.DrawArrays(GL_TRIANGLES, 0, draws.shadowed);
+        if (draws.lit > 0) {
             GL.ProgramUniform1i(program_.id(), SL_PLANES_KNOWN_LIT, 1);
-            GL.DrawArrays(GL_TRIANGLES, shadowed_count, lit_count);
+            GL.DrawArrays(GL_TRIANGLES, draws.shadowed, draws.lit);
         }
         GL.Disable(GL_DEPTH_CLAMP);
         GL.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS);
-        marked.reset();
-        if (classify_on_gpu) {
-            GL.BindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
-            GL.UseProgram(copy_program_.id());
-            GL.BindTextureUnit(0, own_target_.id());
-            GL.BindVertexArray(empty_vertex_array_.id());
-            GL.DrawArrays(GL_TRIANGLES, 0, 3);  // added into the frame's I_s
-        }
         GL.Disable(GL_BLEND);
     }
 
