@@ -85,59 +85,136 @@ std::vector<Slice> influence_slices(const Camera& camera, const SpotLight& light
     return slices;
 }
 
-void remove_t_junctions(const std::vector<bt::Polygon*>& pieces, double tolerance) {
-    if (pieces.size() < 2)
-        return;
-    // A uniform grid over the plane (about one vertex per cell) finds, for each edge, the
-    // vertices near it: cells are visited along the edge, so each edge costs its length in cells.
-    const dvec3 normal = glm::normalize(bt::area_vector(*pieces.front()));
-    const dvec3 u = glm::normalize(std::abs(normal.x) < 0.9 ? glm::cross(normal, dvec3(1, 0, 0))
-                                                            : glm::cross(normal, dvec3(0, 1, 0)));
-    const dvec3 w = glm::cross(normal, u);
+namespace {
+
+// The pieces' vertices in a uniform grid over their plane (about one vertex per cell): cells are
+// visited along an edge, so finding the vertices near an edge costs its length in cells.
+class VertexGrid {
+public:
+    VertexGrid(const std::vector<bt::Polygon*>& pieces, double tolerance) : tolerance_(tolerance) {
+        const dvec3 normal = glm::normalize(bt::area_vector(*pieces.front()));
+        u_ = glm::normalize(std::abs(normal.x) < 0.9 ? glm::cross(normal, dvec3(1, 0, 0))
+                                                     : glm::cross(normal, dvec3(0, 1, 0)));
+        w_ = glm::cross(normal, u_);
+        glm::dvec2 hi(-std::numeric_limits<double>::infinity());
+        lo_ = -hi;
+        for (uint32_t i = 0; i < pieces.size(); ++i) {
+            for (const dvec3& p : pieces[i]->vertices) {
+                const glm::dvec2 at = on_plane(p);
+                vertices_.push_back({at, p, i});
+                lo_ = glm::min(lo_, at);
+                hi = glm::max(hi, at);
+            }
+        }
+        const glm::dvec2 extent = glm::max(hi - lo_, glm::dvec2(tolerance));
+        cell_ =
+            std::max(std::sqrt(extent.x * extent.y / double(vertices_.size())), 4.0 * tolerance);
+        nx_ = std::min(4096, int(extent.x / cell_) + 1);
+        ny_ = std::min(4096, int(extent.y / cell_) + 1);
+        fill_cells();
+    }
+
+    // Appends (t, vertex) for each vertex of another piece than `piece` within the tolerance of
+    // segment ab and more than the tolerance from its ends, t along ab in [0, 1].
+    void vertices_on_edge(const dvec3& a, const dvec3& b, uint32_t piece,
+                          std::vector<std::pair<double, dvec3>>& out) const {
+        const dvec3 d = b - a;
+        const double length2 = glm::dot(d, d), length = std::sqrt(length2);
+        const double tolerance2 = tolerance_ * tolerance_;
+        cells_along(on_plane(a), on_plane(b), [&](size_t c) {
+            for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
+                const Vertex& v = vertices_[entries_[k]];
+                if (v.piece == piece)
+                    continue;
+                const double t = glm::dot(v.position - a, d) / length2;
+                const dvec3 off = v.position - a - t * d;
+                if (glm::dot(off, off) > tolerance2)
+                    continue;
+                if (t * length > tolerance_ && t * length < length - tolerance_)
+                    out.emplace_back(t, v.position);
+            }
+        });
+    }
+
+private:
     struct Vertex {
         glm::dvec2 at;
         dvec3 position;
         uint32_t piece;
     };
-    std::vector<Vertex> vertices;
-    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-lo);
-    for (uint32_t i = 0; i < pieces.size(); ++i) {
-        for (const dvec3& p : pieces[i]->vertices) {
-            const glm::dvec2 at(glm::dot(p, u), glm::dot(p, w));
-            vertices.push_back({at, p, i});
-            lo = glm::min(lo, at);
-            hi = glm::max(hi, at);
+
+    glm::dvec2 on_plane(const dvec3& p) const { return {glm::dot(p, u_), glm::dot(p, w_)}; }
+    glm::ivec2 cell_of(glm::dvec2 at) const {
+        return glm::ivec2(std::clamp(int((at.x - lo_.x) / cell_), 0, nx_ - 1),
+                          std::clamp(int((at.y - lo_.y) / cell_), 0, ny_ - 1));
+    }
+
+    // Each vertex goes into every cell within the tolerance of it (almost always one), sorted by
+    // cell (counting sort): cell c holds entries_[start_[c] .. start_[c + 1]).
+    void fill_cells() {
+        std::vector<std::pair<uint32_t, uint32_t>> cell_vertex;  // (cell, vertex)
+        for (uint32_t i = 0; i < vertices_.size(); ++i) {
+            const glm::ivec2 c0 = cell_of(vertices_[i].at - tolerance_);
+            const glm::ivec2 c1 = cell_of(vertices_[i].at + tolerance_);
+            for (int cy = c0.y; cy <= c1.y; ++cy)
+                for (int cx = c0.x; cx <= c1.x; ++cx)
+                    cell_vertex.emplace_back(uint32_t(cy * nx_ + cx), i);
+        }
+        start_.assign(size_t(nx_) * ny_ + 1, 0);
+        entries_.resize(cell_vertex.size());
+        for (const auto& [c, v] : cell_vertex)
+            ++start_[c + 1];
+        for (size_t c = 1; c < start_.size(); ++c)
+            start_[c] += start_[c - 1];
+        std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+        for (const auto& [c, v] : cell_vertex)
+            entries_[fill[c]++] = v;
+    }
+
+    // Calls visit(cell) for the cells the segment from a to b (on the plane) passes through
+    // (Amanatides & Woo's grid traversal).
+    template <typename Visit>
+    void cells_along(glm::dvec2 a, glm::dvec2 b, Visit&& visit) const {
+        const glm::dvec2 a2 = (a - lo_) / cell_, b2 = (b - lo_) / cell_;
+        glm::ivec2 c = cell_of(lo_ + a2 * cell_);
+        const glm::ivec2 last = cell_of(lo_ + b2 * cell_);
+        const glm::dvec2 delta = b2 - a2;
+        const glm::ivec2 step(delta.x > 0 ? 1 : -1, delta.y > 0 ? 1 : -1);
+        const double inf = std::numeric_limits<double>::infinity();
+        const glm::dvec2 t_delta(delta.x != 0 ? std::abs(1.0 / delta.x) : inf,
+                                 delta.y != 0 ? std::abs(1.0 / delta.y) : inf);
+        glm::dvec2 t_max(
+            delta.x != 0 ? ((step.x > 0 ? c.x + 1 - a2.x : a2.x - c.x) * t_delta.x) : inf,
+            delta.y != 0 ? ((step.y > 0 ? c.y + 1 - a2.y : a2.y - c.y) * t_delta.y) : inf);
+        for (int guard = 0; guard < nx_ + ny_ + 2; ++guard) {
+            visit(size_t(c.y) * nx_ + c.x);
+            if (c == last)
+                break;
+            if (t_max.x < t_max.y) {
+                c.x = std::clamp(c.x + step.x, 0, nx_ - 1);
+                t_max.x += t_delta.x;
+            } else {
+                c.y = std::clamp(c.y + step.y, 0, ny_ - 1);
+                t_max.y += t_delta.y;
+            }
         }
     }
-    const glm::dvec2 extent = glm::max(hi - lo, glm::dvec2(tolerance));
-    const double cell =
-        std::max(std::sqrt(extent.x * extent.y / double(vertices.size())), 4.0 * tolerance);
-    const int nx = std::min(4096, int(extent.x / cell) + 1);
-    const int ny = std::min(4096, int(extent.y / cell) + 1);
-    auto cell_of = [&](glm::dvec2 at) {
-        return glm::ivec2(std::clamp(int((at.x - lo.x) / cell), 0, nx - 1),
-                          std::clamp(int((at.y - lo.y) / cell), 0, ny - 1));
-    };
-    // Each vertex goes into every cell within `tolerance` of it (almost always one), sorted by
-    // cell (counting sort): cell c holds entries[start[c] .. start[c + 1]).
-    std::vector<std::pair<uint32_t, uint32_t>> cell_vertex;  // (cell, vertex)
-    for (uint32_t i = 0; i < vertices.size(); ++i) {
-        const glm::ivec2 c0 = cell_of(vertices[i].at - tolerance);
-        const glm::ivec2 c1 = cell_of(vertices[i].at + tolerance);
-        for (int cy = c0.y; cy <= c1.y; ++cy)
-            for (int cx = c0.x; cx <= c1.x; ++cx)
-                cell_vertex.emplace_back(uint32_t(cy * nx + cx), i);
-    }
-    std::vector<uint32_t> start(size_t(nx) * ny + 1, 0), entries(cell_vertex.size());
-    for (const auto& [c, v] : cell_vertex)
-        ++start[c + 1];
-    for (size_t c = 1; c < start.size(); ++c)
-        start[c] += start[c - 1];
-    {
-        std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-        for (const auto& [c, v] : cell_vertex)
-            entries[fill[c]++] = v;
-    }
+
+    double tolerance_;
+    dvec3 u_, w_;
+    glm::dvec2 lo_;
+    double cell_ = 0.0;
+    int nx_ = 1, ny_ = 1;
+    std::vector<Vertex> vertices_;
+    std::vector<uint32_t> start_, entries_;
+};
+
+}  // namespace
+
+void remove_t_junctions(const std::vector<bt::Polygon*>& pieces, double tolerance) {
+    if (pieces.size() < 2)
+        return;
+    const VertexGrid grid(pieces, tolerance);
     const double tolerance2 = tolerance * tolerance;
     std::vector<std::pair<double, dvec3>> on_edge;
     for (uint32_t i = 0; i < pieces.size(); ++i) {
@@ -145,51 +222,11 @@ void remove_t_junctions(const std::vector<bt::Polygon*>& pieces, double toleranc
         std::vector<dvec3> conforming;
         for (size_t e = 0; e < original.size(); ++e) {
             const dvec3 a = original[e], b = original[(e + 1) % original.size()];
-            const dvec3 d = b - a;
-            const double length2 = glm::dot(d, d);
             conforming.push_back(a);
-            if (length2 <= tolerance2)
+            if (glm::dot(b - a, b - a) <= tolerance2)
                 continue;
-            const double length = std::sqrt(length2);
             on_edge.clear();
-            auto visit = [&](size_t c) {
-                for (uint32_t k = start[c]; k < start[c + 1]; ++k) {
-                    const Vertex& v = vertices[entries[k]];
-                    if (v.piece == i)
-                        continue;
-                    const double t = glm::dot(v.position - a, d) / length2;
-                    const dvec3 off = v.position - a - t * d;
-                    if (glm::dot(off, off) > tolerance2)
-                        continue;
-                    if (t * length > tolerance && t * length < length - tolerance)
-                        on_edge.emplace_back(t, v.position);
-                }
-            };
-            // The cells the segment passes through (Amanatides & Woo's grid traversal).
-            const glm::dvec2 a2 = (glm::dvec2(glm::dot(a, u), glm::dot(a, w)) - lo) / cell;
-            const glm::dvec2 b2 = (glm::dvec2(glm::dot(b, u), glm::dot(b, w)) - lo) / cell;
-            glm::ivec2 c = cell_of(lo + a2 * cell);
-            const glm::ivec2 last = cell_of(lo + b2 * cell);
-            const glm::dvec2 delta = b2 - a2;
-            const glm::ivec2 step(delta.x > 0 ? 1 : -1, delta.y > 0 ? 1 : -1);
-            const double inf = std::numeric_limits<double>::infinity();
-            const glm::dvec2 t_delta(delta.x != 0 ? std::abs(1.0 / delta.x) : inf,
-                                     delta.y != 0 ? std::abs(1.0 / delta.y) : inf);
-            glm::dvec2 t_max(
-                delta.x != 0 ? ((step.x > 0 ? c.x + 1 - a2.x : a2.x - c.x) * t_delta.x) : inf,
-                delta.y != 0 ? ((step.y > 0 ? c.y + 1 - a2.y : a2.y - c.y) * t_delta.y) : inf);
-            for (int guard = 0; guard < nx + ny + 2; ++guard) {
-                visit(size_t(c.y) * nx + c.x);
-                if (c == last)
-                    break;
-                if (t_max.x < t_max.y) {
-                    c.x = std::clamp(c.x + step.x, 0, nx - 1);
-                    t_max.x += t_delta.x;
-                } else {
-                    c.y = std::clamp(c.y + step.y, 0, ny - 1);
-                    t_max.y += t_delta.y;
-                }
-            }
+            grid.vertices_on_edge(a, b, i, on_edge);
             std::sort(on_edge.begin(), on_edge.end(),
                       [](const auto& x, const auto& y) { return x.first < y.first; });
             for (const auto& [t, v] : on_edge) {
