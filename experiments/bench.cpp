@@ -375,54 +375,38 @@ Json per_frame_series(const std::vector<frame::FrameRecord>& records, const Sequ
     return series;
 }
 
-// Plays one animation cell and repetition (docs/design.md §11) in a fresh GL context: every frame's
-// CPU update, apply, draw and GPU passes through frame::FrameLoop, and every stride-th frame scored
-// against the reference of that frame (computed first, multithreaded, cached on disk, so that
-// the measured frames run undisturbed and a second repetition or an interrupted run pays for
-// nothing again). Returns its row, with the per-frame series in `per_frame`.
-Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const fs::path& out,
-                           Caches& caches, const BenchOptions* options) {
-    CellSetup s = set_up(x, cell, caches);
-    const Sequence sequence(*s.scene, x.protocol);
+// What one play of an animated cell leaves: every frame's record, the method's statistics of
+// every frame, and the scores of every stride-th frame (or the last frame's picture).
+struct PlayedSequence {
+    std::vector<frame::FrameRecord> records;
+    NamedSeries statistics;
+    SequenceScores scores;
+};
+
+// Plays the sequence through frame::FrameLoop, scoring every stride-th frame against
+// `x.reference` drawn in the same context from the same scene state.
+PlayedSequence play_sequence(const Experiment& x, const Cell& cell, int rep,
+                             const Sequence& sequence, frame::VolumeMethod& method,
+                             frame::SceneRenderer& renderer, Scene& live,
+                             const BenchOptions* options) {
     const int frames = sequence.frames();
     const int stride = x.scoring.stride;
-    const bool scoring = !x.reference.empty();
-
-    // The reference sequence, before anything is measured.
-    auto start = Clock::now();
-    if (scoring && x.reference == "reference") {
-        for (int k = 0; k < frames; k += stride) {
-            reference::cached_reference(sequence.state(k), cell.width, cell.height, {});
-        }
-    }
-    const double reference_ms = ms_since(start);
-
-    Scene live = sequence.state(0);
-    const CellContext c = open_context(s, live);
-    frame::SceneRenderer& renderer = *c.renderer;
-    const gl::ContextInfo& context = c.info;
-    const double setup_ms = c.setup_ms, prepare_ms = c.prepare_ms;
-    for (int i = 0; i < x.protocol.warmup; ++i) {
-        renderer.draw(*s.method);  // shader compilation and first-use costs
-    }
-
     const std::unique_ptr<frame::VolumeMethod> reference =
-        scoring ? methods::create_volume_method(x.reference) : nullptr;
+        x.reference.empty() ? nullptr : methods::create_volume_method(x.reference);
     Scene reference_scene = live;
     if (reference) {
         reference->prepare(reference_scene);
     }
-    std::vector<frame::FrameRecord> records;
-    NamedSeries statistics;
-    SequenceScores scores(frames);
+    PlayedSequence played{{}, {}, SequenceScores(frames)};
+    SequenceScores& scores = played.scores;
     frame::FrameLoop loop(
-        renderer, *s.method, live,
+        renderer, method, live,
         x.protocol.pipelined ? frame::FrameMode::pipelined : frame::FrameMode::serial);
     loop.play(
         frames, [&](int k) { return sequence.state(k); },
         [&](const frame::FrameRecord& record) {
-            records.push_back(record);
-            collect(statistics, s.method->statistics());
+            played.records.push_back(record);
+            collect(played.statistics, method.statistics());
             const int k = record.frame;
             if (reference && k % stride == 0) {
                 frame::Frame frame = renderer.read_back();
@@ -444,7 +428,13 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
                            k + 1 == frames ? "\n" : "");
             }
         });
+    return played;
+}
 
+// The row's frame timings: medians (and the worst frame, the update's p95) over the records.
+void add_frame_timings(Json& row, const std::vector<frame::FrameRecord>& records,
+                       const std::vector<double>& frame_ms,
+                       const frame::MethodStatistics& method_statistics) {
     auto series = [&](auto get) {
         std::vector<double> v;
         for (const frame::FrameRecord& r : records) {
@@ -452,22 +442,12 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
         }
         return v;
     };
-    const std::vector<double> frame_ms = series([](const auto& r) { return r.frame_ms; });
     const std::vector<double> critical = series([](const auto& r) { return r.critical_cpu_ms(); });
     methods::PassSeries passes;
     for (const frame::FrameRecord& r : records) {
         passes.add(r.gpu);
     }
     const frame::PassTimings gpu = passes.medians();
-    const frame::MethodStatistics method_statistics = medians(statistics);
-
-    start = Clock::now();
-    const methods::RegionStatistics& regions = caches.region(cell, sequence.state(0), true);
-    const double regions_ms = ms_since(start);
-    const std::string image =
-        scores.picture ? write_images(x, cell, rep, out, *scores.picture) : std::string();
-
-    Json row = row_head(x, cell, rep, frames, frame_ms);
     const size_t slowest =
         size_t(std::max_element(frame_ms.begin(), frame_ms.end()) - frame_ms.begin());
     row["frame_ms_worst"] = frame_ms[slowest];
@@ -481,20 +461,65 @@ Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const
     row["cpu_ms_wait"] = median(series([](const auto& r) { return r.wait_ms; }));
     row["cpu_ms_critical"] = median(critical);
     row["cpu_ms_draw"] = median(series([](const auto& r) { return r.draw_ms; }));
+}
+
+// Plays one animation cell and repetition (docs/design.md §11) in a fresh GL context: every frame's
+// CPU update, apply, draw and GPU passes through frame::FrameLoop, and every stride-th frame scored
+// against the reference of that frame (computed first, multithreaded, cached on disk, so that
+// the measured frames run undisturbed and a second repetition or an interrupted run pays for
+// nothing again). Returns its row, with the per-frame series in `per_frame`.
+Json measure_animated_cell(const Experiment& x, const Cell& cell, int rep, const fs::path& out,
+                           Caches& caches, const BenchOptions* options) {
+    CellSetup s = set_up(x, cell, caches);
+    const Sequence sequence(*s.scene, x.protocol);
+    const int frames = sequence.frames();
+
+    // The reference sequence, before anything is measured.
+    auto start = Clock::now();
+    if (x.reference == "reference") {
+        for (int k = 0; k < frames; k += x.scoring.stride) {
+            reference::cached_reference(sequence.state(k), cell.width, cell.height, {});
+        }
+    }
+    const double reference_ms = ms_since(start);
+
+    Scene live = sequence.state(0);
+    const CellContext c = open_context(s, live);
+    frame::SceneRenderer& renderer = *c.renderer;
+    for (int i = 0; i < x.protocol.warmup; ++i) {
+        renderer.draw(*s.method);  // shader compilation and first-use costs
+    }
+    const PlayedSequence played =
+        play_sequence(x, cell, rep, sequence, *s.method, renderer, live, options);
+    std::vector<double> frame_ms;
+    for (const frame::FrameRecord& r : played.records) {
+        frame_ms.push_back(r.frame_ms);
+    }
+    const frame::MethodStatistics method_statistics = medians(played.statistics);
+
+    start = Clock::now();
+    const methods::RegionStatistics& regions = caches.region(cell, sequence.state(0), true);
+    const double regions_ms = ms_since(start);
+    const std::string image = played.scores.picture
+                                  ? write_images(x, cell, rep, out, *played.scores.picture)
+                                  : std::string();
+
+    Json row = row_head(x, cell, rep, frames, frame_ms);
+    add_frame_timings(row, played.records, frame_ms, method_statistics);
     row["cpu_ms_scene_load"] = s.load_ms;
-    row["cpu_ms_gl_setup"] = setup_ms;
-    row["cpu_ms_prepare"] = prepare_ms;
+    row["cpu_ms_gl_setup"] = c.setup_ms;
+    row["cpu_ms_prepare"] = c.prepare_ms;
     row["cpu_ms_region_statistics"] = regions_ms;
-    add_sequence_scores(row, x, scores);
-    add_tail(row, x, *s.method, method_statistics, regions, renderer, context, image);
+    add_sequence_scores(row, x, played.scores);
+    add_tail(row, x, *s.method, method_statistics, regions, renderer, c.info, image);
     row["protocol"] = "animation";
     row["sequence"] = sequence.description();
     row["frame_mode"] = x.protocol.pipelined ? "pipelined" : "serial";
     row["step_s"] = sequence.step();
-    row["stride"] = stride;
+    row["stride"] = x.scoring.stride;
     row["reference_sequence_ms"] = reference_ms;
     row["frame_ms_samples"] = frame_ms;
-    row["per_frame"] = per_frame_series(records, sequence, scores);
+    row["per_frame"] = per_frame_series(played.records, sequence, played.scores);
     return row;
 }
 
