@@ -40,6 +40,96 @@ std::vector<Cell> search_groups(const Experiment& experiment) {
     return groups;
 }
 
+namespace {
+
+// The bisection of one group's search parameter: every probe measured once, the outcome filled
+// as it goes.
+class Bisection {
+public:
+    Bisection(SearchOutcome& outcome, const Search& search, const CellMeasure& measure)
+        : outcome_(outcome), search_(search), measure_(measure) {}
+
+    // Invariant: `good` reaches the target, `bad` does not. Bisects the log of the parameter
+    // until the two are within `tolerance` (relative) or adjacent as printed.
+    void run(double tolerance) {
+        // The expensive end must reach the target, the cheap end must not; otherwise done.
+        const std::optional<bool> expensive = probe(search_.expensive);
+        if (!expensive) {
+            return;
+        }
+        if (!*expensive) {
+            return record(search_.expensive, false);
+        }
+        const std::optional<bool> cheap = probe(search_.cheap);
+        if (!cheap) {
+            return;
+        }
+        if (*cheap) {
+            return record(search_.cheap, true);
+        }
+        double good = search_.expensive, bad = search_.cheap;
+        for (int iteration = 0; iteration < 32; ++iteration) {
+            const double ratio = std::max(good, bad) / std::min(good, bad);
+            if (ratio <= 1.0 + tolerance) {
+                break;
+            }
+            double middle = std::sqrt(good * bad);
+            if (search_.integer) {
+                middle = std::round(middle);
+                if (middle == std::round(good) || middle == std::round(bad)) {
+                    break;
+                }
+            } else if (format_value(middle, false) == format_value(good, false) ||
+                       format_value(middle, false) == format_value(bad, false)) {
+                break;
+            }
+            const std::optional<bool> reached = probe(middle);
+            if (!reached) {
+                return;
+            }
+            (*reached ? good : bad) = middle;
+        }
+        record(good, true);
+    }
+
+private:
+    // Whether the setting reaches the target (measured at most once); nothing when the
+    // measurement did not complete.
+    std::optional<bool> probe(double value) {
+        const std::string text = format_value(value, search_.integer);
+        for (const Probe& p : outcome_.probes) {
+            if (p.value == text) {
+                return p.summary.rel_rmse <= outcome_.target;
+            }
+        }
+        const std::optional<CellSummary> summary =
+            measure_(with_setting(outcome_.group, search_.parameter, text));
+        if (!summary) {
+            outcome_.complete = false;
+            return std::nullopt;
+        }
+        outcome_.probes.push_back({text, *summary});
+        return summary->rel_rmse <= outcome_.target;
+    }
+
+    void record(double value, bool reached) {
+        const std::string text = format_value(value, search_.integer);
+        outcome_.value = text;
+        outcome_.reached = reached;
+        for (const Probe& p : outcome_.probes) {
+            if (p.value == text) {
+                outcome_.summary = p.summary;
+            }
+        }
+    }
+
+    SearchOutcome& outcome_;
+    const Search& search_;
+    const CellMeasure& measure_;
+};
+
+}  // namespace
+
 SearchOutcome search_equal_error(const Experiment& experiment, const Cell& group, double target,
                                  const CellMeasure& measure) {
     SearchOutcome outcome;
@@ -56,78 +146,8 @@ SearchOutcome search_equal_error(const Experiment& experiment, const Cell& group
         }
         return outcome;
     }
-    const Search& search = found->second;
-    outcome.parameter = search.parameter;
-
-    auto probe = [&](double value) -> std::optional<bool> {
-        const std::string text = format_value(value, search.integer);
-        for (const Probe& p : outcome.probes) {
-            if (p.value == text) {
-                return p.summary.rel_rmse <= target;
-            }
-        }
-        const std::optional<CellSummary> summary =
-            measure(with_setting(group, search.parameter, text));
-        if (!summary) {
-            outcome.complete = false;
-            return std::nullopt;
-        }
-        outcome.probes.push_back({text, *summary});
-        return summary->rel_rmse <= target;
-    };
-    auto record = [&](double value, bool reached) {
-        const std::string text = format_value(value, search.integer);
-        outcome.value = text;
-        outcome.reached = reached;
-        for (const Probe& p : outcome.probes) {
-            if (p.value == text) {
-                outcome.summary = p.summary;
-            }
-        }
-    };
-
-    // The expensive end must reach the target, the cheap end must not; otherwise done.
-    const std::optional<bool> expensive = probe(search.expensive);
-    if (!expensive) {
-        return outcome;
-    }
-    if (!*expensive) {
-        record(search.expensive, false);
-        return outcome;
-    }
-    const std::optional<bool> cheap = probe(search.cheap);
-    if (!cheap) {
-        return outcome;
-    }
-    if (*cheap) {
-        record(search.cheap, true);
-        return outcome;
-    }
-    // Invariant: `good` reaches the target, `bad` does not. Bisect the log of the parameter.
-    double good = search.expensive, bad = search.cheap;
-    const double tolerance = experiment.equal_error->tolerance;
-    for (int iteration = 0; iteration < 32; ++iteration) {
-        const double ratio = std::max(good, bad) / std::min(good, bad);
-        if (ratio <= 1.0 + tolerance) {
-            break;
-        }
-        double middle = std::sqrt(good * bad);
-        if (search.integer) {
-            middle = std::round(middle);
-            if (middle == std::round(good) || middle == std::round(bad)) {
-                break;
-            }
-        } else if (format_value(middle, false) == format_value(good, false) ||
-                   format_value(middle, false) == format_value(bad, false)) {
-            break;
-        }
-        const std::optional<bool> reached = probe(middle);
-        if (!reached) {
-            return outcome;
-        }
-        (*reached ? good : bad) = middle;
-    }
-    record(good, true);
+    outcome.parameter = found->second.parameter;
+    Bisection(outcome, found->second, measure).run(experiment.equal_error->tolerance);
     return outcome;
 }
 
