@@ -96,56 +96,49 @@ std::optional<MaximalTriangulation> triangulate_union(const std::vector<const Po
     return triangulate_outline(positions, outline, normal);
 }
 
-std::optional<MaximalTriangulation> triangulate_outline(const std::vector<dvec3>& positions,
-                                                        const std::vector<Edge>& edges,
-                                                        const dvec3& normal) {
-    if (edges.size() < 3) {
-        return std::nullopt;
-    }
-    const dvec3 n = glm::normalize(normal);
-    // The plane's 2D frame (u, v, normal), right-handed: counter-clockwise around the normal is
-    // counter-clockwise in (u, v).
+namespace {
+
+// An outline's vertices in its plane's 2D frame (u, v, normal), right-handed: counter-clockwise
+// around the normal is counter-clockwise in (u, v). Only the vertices on the boundary edges: the
+// interior ones go with the interior edges.
+struct PlanarOutline {
+    std::unordered_map<uint32_t, uint32_t> compact;            // global id -> local
+    std::vector<std::pair<Kernel::Point_2, uint32_t>> points;  // (u, v), local id
+    std::vector<dvec3> vertices;                               // by local id
+    double area = 0.0;                                         // the loops' own (shoelace)
+};
+
+PlanarOutline project(const std::vector<dvec3>& positions, const std::vector<Edge>& edges,
+                      const dvec3& n) {
     const dvec3 helper = std::abs(n.x) < 0.6 ? dvec3(1, 0, 0) : dvec3(0, 1, 0);
     const dvec3 u = glm::normalize(glm::cross(helper, n));
     const dvec3 v = glm::cross(n, u);
     const dvec3 origin = positions[edges.front().first];
-
-    // Only the vertices on the boundary edges: the interior ones go with the interior edges.
-    std::unordered_map<uint32_t, uint32_t> compact;
-    std::vector<std::pair<Kernel::Point_2, uint32_t>> points;
-    MaximalTriangulation result;
-    double outline_area = 0.0;  // the loops' own (shoelace), seen along n
+    PlanarOutline out;
     for (const auto& [a, b] : edges) {
-        outline_area += 0.5 * glm::dot(glm::cross(positions[a] - origin, positions[b] - origin), n);
+        out.area += 0.5 * glm::dot(glm::cross(positions[a] - origin, positions[b] - origin), n);
         for (const uint32_t id : {a, b}) {
-            const auto [at, added] = compact.try_emplace(id, uint32_t(result.vertices.size()));
+            const auto [at, added] = out.compact.try_emplace(id, uint32_t(out.vertices.size()));
             if (added) {
-                result.vertices.push_back(positions[id]);
+                out.vertices.push_back(positions[id]);
                 const dvec3 d = positions[id] - origin;
-                points.emplace_back(Kernel::Point_2(glm::dot(d, u), glm::dot(d, v)), at->second);
+                out.points.emplace_back(Kernel::Point_2(glm::dot(d, u), glm::dot(d, v)),
+                                        at->second);
             }
         }
     }
-    Cdt cdt;
-    cdt.insert(points.begin(), points.end());
-    if (cdt.number_of_vertices() != points.size()) {
-        return std::nullopt;  // two positions on one point of the projection
-    }
-    std::vector<Cdt::Vertex_handle> handle(points.size());
-    for (auto vertex = cdt.finite_vertices_begin(); vertex != cdt.finite_vertices_end(); ++vertex) {
-        handle[vertex->info()] = vertex;
-    }
-    try {
-        for (const auto& [a, b] : edges) {
-            cdt.insert_constraint(handle[compact.at(a)], handle[compact.at(b)]);
-        }
-    } catch (const std::exception&) {
-        return std::nullopt;  // boundary edges that cross in the projection
-    }
+    return out;
+}
+
+// The faces inside the outline: the face to the left of each boundary edge is inside, the one to
+// its right outside, and inside spreads across every edge that is not a boundary edge. Nothing
+// where a boundary edge is not an edge of the triangulation or a face would be both.
+std::optional<std::vector<Cdt::Face_handle>> inside_faces(
+    Cdt& cdt, const std::vector<Cdt::Vertex_handle>& handle, const PlanarOutline& outline,
+    const std::vector<Edge>& edges) {
     for (auto face = cdt.all_faces_begin(); face != cdt.all_faces_end(); ++face) {
         face->info() = 0;
     }
-    // Seeds: the face to the left of each boundary edge is inside, the one to its right outside.
     std::vector<Cdt::Face_handle> inside;
     auto label = [&](Cdt::Face_handle face, int value) {
         if (face->info() == -value || (value > 0 && cdt.is_infinite(face))) {
@@ -162,7 +155,8 @@ std::optional<MaximalTriangulation> triangulate_outline(const std::vector<dvec3>
     for (const auto& [a, b] : edges) {
         Cdt::Face_handle face;
         int i = 0;
-        const Cdt::Vertex_handle va = handle[compact.at(a)], vb = handle[compact.at(b)];
+        const Cdt::Vertex_handle va = handle[outline.compact.at(a)];
+        const Cdt::Vertex_handle vb = handle[outline.compact.at(b)];
         if (!cdt.is_edge(va, vb, face, i)) {
             return std::nullopt;  // a vertex lies on the edge in the projection: it was split
         }
@@ -175,7 +169,6 @@ std::optional<MaximalTriangulation> triangulate_outline(const std::vector<dvec3>
             return std::nullopt;
         }
     }
-    // Inside spreads across every edge that is not a boundary edge.
     for (size_t k = 0; k < inside.size(); ++k) {
         const Cdt::Face_handle face = inside[k];
         for (int i = 0; i < 3; ++i) {
@@ -184,15 +177,51 @@ std::optional<MaximalTriangulation> triangulate_outline(const std::vector<dvec3>
             }
         }
     }
+    return inside;
+}
+
+}  // namespace
+
+std::optional<MaximalTriangulation> triangulate_outline(const std::vector<dvec3>& positions,
+                                                        const std::vector<Edge>& edges,
+                                                        const dvec3& normal) {
+    if (edges.size() < 3) {
+        return std::nullopt;
+    }
+    const dvec3 n = glm::normalize(normal);
+    PlanarOutline outline = project(positions, edges, n);
+    Cdt cdt;
+    cdt.insert(outline.points.begin(), outline.points.end());
+    if (cdt.number_of_vertices() != outline.points.size()) {
+        return std::nullopt;  // two positions on one point of the projection
+    }
+    std::vector<Cdt::Vertex_handle> handle(outline.points.size());
+    for (auto vertex = cdt.finite_vertices_begin(); vertex != cdt.finite_vertices_end(); ++vertex) {
+        handle[vertex->info()] = vertex;
+    }
+    try {
+        for (const auto& [a, b] : edges) {
+            cdt.insert_constraint(handle[outline.compact.at(a)], handle[outline.compact.at(b)]);
+        }
+    } catch (const std::exception&) {
+        return std::nullopt;  // boundary edges that cross in the projection
+    }
+    const std::optional<std::vector<Cdt::Face_handle>> inside =
+        inside_faces(cdt, handle, outline, edges);
+    if (!inside) {
+        return std::nullopt;
+    }
+    MaximalTriangulation result;
+    result.vertices = std::move(outline.vertices);
     double output_area = 0.0;
-    for (const Cdt::Face_handle face : inside) {
+    for (const Cdt::Face_handle face : *inside) {
         const glm::uvec3 t(face->vertex(0)->info(), face->vertex(1)->info(),
                            face->vertex(2)->info());
         result.triangles.push_back(t);
         const dvec3 &p = result.vertices[t.x], &q = result.vertices[t.y], &r = result.vertices[t.z];
         output_area += 0.5 * glm::dot(glm::cross(q - p, r - p), n);
     }
-    if (!(std::abs(output_area - outline_area) <= 1e-9 * std::abs(outline_area))) {
+    if (!(std::abs(output_area - outline.area) <= 1e-9 * std::abs(outline.area))) {
         return std::nullopt;
     }
     result.boundary_edges = edges.size();
@@ -225,6 +254,123 @@ bool outline_of(const std::vector<std::vector<uint32_t>>& face_ids, FaceSet& set
     return most <= 1;
 }
 
+// The merged sets' outline edges as one directed graph: per vertex its outgoing and incoming
+// edges (compressed rows), each edge with the set it belongs to.
+class OutlineGraph {
+public:
+    OutlineGraph(const std::vector<FaceSet>& sets, size_t vertex_count) : sets_(sets.size()) {
+        for (uint32_t s = 0; s < sets.size(); ++s) {
+            if (sets[s].fanned) {
+                continue;
+            }
+            for (const auto& [a, b] : sets[s].outline) {
+                from_.push_back(a);
+                to_.push_back(b);
+                owner_.push_back(s);
+            }
+        }
+        const size_t edge_count = from_.size();
+        out_begin_.assign(vertex_count + 1, 0);
+        in_begin_.assign(vertex_count + 1, 0);
+        for (size_t e = 0; e < edge_count; ++e) {
+            ++out_begin_[from_[e] + 1];
+            ++in_begin_[to_[e] + 1];
+        }
+        for (size_t v = 0; v < vertex_count; ++v) {
+            out_begin_[v + 1] += out_begin_[v];
+            in_begin_[v + 1] += in_begin_[v];
+        }
+        out_edges_.resize(edge_count);
+        in_edges_.resize(edge_count);
+        std::vector<uint32_t> out_at(out_begin_.begin(), out_begin_.end() - 1),
+            in_at(in_begin_.begin(), in_begin_.end() - 1);
+        for (uint32_t e = 0; e < edge_count; ++e) {
+            out_edges_[out_at[from_[e]]++] = e;
+            in_edges_[in_at[to_[e]]++] = e;
+        }
+        alive_.assign(edge_count, true);
+    }
+
+    // Drops vertex v where two sets pass through it once each, one a -> v -> b and the other
+    // b -> v -> a, with no edge between a and b yet, and v within sqrt(tolerance2) of segment
+    // ab (strictly between a and b): both then run a -> b and b -> a directly.
+    bool drop(uint32_t v, const std::vector<dvec3>& positions, double tolerance2) {
+        if (out_begin_[v + 1] - out_begin_[v] != 2 || in_begin_[v + 1] - in_begin_[v] != 2) {
+            return false;
+        }
+        const uint32_t o1 = out_edges_[out_begin_[v]], o2 = out_edges_[out_begin_[v] + 1];
+        uint32_t i1 = in_edges_[in_begin_[v]], i2 = in_edges_[in_begin_[v] + 1];
+        if (owner_[o1] == owner_[o2] || !alive_[o1] || !alive_[o2] || !alive_[i1] || !alive_[i2]) {
+            return false;
+        }
+        if (owner_[i1] != owner_[o1]) {
+            std::swap(i1, i2);
+        }
+        if (owner_[i1] != owner_[o1] || owner_[i2] != owner_[o2]) {
+            return false;
+        }
+        const uint32_t a = from_[i1], b = to_[o1];
+        if (a == b || from_[i2] != b || to_[o2] != a || linked(owner_[o1], a, b) ||
+            linked(owner_[o2], a, b)) {
+            return false;
+        }
+        const dvec3 ab = positions[b] - positions[a], av = positions[v] - positions[a];
+        const double length2 = glm::dot(ab, ab);
+        const double t = glm::dot(av, ab);
+        const dvec3 off = glm::cross(ab, av);
+        if (!(t > 0.0 && t < length2 && glm::dot(off, off) <= tolerance2 * length2)) {
+            return false;
+        }
+        to_[i1] = b;
+        alive_[o1] = false;
+        replace_in(b, o1, i1);
+        to_[i2] = a;
+        alive_[o2] = false;
+        replace_in(a, o2, i2);
+        return true;
+    }
+
+    // Each set's live edges, sorted.
+    std::vector<std::vector<Edge>> outlines() const {
+        std::vector<std::vector<Edge>> out(sets_);
+        for (size_t e = 0; e < from_.size(); ++e) {
+            if (alive_[e]) {
+                out[owner_[e]].emplace_back(from_[e], to_[e]);
+            }
+        }
+        for (std::vector<Edge>& outline : out) {
+            std::sort(outline.begin(), outline.end());
+        }
+        return out;
+    }
+
+private:
+    bool has_edge(uint32_t set, uint32_t a, uint32_t b) const {
+        for (uint32_t k = out_begin_[a]; k < out_begin_[a + 1]; ++k) {
+            const uint32_t e = out_edges_[k];
+            if (alive_[e] && owner_[e] == set && to_[e] == b) {
+                return true;
+            }
+        }
+        return false;
+    }
+    bool linked(uint32_t set, uint32_t a, uint32_t b) const {
+        return has_edge(set, a, b) || has_edge(set, b, a);
+    }
+    void replace_in(uint32_t vertex, uint32_t old_edge, uint32_t new_edge) {
+        for (uint32_t k = in_begin_[vertex]; k < in_begin_[vertex + 1]; ++k) {
+            if (in_edges_[k] == old_edge) {
+                in_edges_[k] = new_edge;
+            }
+        }
+    }
+
+    size_t sets_;
+    std::vector<uint32_t> from_, to_, owner_;
+    std::vector<uint32_t> out_begin_, in_begin_, out_edges_, in_edges_;
+    std::vector<bool> alive_;
+};
+
 // Drops the vertices two merged outlines share and need not keep: a vertex used by exactly two
 // sets, each passing through it once (in from a, out to b in one; in from b, out to a in the
 // other), within `tolerance` of the segment ab, and not pinned (a vertex of a fanned set, which
@@ -235,126 +381,43 @@ bool outline_of(const std::vector<std::vector<uint32_t>>& face_ids, FaceSet& set
 size_t simplify_outlines(const std::vector<dvec3>& positions, const std::vector<FaceSet>& sets,
                          const std::vector<bool>& pinned, double tolerance,
                          std::vector<std::vector<Edge>>& outlines) {
-    std::vector<uint32_t> from, to, owner;
-    for (uint32_t s = 0; s < sets.size(); ++s) {
-        if (sets[s].fanned) {
-            continue;
-        }
-        for (const auto& [a, b] : sets[s].outline) {
-            from.push_back(a);
-            to.push_back(b);
-            owner.push_back(s);
-        }
-    }
-    const size_t edge_count = from.size(), vertex_count = positions.size();
-    // Per vertex, its outgoing and incoming edges (compressed rows).
-    std::vector<uint32_t> out_begin(vertex_count + 1, 0), in_begin(vertex_count + 1, 0);
-    for (size_t e = 0; e < edge_count; ++e) {
-        ++out_begin[from[e] + 1];
-        ++in_begin[to[e] + 1];
-    }
-    for (size_t v = 0; v < vertex_count; ++v) {
-        out_begin[v + 1] += out_begin[v];
-        in_begin[v + 1] += in_begin[v];
-    }
-    std::vector<uint32_t> out_edges(edge_count), in_edges(edge_count);
-    {
-        std::vector<uint32_t> out_at(out_begin.begin(), out_begin.end() - 1),
-            in_at(in_begin.begin(), in_begin.end() - 1);
-        for (uint32_t e = 0; e < edge_count; ++e) {
-            out_edges[out_at[from[e]]++] = e;
-            in_edges[in_at[to[e]]++] = e;
-        }
-    }
-    std::vector<bool> alive(edge_count, true);
-    auto has_edge = [&](uint32_t set, uint32_t a, uint32_t b) {
-        for (uint32_t k = out_begin[a]; k < out_begin[a + 1]; ++k) {
-            const uint32_t e = out_edges[k];
-            if (alive[e] && owner[e] == set && to[e] == b) {
-                return true;
-            }
-        }
-        return false;
-    };
-    auto replace_in = [&](uint32_t vertex, uint32_t old_edge, uint32_t new_edge) {
-        for (uint32_t k = in_begin[vertex]; k < in_begin[vertex + 1]; ++k) {
-            if (in_edges[k] == old_edge) {
-                in_edges[k] = new_edge;
-            }
-        }
-    };
+    OutlineGraph graph(sets, positions.size());
     size_t dropped = 0;
-    const double tolerance2 = tolerance * tolerance;
-    for (uint32_t v = 0; v < vertex_count; ++v) {
-        if (pinned[v] || out_begin[v + 1] - out_begin[v] != 2 ||
-            in_begin[v + 1] - in_begin[v] != 2) {
-            continue;
-        }
-        const uint32_t o1 = out_edges[out_begin[v]], o2 = out_edges[out_begin[v] + 1];
-        uint32_t i1 = in_edges[in_begin[v]], i2 = in_edges[in_begin[v] + 1];
-        if (owner[o1] == owner[o2] || !alive[o1] || !alive[o2] || !alive[i1] || !alive[i2]) {
-            continue;
-        }
-        if (owner[i1] != owner[o1]) {
-            std::swap(i1, i2);
-        }
-        if (owner[i1] != owner[o1] || owner[i2] != owner[o2]) {
-            continue;
-        }
-        // One set runs a -> v -> b, the other b -> v -> a.
-        const uint32_t a = from[i1], b = to[o1];
-        if (a == b || from[i2] != b || to[o2] != a || has_edge(owner[o1], a, b) ||
-            has_edge(owner[o1], b, a) || has_edge(owner[o2], a, b) || has_edge(owner[o2], b, a)) {
-            continue;
-        }
-        const dvec3 ab = positions[b] - positions[a], av = positions[v] - positions[a];
-        const double length2 = glm::dot(ab, ab);
-        const double t = glm::dot(av, ab);
-        const dvec3 off = glm::cross(ab, av);
-        if (!(t > 0.0 && t < length2 && glm::dot(off, off) <= tolerance2 * length2)) {
-            continue;
-        }
-        to[i1] = b;
-        alive[o1] = false;
-        replace_in(b, o1, i1);
-        to[i2] = a;
-        alive[o2] = false;
-        replace_in(a, o2, i2);
-        ++dropped;
-    }
-    outlines.assign(sets.size(), {});
-    for (size_t e = 0; e < edge_count; ++e) {
-        if (alive[e]) {
-            outlines[owner[e]].emplace_back(from[e], to[e]);
+    for (uint32_t v = 0; v < positions.size(); ++v) {
+        if (!pinned[v] && graph.drop(v, positions, tolerance * tolerance)) {
+            ++dropped;
         }
     }
-    for (std::vector<Edge>& outline : outlines) {
-        std::sort(outline.begin(), outline.end());
-    }
+    outlines = graph.outlines();
     return dropped;
 }
 
-}  // namespace
-
-RegionMesh maximal_polygon_mesh(const std::vector<PlanarFace>& faces, double tolerance,
-                                MergeStats& s) {
-    RegionMesh mesh;
-    // Global vertex ids, in order of first use.
+// Global vertex ids, in order of first use, and each face's ids.
+struct WeldedFaces {
     std::vector<dvec3> positions;
-    std::vector<std::vector<uint32_t>> face_ids(faces.size());
-    {
-        std::unordered_map<dvec3, uint32_t, PositionHash> ids;
-        for (size_t f = 0; f < faces.size(); ++f) {
-            for (const dvec3& p : faces[f].polygon->vertices) {
-                const auto [at, added] = ids.try_emplace(p, uint32_t(positions.size()));
-                if (added) {
-                    positions.push_back(p);
-                }
-                face_ids[f].push_back(at->second);
+    std::vector<std::vector<uint32_t>> face_ids;
+};
+
+WeldedFaces weld(const std::vector<PlanarFace>& faces) {
+    WeldedFaces out;
+    out.face_ids.resize(faces.size());
+    std::unordered_map<dvec3, uint32_t, PositionHash> ids;
+    for (size_t f = 0; f < faces.size(); ++f) {
+        for (const dvec3& p : faces[f].polygon->vertices) {
+            const auto [at, added] = ids.try_emplace(p, uint32_t(out.positions.size()));
+            if (added) {
+                out.positions.push_back(p);
             }
+            out.face_ids[f].push_back(at->second);
         }
     }
-    // The faces by plane and side, in the order they come; a face on no shared plane alone.
+    return out;
+}
+
+// The faces by plane and side, in the order they come (a face on no shared plane alone), each
+// set with its normal and outline, or fanned where it has none.
+std::vector<FaceSet> sets_by_plane(const std::vector<PlanarFace>& faces,
+                                   const WeldedFaces& welded) {
     std::vector<FaceSet> sets;
     std::vector<int32_t> set_of_plane;
     for (uint32_t f = 0; f < faces.size(); ++f) {
@@ -383,12 +446,21 @@ RegionMesh maximal_polygon_mesh(const std::vector<PlanarFace>& faces, double tol
             set.normal += area_vector(*faces[f].polygon);
         }
         set.flat = !(glm::length(set.normal) > 0.0);
-        set.fanned = set.flat || !outline_of(face_ids, set);
+        set.fanned = set.flat || !outline_of(welded.face_ids, set);
     });
-    std::vector<bool> pinned(positions.size(), false);
+    return sets;
+}
+
+// Triangulates every set's outline, in rounds: a set whose triangulation is refused is fanned,
+// which pins its vertices, and the outlines are simplified again (the first kDroppingRounds
+// rounds; after that they are kept whole). Returns each merged set's triangulation.
+std::vector<std::optional<MaximalTriangulation>> triangulate_sets(const WeldedFaces& welded,
+                                                                  std::vector<FaceSet>& sets,
+                                                                  double tolerance, MergeStats& s) {
+    std::vector<bool> pinned(welded.positions.size(), false);
     auto pin = [&](const FaceSet& set) {
         for (const uint32_t f : set.faces) {
-            for (const uint32_t id : face_ids[f]) {
+            for (const uint32_t id : welded.face_ids[f]) {
                 pinned[id] = true;
             }
         }
@@ -402,9 +474,9 @@ RegionMesh maximal_polygon_mesh(const std::vector<PlanarFace>& faces, double tol
     std::vector<std::vector<Edge>> outlines, triangulated(sets.size());
     constexpr int kDroppingRounds = 4;
     for (int round = 0;; ++round) {
-        const bool drop = round < kDroppingRounds;
-        if (drop) {
-            s.dropped_vertices = simplify_outlines(positions, sets, pinned, tolerance, outlines);
+        if (round < kDroppingRounds) {
+            s.dropped_vertices =
+                simplify_outlines(welded.positions, sets, pinned, tolerance, outlines);
         } else {
             s.dropped_vertices = 0;
             outlines.assign(sets.size(), {});
@@ -420,7 +492,7 @@ RegionMesh maximal_polygon_mesh(const std::vector<PlanarFace>& faces, double tol
             if (sets[i].fanned || (merged[i] && triangulated[i] == outlines[i])) {
                 return;  // kept as they are, or the same outline as the last round
             }
-            merged[i] = triangulate_outline(positions, outlines[i], sets[i].normal);
+            merged[i] = triangulate_outline(welded.positions, outlines[i], sets[i].normal);
             triangulated[i] = outlines[i];
             refused[i] = merged[i] ? 0 : 1;
         });
@@ -434,9 +506,20 @@ RegionMesh maximal_polygon_mesh(const std::vector<PlanarFace>& faces, double tol
         }
         s.rounds = round + 1;
         if (!any) {
-            break;
+            return merged;
         }
     }
+}
+
+}  // namespace
+
+RegionMesh maximal_polygon_mesh(const std::vector<PlanarFace>& faces, double tolerance,
+                                MergeStats& s) {
+    const WeldedFaces welded = weld(faces);
+    std::vector<FaceSet> sets = sets_by_plane(faces, welded);
+    const std::vector<std::optional<MaximalTriangulation>> merged =
+        triangulate_sets(welded, sets, tolerance, s);
+    RegionMesh mesh;
     for (size_t i = 0; i < sets.size(); ++i) {
         const FaceSet& set = sets[i];
         if (set.fanned) {
