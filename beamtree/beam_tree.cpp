@@ -162,65 +162,73 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
     stack.clear();
     stack.emplace_back(0, std::move(clipped));
     while (!stack.empty()) {
-        auto [index, fragment] = std::move(stack.back());
+        std::pair<int32_t, Polygon> next = std::move(stack.back());
         stack.pop_back();
-        // Descend while the fragment lies on one side: no copies on the way down.
-        while (at(index).kind == Kind::split) {
-            const Node& node = at(index);
-            Polygon front, back;
-            const Side where = split_straddling(fragment, node.plane, epsilon_, true, front, back);
-            if (where == Side::coplanar) {
-                index = -1;  // on a plane through L: edge-on to the light, occludes nothing
-                break;
-            }
-            if (where != Side::straddling) {
-                index = where == Side::front ? node.front : node.back;
-                continue;
-            }
-            // Slivers thinner than the planes' thickness add nothing but nodes.
-            if (area(back) > epsilon_ * epsilon_) {
-                stack.emplace_back(node.back, std::move(back));
-            }
-            if (area(front) <= epsilon_ * epsilon_) {
-                index = -1;
-                break;
-            }
-            fragment = std::move(front);
-            index = node.front;
+        const int32_t leaf = descend(next.first, next.second, stack);
+        if (leaf >= 0) {
+            insert_at_leaf(leaf, next.second, inserted, stopper_index);
         }
-        if (index < 0) {
+    }
+}
+
+int32_t BeamTree::descend(int32_t index, Polygon& fragment,
+                          std::vector<std::pair<int32_t, Polygon>>& stack) const {
+    // Descend while the fragment lies on one side: no copies on the way down.
+    while (at(index).kind == Kind::split) {
+        const Node& node = at(index);
+        Polygon front, back;
+        const Side where = split_straddling(fragment, node.plane, epsilon_, true, front, back);
+        if (where == Side::coplanar) {
+            return -1;  // on a plane through L: edge-on to the light, occludes nothing
+        }
+        if (where != Side::straddling) {
+            index = where == Side::front ? node.front : node.back;
             continue;
         }
-        const Node node = at(index);
-        switch (node.kind) {
-            case Kind::split:
-                break;
-            case Kind::out:
-                break;
-            case Kind::open:
-                if (!stopper) {  // appendix B attachPolygon
-                    attach(index, fragment, inserted, {Kind::open, {}, -1});
-                }
-                break;
-            case Kind::solid:
-                if (!stopper) {
-                    // Fix-up: the part nearer to L than the current occluder takes over.
-                    attach_nearer(index, fragment, node.plane, inserted,
-                                  {Kind::solid, node.plane, -1});
-                } else {
-                    attach(index, fragment, {Kind::blocker, node.plane, stopper_index},
-                           {Kind::solid, node.plane, -1});
-                }
-                break;
-            case Kind::blocker:
-                if (stopper) {
-                    // Keep the nearest stopper, as for occluders.
-                    attach_nearer(index, fragment, stopper_of(node),
-                                  {Kind::blocker, node.plane, stopper_index},
-                                  {Kind::blocker, node.plane, node.back});
-                }
-                break;
+        // Slivers thinner than the planes' thickness add nothing but nodes.
+        if (area(back) > epsilon_ * epsilon_) {
+            stack.emplace_back(node.back, std::move(back));
         }
+        if (area(front) <= epsilon_ * epsilon_) {
+            return -1;
+        }
+        fragment = std::move(front);
+        index = node.front;
+    }
+    return index;
+}
+
+void BeamTree::insert_at_leaf(int32_t index, const Polygon& fragment, const Leaf& inserted,
+                              int32_t stopper_index) {
+    const bool stopper = stopper_index >= 0;
+    const Node node = at(index);
+    switch (node.kind) {
+        case Kind::split:
+            break;
+        case Kind::out:
+            break;
+        case Kind::open:
+            if (!stopper) {  // appendix B attachPolygon
+                attach(index, fragment, inserted, {Kind::open, {}, -1});
+            }
+            break;
+        case Kind::solid:
+            if (!stopper) {
+                // Fix-up: the part nearer to L than the current occluder takes over.
+                attach_nearer(index, fragment, node.plane, inserted, {Kind::solid, node.plane, -1});
+            } else {
+                attach(index, fragment, {Kind::blocker, node.plane, stopper_index},
+                       {Kind::solid, node.plane, -1});
+            }
+            break;
+        case Kind::blocker:
+            if (stopper) {
+                // Keep the nearest stopper, as for occluders.
+                attach_nearer(index, fragment, stopper_of(node),
+                              {Kind::blocker, node.plane, stopper_index},
+                              {Kind::blocker, node.plane, node.back});
+            }
+            break;
     }
 }
 
@@ -246,17 +254,12 @@ void BeamTree::attach_nearer(int32_t index, const Polygon& fragment, const Plane
     }
 }
 
-void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside,
-                      const Leaf& outside) {
-    // Planes through L and each edge of the fragment that does not already lie on a plane of
-    // the path, oriented with the fragment behind (appendix B attachPolygon). The leaf becomes
-    // the fragment's beam, so the planes must bound it.
-    // Corners closer than 1e-3 ε (clipping's near-duplicates) are one corner: the plane through
-    // L and an edge of length l at distance D from L is good to about 1e-16 D / l radians, which
-    // such an edge would not be.
-    const double coincident = 1e-3 * epsilon_;
-    thread_local std::vector<dvec3> corners;  // allocated once per thread
-    thread_local std::vector<char> on_split;  // the edge leaving corners[i] lies on a path plane
+namespace {
+
+// The fragment's corners with those closer than `coincident` merged into one, and per corner
+// whether the edge leaving it lies on a plane of the path.
+void merge_corners(const Polygon& fragment, double coincident, std::vector<dvec3>& corners,
+                   std::vector<char>& on_split) {
     corners.clear();
     on_split.clear();
     for (size_t i = 0; i < fragment.size(); ++i) {
@@ -272,41 +275,47 @@ void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside
         corners.pop_back();  // merged into the first corner; the closing edge leaves from it
         on_split.pop_back();
     }
+}
+
+// Whether the planes of the neighbours of edge i (corners[i] to corners[i + 1]) meet within
+// 4 `epsilon` beyond it, `normal` being the corners' area vector.
+bool closes_near(const std::vector<dvec3>& corners, size_t i, const dvec3& normal, double epsilon) {
     const size_t n = corners.size();
-    if (n < 3) {
-        return;  // no area
+    const dvec3& a = corners[i];
+    const dvec3& b = corners[(i + 1) % n];
+    const dvec3 before = a - corners[(i + n - 1) % n];  // runs on past a
+    const dvec3 after = b - corners[(i + 2) % n];       // runs on past b
+    const double length = glm::length(b - a);
+    if (!(glm::length(normal) > 0.0)) {
+        return true;  // no area: nothing for a plane to bound
     }
+    const dvec3 along = (b - a) / length;
+    const dvec3 out = glm::normalize(glm::cross(along, normal));  // away from the fragment
+    const double rise_a = glm::dot(before, out), rise_b = glm::dot(after, out);
+    if (!(rise_a > 0.0) || !(rise_b > 0.0)) {
+        return false;
+    }
+    // Beyond the edge at height h, the neighbours are at a + h·cot_a and b + h·cot_b
+    // along it: they meet where h (cot_a - cot_b) = length.
+    const double closing = glm::dot(before, along) / rise_a - glm::dot(after, along) / rise_b;
+    return closing > 0.0 && length <= 4.0 * epsilon * closing;
+}
+
+}  // namespace
+
+bool BeamTree::edge_planes(const std::vector<dvec3>& corners, const std::vector<char>& on_split,
+                           std::vector<Plane>& edges) const {
     // An edge shorter than ε gets no plane of its own (Nilsson §4.3: the planes are ε thick)
     // only where its neighbours' planes meet within 4ε beyond it, so that the beam grows by no
     // more than that. Where they part (a sliver's tip cut off by a nearer occluder), the edge gets
     // its plane, or the beam would run on across the rest of the leaf, which would then take the
     // new occluder where the fragment is not.
+    const size_t n = corners.size();
     dvec3 normal(0.0), center(0.0);  // Newell's area vector, and the corners' centroid
     for (size_t i = 0; i < n; ++i) {
         normal += glm::cross(corners[i] - corners[0], corners[(i + 1) % n] - corners[0]);
         center += corners[i] / double(n);
     }
-    auto closes_near = [&](size_t i) {
-        const dvec3& a = corners[i];
-        const dvec3& b = corners[(i + 1) % n];
-        const dvec3 before = a - corners[(i + n - 1) % n];  // runs on past a
-        const dvec3 after = b - corners[(i + 2) % n];       // runs on past b
-        const double length = glm::length(b - a);
-        if (!(glm::length(normal) > 0.0)) {
-            return true;  // no area: nothing for a plane to bound
-        }
-        const dvec3 along = (b - a) / length;
-        const dvec3 out = glm::normalize(glm::cross(along, normal));  // away from the fragment
-        const double rise_a = glm::dot(before, out), rise_b = glm::dot(after, out);
-        if (!(rise_a > 0.0) || !(rise_b > 0.0)) {
-            return false;
-        }
-        // Beyond the edge at height h, the neighbours are at a + h·cot_a and b + h·cot_b
-        // along it: they meet where h (cot_a - cot_b) = length.
-        const double closing = glm::dot(before, along) / rise_a - glm::dot(after, along) / rise_b;
-        return closing > 0.0 && length <= 4.0 * epsilon_ * closing;
-    };
-    thread_local std::vector<Plane> edges;
     edges.clear();
     for (size_t i = 0; i < n; ++i) {
         if (on_split[i]) {
@@ -314,7 +323,7 @@ void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside
         }
         const dvec3& a = corners[i];
         const dvec3& b = corners[(i + 1) % n];
-        if (glm::length(b - a) <= epsilon_ && closes_near(i)) {
+        if (glm::length(b - a) <= epsilon_ && closes_near(corners, i, normal, epsilon_)) {
             continue;
         }
         Plane plane;
@@ -323,9 +332,27 @@ void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside
         }
         const double side = plane.distance(center);
         if (std::abs(side) <= 0.01 * epsilon_) {
-            return;  // the whole fragment is edge-on to the light
+            return false;  // the whole fragment is edge-on to the light
         }
         edges.push_back(side > 0.0 ? plane.flipped() : plane);
+    }
+    return true;
+}
+
+void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside,
+                      const Leaf& outside) {
+    // Planes through L and each edge of the fragment that does not already lie on a plane of
+    // the path, oriented with the fragment behind (appendix B attachPolygon). The leaf becomes
+    // the fragment's beam, so the planes must bound it.
+    // Corners closer than 1e-3 ε (clipping's near-duplicates) are one corner: the plane through
+    // L and an edge of length l at distance D from L is good to about 1e-16 D / l radians, which
+    // such an edge would not be.
+    thread_local std::vector<dvec3> corners;  // allocated once per thread
+    thread_local std::vector<char> on_split;  // the edge leaving corners[i] lies on a path plane
+    thread_local std::vector<Plane> edges;
+    merge_corners(fragment, 1e-3 * epsilon_, corners, on_split);
+    if (corners.size() < 3 || !edge_planes(corners, on_split, edges)) {
+        return;  // no area, or edge-on to the light
     }
     // Rewrite the leaf in place as a chain: each edge plane's front is outside the fragment's
     // beam; the last back is the fragment's beam.
@@ -393,10 +420,12 @@ Region BeamTree::leaf_region(const Node& leaf, const dvec3& p) const {
     return Region::unlit;
 }
 
-void BeamTree::trace(const dvec3& origin, const dvec3& direction, double t0, double t1,
-                     std::vector<RegionInterval>& out) const {
-    out.clear();
-    auto emit = [&](Region region, double begin, double end) {
+namespace {
+
+// Appends intervals to a trace's answer, joining neighbours of one region and dropping empty ones.
+struct IntervalWriter {
+    std::vector<RegionInterval>& out;
+    void emit(Region region, double begin, double end) {
         if (!(end > begin)) {
             return;
         }
@@ -405,93 +434,103 @@ void BeamTree::trace(const dvec3& origin, const dvec3& direction, double t0, dou
         } else {
             out.push_back({region, begin, end});
         }
-    };
-    // Where a plane's signed distance a + b t changes sign along the ray.
-    auto crossing = [&](const Plane& plane, double& a, double& b) {
-        a = plane.distance(origin);
-        b = glm::dot(plane.normal, direction);
-    };
+    }
+};
+
+// The plane's signed distance along the ray, a + b t.
+struct Crossing {
+    double a, b;
+    Crossing(const Plane& plane, const dvec3& origin, const dvec3& direction)
+        : a(plane.distance(origin)), b(glm::dot(plane.normal, direction)) {}
+};
+
+}  // namespace
+
+void BeamTree::trace(const dvec3& origin, const dvec3& direction, double t0, double t1,
+                     std::vector<RegionInterval>& out) const {
+    out.clear();
+    IntervalWriter writer{out};
     // Inside the near and far ranges: both distances negative (classify's test).
     double inside0 = t0, inside1 = t1;
     for (size_t i = 4; i < 6; ++i) {
-        double a = 0.0, b = 0.0;
-        crossing(influence_[i], a, b);
-        if (b == 0.0) {
-            if (!(a < 0.0)) {
+        const Crossing c(influence_[i], origin, direction);
+        if (c.b == 0.0) {
+            if (!(c.a < 0.0)) {
                 inside1 = inside0;
             }
-        } else if (b > 0.0) {
-            inside1 = std::min(inside1, -a / b);
+        } else if (c.b > 0.0) {
+            inside1 = std::min(inside1, -c.a / c.b);
         } else {
-            inside0 = std::max(inside0, -a / b);
+            inside0 = std::max(inside0, -c.a / c.b);
         }
     }
     if (!(inside1 > inside0)) {
-        emit(Region::unlit, t0, t1);
+        writer.emit(Region::unlit, t0, t1);
         return;
     }
-    emit(Region::unlit, t0, inside0);
+    writer.emit(Region::unlit, t0, inside0);
     // Depth-first down the tree, nearer pieces first: the current piece descends without the
     // stack (a push and pop per node stalls on store forwarding); the farther part of a split
     // waits on it.
-    struct Piece {
-        int32_t node;
-        double begin, end;
-    };
-    thread_local std::vector<Piece> stack;
+    thread_local std::vector<TracePiece> stack;
     stack.clear();
-    Piece piece{0, inside0, inside1};
+    TracePiece piece{0, inside0, inside1};
     for (;;) {
         const Node& node = at(piece.node);
         if (node.kind == Kind::split) {
-            double a = 0.0, b = 0.0;
-            crossing(node.plane, a, b);
-            const bool front_begin = a + b * piece.begin >= 0.0;
-            const bool front_end = a + b * piece.end >= 0.0;
+            const Crossing c(node.plane, origin, direction);
+            const bool front_begin = c.a + c.b * piece.begin >= 0.0;
+            const bool front_end = c.a + c.b * piece.end >= 0.0;
             if (front_begin == front_end) {
                 piece.node = front_begin ? node.front : node.back;
                 continue;
             }
-            const double t = b != 0.0 ? std::clamp(-a / b, piece.begin, piece.end)
-                                      : 0.5 * (piece.begin + piece.end);
+            const double t = c.b != 0.0 ? std::clamp(-c.a / c.b, piece.begin, piece.end)
+                                        : 0.5 * (piece.begin + piece.end);
             stack.push_back({front_end ? node.front : node.back, t, piece.end});
             piece = {front_begin ? node.front : node.back, piece.begin, t};
             continue;
         }
-        // A leaf: its occluder and stopper cut the piece into at most three parts.
-        std::array<double, 4> cuts = {piece.begin, piece.end, piece.end, piece.end};
-        size_t count = 1;
-        const Plane* planes[2] = {nullptr, nullptr};
-        if (node.kind == Kind::solid || node.kind == Kind::blocker) {
-            planes[0] = &node.plane;
-        }
-        if (node.kind == Kind::blocker) {
-            planes[1] = &stopper_of(node);
-        }
-        for (const Plane* plane : planes) {
-            double a = 0.0, b = 0.0;
-            if (plane) {
-                crossing(*plane, a, b);
-            }
-            if (b != 0.0 && -a / b > piece.begin && -a / b < piece.end) {
-                cuts[count++] = -a / b;
-            }
-        }
-        if (count == 3 && cuts[2] < cuts[1]) {
-            std::swap(cuts[1], cuts[2]);
-        }
-        cuts[count++] = piece.end;
-        for (size_t i = 0; i + 1 < count; ++i) {
-            const double middle = 0.5 * (cuts[i] + cuts[i + 1]);
-            emit(leaf_region(node, origin + middle * direction), cuts[i], cuts[i + 1]);
-        }
+        trace_leaf(node, origin, direction, piece, writer.out);
         if (stack.empty()) {
             break;
         }
         piece = stack.back();
         stack.pop_back();
     }
-    emit(Region::unlit, inside1, t1);
+    writer.emit(Region::unlit, inside1, t1);
+}
+
+void BeamTree::trace_leaf(const Node& node, const dvec3& origin, const dvec3& direction,
+                          const TracePiece& piece, std::vector<RegionInterval>& out) const {
+    // The leaf's occluder and stopper cut the piece into at most three parts.
+    std::array<double, 4> cuts = {piece.begin, piece.end, piece.end, piece.end};
+    size_t count = 1;
+    const Plane* planes[2] = {nullptr, nullptr};
+    if (node.kind == Kind::solid || node.kind == Kind::blocker) {
+        planes[0] = &node.plane;
+    }
+    if (node.kind == Kind::blocker) {
+        planes[1] = &stopper_of(node);
+    }
+    for (const Plane* plane : planes) {
+        if (!plane) {
+            continue;
+        }
+        const Crossing c(*plane, origin, direction);
+        if (c.b != 0.0 && -c.a / c.b > piece.begin && -c.a / c.b < piece.end) {
+            cuts[count++] = -c.a / c.b;
+        }
+    }
+    if (count == 3 && cuts[2] < cuts[1]) {
+        std::swap(cuts[1], cuts[2]);
+    }
+    cuts[count++] = piece.end;
+    IntervalWriter writer{out};
+    for (size_t i = 0; i + 1 < count; ++i) {
+        const double middle = 0.5 * (cuts[i] + cuts[i + 1]);
+        writer.emit(leaf_region(node, origin + middle * direction), cuts[i], cuts[i + 1]);
+    }
 }
 
 BeamTree::FacePlane BeamTree::face_plane(const dvec3& interior, const Polygon& face,

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -157,12 +158,31 @@ private:
     }
     void split_cells(int32_t node, Polyhedron cell, double epsilon, int depth,
                      std::vector<LeafCell>& out) const;
+    // A stretch [begin, end] of a traced ray that reached `node`.
+    struct TracePiece {
+        int32_t node;
+        double begin, end;
+    };
+    // Appends the intervals of a piece that reached leaf `node` to `out`.
+    void trace_leaf(const Node& node, const dvec3& origin, const dvec3& direction,
+                    const TracePiece& piece, std::vector<RegionInterval>& out) const;
     // classify()'s answer at a point inside the near and far ranges that reached `leaf`.
     Region leaf_region(const Node& leaf, const dvec3& p) const;
     void set_leaf(int32_t index, const Leaf& leaf);
 
     void insert(const Polygon& polygon, const Plane& plane, bool stopper);
+    // Takes `fragment` down from node `index` to its leaf, pushing the far parts of straddled
+    // splits onto `stack`; -1 where nothing of it is left to attach.
+    int32_t descend(int32_t index, Polygon& fragment,
+                    std::vector<std::pair<int32_t, Polygon>>& stack) const;
+    // What a fragment of an occluder (stopper_index < 0) or a stopper does to the leaf it reached.
+    void insert_at_leaf(int32_t index, const Polygon& fragment, const Leaf& inserted,
+                        int32_t stopper_index);
     void attach(int32_t node, const Polygon& fragment, const Leaf& inside, const Leaf& outside);
+    // The planes through L and the fragment's edges (corners merged, edges on a path plane
+    // skipped), fragment behind; false where the fragment is edge-on to the light.
+    bool edge_planes(const std::vector<dvec3>& corners, const std::vector<char>& on_split,
+                     std::vector<Plane>& edges) const;
     // Attaches the part of the fragment nearer to L than `current` (Nilsson ch. 8's fix-up).
     void attach_nearer(int32_t node, const Polygon& fragment, const Plane& current,
                        const Leaf& inside, const Leaf& outside);
