@@ -546,8 +546,7 @@ bool VolumeLibrary::box_verified(const Mesh& mesh, uint64_t key, const Box& box)
     return inside;
 }
 
-std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
-                                                std::vector<std::string>* warnings) {
+void VolumeLibrary::compute_missing(const Scene& scene) {
     // The meshes not seen before, computed in parallel (each is independent of the others),
     // then cached in scene order.
     std::vector<std::shared_ptr<const Mesh>> missing;
@@ -560,66 +559,74 @@ std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
             }
         }
     }
-    {
-        // Hulls and pieces of a large model take seconds (cached afterwards): said so.
-        Progress progress(fmt::format("bounding volumes of {} meshes (computed once, then cached)",
-                                      missing.size()),
-                          missing.size());
-        tbb::parallel_for(size_t(0), missing.size(), [&](size_t i) {
-            entry(missing[i]);
-            progress.advance();
-        });
+    // Hulls and pieces of a large model take seconds (cached afterwards): said so.
+    Progress progress(
+        fmt::format("bounding volumes of {} meshes (computed once, then cached)", missing.size()),
+        missing.size());
+    tbb::parallel_for(size_t(0), missing.size(), [&](size_t i) {
+        entry(missing[i]);
+        progress.advance();
+    });
+}
+
+void VolumeLibrary::append_volumes(const Object& object, int index,
+                                   std::vector<ObjectVolumes>& result) {
+    const Entry& entry = this->entry(object.mesh);
+    const LocalVolumes& local = *entry.volumes;
+    const glm::dmat4 transform(object.transform);
+    std::vector<ConvexVolume> explicit_inner;
+    for (size_t b = 0; b < object.inner_boxes.size(); ++b) {
+        if (!box_verified(*object.mesh, entry.key, object.inner_boxes[b])) {
+            fail("object '{}': inner box {} is not strictly inside its mesh", object.name, b);
+        }
+        explicit_inner.push_back(box_volume(object.inner_boxes[b]).transformed(transform));
     }
+    if (local.pieces.empty()) {
+        ObjectVolumes volumes;
+        volumes.object = index;
+        volumes.name = object.name;
+        volumes.outer = local.outer.transformed(transform);
+        if (!object.inner_boxes.empty()) {
+            volumes.inner = explicit_inner;
+        } else if (local.self_inner) {
+            volumes.inner.push_back(volumes.outer);
+        } else {
+            for (const ConvexVolume& inner : local.automatic_inner) {
+                volumes.inner.push_back(inner.transformed(transform));
+            }
+        }
+        result.push_back(std::move(volumes));
+        return;
+    }
+    for (size_t p = 0; p < local.pieces.size(); ++p) {
+        ObjectVolumes volumes;
+        volumes.object = index;
+        volumes.name = object.name;
+        volumes.piece = int(p);
+        volumes.pieces = int(local.pieces.size());
+        volumes.outer = local.pieces[p].outer.transformed(transform);
+        if (object.inner_boxes.empty()) {
+            for (const ConvexVolume& inner : local.pieces[p].inner) {
+                volumes.inner.push_back(inner.transformed(transform));
+            }
+        } else if (p == 0) {
+            volumes.inner = explicit_inner;  // the object's boxes go with its first piece
+        }
+        result.push_back(std::move(volumes));
+    }
+}
+
+std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
+                                                std::vector<std::string>* warnings) {
+    compute_missing(scene);
     std::vector<ObjectVolumes> result;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const Object& object = scene.objects[i];
         if (!scene.casts_shadow(object)) {
             continue;  // glass: the light passes it
         }
-        const Entry& entry = this->entry(object.mesh);
-        const LocalVolumes& local = *entry.volumes;
-        const uint64_t key = entry.key;
-        const glm::dmat4 transform(object.transform);
-        std::vector<ConvexVolume> explicit_inner;
-        for (size_t b = 0; b < object.inner_boxes.size(); ++b) {
-            if (!box_verified(*object.mesh, key, object.inner_boxes[b])) {
-                fail("object '{}': inner box {} is not strictly inside its mesh", object.name, b);
-            }
-            explicit_inner.push_back(box_volume(object.inner_boxes[b]).transformed(transform));
-        }
-        if (!local.pieces.empty()) {
-            for (size_t p = 0; p < local.pieces.size(); ++p) {
-                ObjectVolumes volumes;
-                volumes.object = int(i);
-                volumes.name = object.name;
-                volumes.piece = int(p);
-                volumes.pieces = int(local.pieces.size());
-                volumes.outer = local.pieces[p].outer.transformed(transform);
-                if (object.inner_boxes.empty()) {
-                    for (const ConvexVolume& inner : local.pieces[p].inner) {
-                        volumes.inner.push_back(inner.transformed(transform));
-                    }
-                } else if (p == 0) {
-                    volumes.inner = explicit_inner;
-                }
-                result.push_back(std::move(volumes));
-            }
-        } else {
-            ObjectVolumes volumes;
-            volumes.object = int(i);
-            volumes.name = object.name;
-            volumes.outer = local.outer.transformed(transform);
-            if (!object.inner_boxes.empty()) {
-                volumes.inner = explicit_inner;
-            } else if (local.self_inner) {
-                volumes.inner.push_back(volumes.outer);
-            } else {
-                for (const ConvexVolume& inner : local.automatic_inner) {
-                    volumes.inner.push_back(inner.transformed(transform));
-                }
-            }
-            result.push_back(std::move(volumes));
-        }
+        append_volumes(object, int(i), result);
+        const LocalVolumes& local = *entry(object.mesh).volumes;
         if (object.inner_boxes.empty() && !local.self_inner && !local.no_inner.empty() &&
             options_.automatic_inner && warnings) {
             warnings->push_back(fmt::format("object '{}': no automatic inner volume: {}",

@@ -106,6 +106,10 @@ private:
     LocalVolumes compute(const Mesh& mesh) const;
     const Entry& entry(const std::shared_ptr<const Mesh>& mesh);
     bool box_verified(const Mesh& mesh, uint64_t key, const Box& box);
+    // Computes (in parallel) the volumes of the scene's meshes this library has not seen.
+    void compute_missing(const Scene& scene);
+    // The world-space volumes of scene object `index`: one per convex piece, or its hull.
+    void append_volumes(const Object& object, int index, std::vector<ObjectVolumes>& result);
 
     BoundsSettings options_;
     bool caching_ = true;

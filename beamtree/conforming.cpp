@@ -122,7 +122,13 @@ bool has_collinear_vertex(const Polygon& polygon) {
     return false;
 }
 
-void make_conforming(const std::vector<Polygon*>& polygons, double tolerance) {
+namespace {
+
+// Welding: the tree computes a corner shared by several cells once per cell, and the copies
+// differ by round-off, which float can round apart. Every cluster of positions chained within
+// `tolerance` becomes its lexicographically smallest member (union-find, smaller index wins), in
+// every polygon. Returns the welded positions; false (nothing changed) under three.
+bool weld(const std::vector<Polygon*>& polygons, double tolerance, std::vector<dvec3>& welded) {
     // The distinct vertex positions (faces of neighbouring cells share most of theirs).
     std::vector<dvec3> positions;
     for (const Polygon* polygon : polygons) {
@@ -131,12 +137,8 @@ void make_conforming(const std::vector<Polygon*>& polygons, double tolerance) {
     std::sort(positions.begin(), positions.end(), lexicographic_less);
     positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
     if (positions.size() < 3) {
-        return;
+        return false;
     }
-
-    // Welding: the tree computes a corner shared by several cells once per cell, and the copies
-    // differ by round-off, which float can round apart. Every cluster of positions chained within
-    // `tolerance` becomes its lexicographically smallest member (union-find, smaller index wins).
     std::vector<uint32_t> parent(positions.size());
     for (uint32_t i = 0; i < parent.size(); ++i) {
         parent[i] = i;
@@ -152,20 +154,18 @@ void make_conforming(const std::vector<Polygon*>& polygons, double tolerance) {
             std::lower_bound(positions.begin(), positions.end(), p, lexicographic_less) -
             positions.begin());
     };
-    {
-        const PointTree near(positions);
-        const double tolerance2 = tolerance * tolerance;
-        for (uint32_t i = 0; i < positions.size(); ++i) {
-            near.query(positions[i], positions[i], tolerance, [&](const dvec3& q) {
-                const dvec3 gap = q - positions[i];
-                if (glm::dot(gap, gap) <= tolerance2) {
-                    const uint32_t a = root(i), b = root(index_of(q));
-                    parent[std::max(a, b)] = std::min(a, b);
-                }
-            });
-        }
+    const PointTree near(positions);
+    const double tolerance2 = tolerance * tolerance;
+    for (uint32_t i = 0; i < positions.size(); ++i) {
+        near.query(positions[i], positions[i], tolerance, [&](const dvec3& q) {
+            const dvec3 gap = q - positions[i];
+            if (glm::dot(gap, gap) <= tolerance2) {
+                const uint32_t a = root(i), b = root(index_of(q));
+                parent[std::max(a, b)] = std::min(a, b);
+            }
+        });
     }
-    std::vector<dvec3> welded;
+    welded.clear();
     for (uint32_t i = 0; i < positions.size(); ++i) {
         if (root(i) == i) {
             welded.push_back(positions[i]);
@@ -181,11 +181,14 @@ void make_conforming(const std::vector<Polygon*>& polygons, double tolerance) {
             v.pop_back();
         }
     }
-    const PointTree tree(std::move(welded));
+    return true;
+}
 
-    // A vertex of a convex polygon is never inside one of its own edges, so every point found
-    // within `tolerance` of an edge's interior (and farther than that from its ends) is a
-    // T-vertex, whichever polygon it belongs to.
+// A vertex of a convex polygon is never inside one of its own edges, so every point of `tree`
+// found within `tolerance` of an edge's interior (and farther than that from its ends) is a
+// T-vertex, whichever polygon it belongs to: each edge gains the T-vertices on it, in order.
+void insert_t_vertices(const std::vector<Polygon*>& polygons, const PointTree& tree,
+                       double tolerance) {
     const double tolerance2 = tolerance * tolerance;
     std::vector<std::pair<double, dvec3>> on_edge;
     std::vector<dvec3> conforming;
@@ -215,6 +218,15 @@ void make_conforming(const std::vector<Polygon*>& polygons, double tolerance) {
         }
         polygon->vertices = conforming;
         polygon->on_split_plane = 0;
+    }
+}
+
+}  // namespace
+
+void make_conforming(const std::vector<Polygon*>& polygons, double tolerance) {
+    std::vector<dvec3> welded;
+    if (weld(polygons, tolerance, welded)) {
+        insert_t_vertices(polygons, PointTree(std::move(welded)), tolerance);
     }
 }
 

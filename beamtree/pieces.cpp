@@ -167,12 +167,15 @@ std::vector<dvec3> clip_slab(const std::vector<dvec3>& polygon, int axis, double
 // where no cut separates them: a face on the bounds with empty space behind it (probed 1.5
 // voxels inward at its largest triangle) adds a cut one voxel inside (with `shells`), so that
 // each such face becomes a slab of its own and the room's empty middle is left out.
-std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tolerance,
-                               const Voxels& voxels, bool shells) {
-    const Bounds b = mesh.bounds();
-    const double lo = double(b.min[axis]) + tolerance, hi = double(b.max[axis]) - tolerance;
-    std::map<double, double> area_at;  // a plane's coordinate -> area of the faces on it
-    std::array<std::pair<double, dvec3>, 2> on_bounds{};  // per side: largest area, its centre
+// The faces of a mesh across one axis: the area on each plane strictly inside the bounds, and
+// per side of the bounds the largest face on it (area, centre).
+struct FacesAcross {
+    std::map<double, double> area_at;
+    std::array<std::pair<double, dvec3>, 2> on_bounds{};
+};
+
+FacesAcross faces_across(const Mesh& mesh, int axis, double lo, double hi) {
+    FacesAcross out;
     for (const glm::uvec3& t : mesh.triangles) {
         const dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
         if (p0[axis] != p1[axis] || p1[axis] != p2[axis]) {
@@ -180,55 +183,59 @@ std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tol
         }
         const double area = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
         if (p0[axis] > lo && p0[axis] < hi) {
-            area_at[p0[axis]] += area;
-        } else if (auto& side = on_bounds[p0[axis] >= hi ? 1 : 0]; area > side.first) {
+            out.area_at[p0[axis]] += area;
+        } else if (auto& side = out.on_bounds[p0[axis] >= hi ? 1 : 0]; area > side.first) {
             side = {area, (p0 + p1 + p2) / 3.0};
         }
     }
-    std::vector<double> shell_cuts;
+    return out;
+}
+
+// One cut a voxel inside each side of the bounds whose largest face has empty space behind it.
+std::vector<double> shell_cuts(const FacesAcross& faces, int axis, const Bounds& b, double lo,
+                               double hi, const Voxels& voxels) {
+    std::vector<double> cuts;
     for (int side = 0; side < 2; ++side) {
-        if (!shells || on_bounds[size_t(side)].first <= 0.0 || hi - lo <= 3.0 * voxels.cell()) {
+        if (faces.on_bounds[size_t(side)].first <= 0.0 || hi - lo <= 3.0 * voxels.cell()) {
             continue;
         }
-        dvec3 probe = on_bounds[size_t(side)].second;
+        dvec3 probe = faces.on_bounds[size_t(side)].second;
         probe[axis] += (side ? -1.5 : 1.5) * voxels.cell();
         if (voxels.empty_at(probe)) {
-            shell_cuts.push_back(side ? double(b.max[axis]) - voxels.cell()
-                                      : double(b.min[axis]) + voxels.cell());
+            cuts.push_back(side ? double(b.max[axis]) - voxels.cell()
+                                : double(b.min[axis]) + voxels.cell());
         }
     }
-    auto add_shell_cuts = [&](std::vector<double>& cuts) {
-        for (const double c : shell_cuts) {
-            const bool near = std::any_of(cuts.begin(), cuts.end(), [&](double other) {
-                return std::abs(other - c) <= 0.5 * voxels.cell();
-            });
-            if (!near && int(cuts.size()) < limit) {
-                cuts.push_back(c);
-            }
-        }
-        std::sort(cuts.begin(), cuts.end());
-    };
+    return cuts;
+}
+
+// The planes of the largest faces, none within `tolerance` of another, at most `slots`.
+std::vector<double> cuts_at_faces(const std::map<double, double>& area_at, int slots,
+                                  double tolerance) {
+    std::vector<std::pair<double, double>> planes;  // (area, coordinate)
+    for (const auto& [coordinate, area] : area_at) {
+        planes.emplace_back(area, coordinate);
+    }
+    std::sort(planes.begin(), planes.end(), [](const auto& x, const auto& y) {
+        return x.first != y.first ? x.first > y.first : x.second < y.second;
+    });
     std::vector<double> cuts;
-    if (!area_at.empty()) {
-        std::vector<std::pair<double, double>> planes;  // (area, coordinate)
-        for (const auto& [coordinate, area] : area_at) {
-            planes.emplace_back(area, coordinate);
-        }
-        std::sort(planes.begin(), planes.end(), [](const auto& x, const auto& y) {
-            return x.first != y.first ? x.first > y.first : x.second < y.second;
+    for (const auto& plane : planes) {
+        const double coordinate = plane.second;
+        const bool near = std::any_of(cuts.begin(), cuts.end(), [&](double c) {
+            return std::abs(c - coordinate) <= tolerance;
         });
-        for (const auto& plane : planes) {
-            const double coordinate = plane.second;
-            const bool near = std::any_of(cuts.begin(), cuts.end(), [&](double c) {
-                return std::abs(c - coordinate) <= tolerance;
-            });
-            if (!near && int(cuts.size()) < limit - int(shell_cuts.size())) {
-                cuts.push_back(coordinate);
-            }
+        if (!near && int(cuts.size()) < slots) {
+            cuts.push_back(coordinate);
         }
-        add_shell_cuts(cuts);
-        return cuts;
     }
+    return cuts;
+}
+
+// The distinct vertex coordinates in (lo, hi) (closer than `tolerance` are one), thinned evenly
+// to at most `slots`.
+std::vector<double> cuts_at_vertices(const Mesh& mesh, int axis, double lo, double hi, int slots,
+                                     double tolerance) {
     std::vector<double> values;
     for (const glm::vec3& p : mesh.positions) {
         if (double(p[axis]) > lo && double(p[axis]) < hi) {
@@ -242,15 +249,44 @@ std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tol
             distinct.push_back(v);
         }
     }
-    const int slots = limit - int(shell_cuts.size());
     if (int(distinct.size()) <= slots) {
-        cuts = std::move(distinct);
-    } else {
-        for (int i = 0; i < slots; ++i) {
-            cuts.push_back(distinct[size_t((i + 0.5) * double(distinct.size()) / slots)]);
+        return distinct;
+    }
+    std::vector<double> cuts;
+    for (int i = 0; i < slots; ++i) {
+        cuts.push_back(distinct[size_t((i + 0.5) * double(distinct.size()) / slots)]);
+    }
+    return cuts;
+}
+
+// Cut coordinates along one axis. Where the mesh has faces across the axis (a window's
+// reveals, a sill, a floor), the planes of the largest of them, so that no cut an opening needs
+// is thinned away; otherwise (a curved mesh) the distinct vertex coordinates, thinned evenly.
+// Only coordinates strictly inside the bounds count, and at most `limit`.
+// A shell (a room, an open box, a thin panel on the bounds) has its largest faces on the bounds,
+// where no cut separates them: a face on the bounds with empty space behind it (probed 1.5
+// voxels inward at its largest triangle) adds a cut one voxel inside (with `shells`), so that
+// each such face becomes a slab of its own and the room's empty middle is left out.
+std::vector<double> cuts_along(const Mesh& mesh, int axis, int limit, double tolerance,
+                               const Voxels& voxels, bool shells) {
+    const Bounds b = mesh.bounds();
+    const double lo = double(b.min[axis]) + tolerance, hi = double(b.max[axis]) - tolerance;
+    const FacesAcross faces = faces_across(mesh, axis, lo, hi);
+    const std::vector<double> shell =
+        shells ? shell_cuts(faces, axis, b, lo, hi, voxels) : std::vector<double>();
+    const int slots = limit - int(shell.size());
+    std::vector<double> cuts = !faces.area_at.empty()
+                                   ? cuts_at_faces(faces.area_at, slots, tolerance)
+                                   : cuts_at_vertices(mesh, axis, lo, hi, slots, tolerance);
+    for (const double c : shell) {
+        const bool near = std::any_of(cuts.begin(), cuts.end(), [&](double other) {
+            return std::abs(other - c) <= 0.5 * voxels.cell();
+        });
+        if (!near && int(cuts.size()) < limit) {
+            cuts.push_back(c);
         }
     }
-    add_shell_cuts(cuts);
+    std::sort(cuts.begin(), cuts.end());
     return cuts;
 }
 
@@ -618,7 +654,17 @@ std::vector<int> empty_voxels_inside(const Mesh& mesh, const std::vector<ConvexV
 
 namespace sl::bt {
 
-Mesh welded(const Mesh& mesh, double tolerance) {
+namespace {
+
+using EdgeKey = std::pair<uint32_t, uint32_t>;  // smaller vertex first
+using EdgeSplits = std::map<EdgeKey, std::vector<std::pair<double, uint32_t>>>;
+
+EdgeKey edge_key(uint32_t a, uint32_t b) {
+    return {std::min(a, b), std::max(a, b)};
+}
+
+// Vertices within `tolerance` on one grid cell become one; triangles that lose a corner go.
+Mesh weld_vertices(const Mesh& mesh, double tolerance) {
     Mesh out;
     std::map<std::tuple<long long, long long, long long>, uint32_t> cells;
     std::vector<uint32_t> map(mesh.positions.size());
@@ -639,18 +685,20 @@ Mesh welded(const Mesh& mesh, double tolerance) {
             out.triangles.push_back(w);
         }
     }
-    // T-junctions: the vertices of open edges that lie on another open edge split it.
-    auto edge_key = [](uint32_t a, uint32_t b) {
-        return std::pair<uint32_t, uint32_t>(std::min(a, b), std::max(a, b));
-    };
-    std::map<std::pair<uint32_t, uint32_t>, int> uses;
-    for (const glm::uvec3& t : out.triangles) {
+    return out;
+}
+
+// T-junctions: the vertices of open edges (used by one triangle) that lie within `tolerance` on
+// another open edge, per edge with their parameter along it (from the smaller vertex).
+EdgeSplits t_junctions(const Mesh& mesh, double tolerance) {
+    std::map<EdgeKey, int> uses;
+    for (const glm::uvec3& t : mesh.triangles) {
         for (int e = 0; e < 3; ++e) {
             ++uses[edge_key(t[e], t[(e + 1) % 3])];
         }
     }
     std::set<uint32_t> open_vertices;
-    std::vector<std::pair<uint32_t, uint32_t>> open_edges;
+    std::vector<EdgeKey> open_edges;
     for (const auto& [edge, count] : uses) {
         if (count == 1) {
             open_edges.push_back(edge);
@@ -658,31 +706,34 @@ Mesh welded(const Mesh& mesh, double tolerance) {
             open_vertices.insert(edge.second);
         }
     }
-    // Points on each open edge, ordered along it.
-    std::map<std::pair<uint32_t, uint32_t>, std::vector<std::pair<double, uint32_t>>> splits;
+    EdgeSplits splits;
     constexpr size_t kMaxOpenEdges = 20000;  // beyond it the quadratic search is not worth it
-    for (const auto& [a, b] : open_edges.size() <= kMaxOpenEdges
-                                  ? open_edges
-                                  : std::vector<std::pair<uint32_t, uint32_t>>{}) {
-        const dvec3 pa(out.positions[a]), pb(out.positions[b]);
+    if (open_edges.size() > kMaxOpenEdges) {
+        return splits;
+    }
+    for (const auto& [a, b] : open_edges) {
+        const dvec3 pa(mesh.positions[a]), pb(mesh.positions[b]);
         const dvec3 d = pb - pa;
         const double length2 = glm::dot(d, d);
         for (const uint32_t v : open_vertices) {
             if (v == a || v == b) {
                 continue;
             }
-            const dvec3 pv(out.positions[v]);
+            const dvec3 pv(mesh.positions[v]);
             const double s = glm::dot(pv - pa, d) / length2;
             if (s > 1e-9 && s < 1.0 - 1e-9 && glm::length(pa + s * d - pv) <= tolerance) {
                 splits[{a, b}].emplace_back(s, v);
             }
         }
     }
-    if (splits.empty()) {
-        return out;
-    }
+    return splits;
+}
+
+// Each triangle with a split edge becomes a fan from a new centre vertex around its corners and
+// the split points in order: no triangle is degenerate, every split edge is kept.
+void split_edges(Mesh& mesh, const EdgeSplits& splits) {
     std::vector<glm::uvec3> triangles;
-    for (const glm::uvec3& t : out.triangles) {
+    for (const glm::uvec3& t : mesh.triangles) {
         std::vector<uint32_t> ring;
         bool split = false;
         for (int e = 0; e < 3; ++e) {
@@ -706,16 +757,25 @@ Mesh welded(const Mesh& mesh, double tolerance) {
             triangles.push_back(t);
             continue;
         }
-        // A fan from a new centre vertex: no triangle is degenerate, every split edge is kept.
         const glm::vec3 centre =
-            (out.positions[t.x] + out.positions[t.y] + out.positions[t.z]) / 3.0f;
-        const auto c = uint32_t(out.positions.size());
-        out.positions.push_back(centre);
+            (mesh.positions[t.x] + mesh.positions[t.y] + mesh.positions[t.z]) / 3.0f;
+        const auto c = uint32_t(mesh.positions.size());
+        mesh.positions.push_back(centre);
         for (size_t k = 0; k < ring.size(); ++k) {
             triangles.emplace_back(c, ring[k], ring[(k + 1) % ring.size()]);
         }
     }
-    out.triangles = std::move(triangles);
+    mesh.triangles = std::move(triangles);
+}
+
+}  // namespace
+
+Mesh welded(const Mesh& mesh, double tolerance) {
+    Mesh out = weld_vertices(mesh, tolerance);
+    const EdgeSplits splits = t_junctions(out, tolerance);
+    if (!splits.empty()) {
+        split_edges(out, splits);
+    }
     return out;
 }
 

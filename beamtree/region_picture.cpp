@@ -50,6 +50,58 @@ PixelRegions trace_pixel(const BeamTree& tree, const PixelUnprojector& pixels,
     return result;
 }
 
+// Whether the traced neighbours of an untraced pixel cross the same regions in the same order,
+// ending within 1% of each other: then the pixel takes their mean and needs no ray of its own.
+bool alike(const std::vector<const PixelRegions*>& neighbours) {
+    const PixelRegions& first = *neighbours.front();
+    for (const PixelRegions* n : neighbours) {
+        if (n->inside != first.inside || n->intervals.size() != first.intervals.size() ||
+            !(std::abs(n->end - first.end) <= 0.01 * first.end)) {
+            return false;
+        }
+        for (size_t k = 0; k < n->intervals.size(); ++k) {
+            if (n->intervals[k].region != first.intervals[k].region) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+// The neighbours' intervals, averaged bound by bound.
+void mean_of(const std::vector<const PixelRegions*>& neighbours, PixelRegions& mean) {
+    mean = *neighbours.front();
+    for (size_t k = 0; k < mean.intervals.size(); ++k) {
+        double begin = 0.0, end = 0.0;
+        for (const PixelRegions* n : neighbours) {
+            begin += n->intervals[k].begin;
+            end += n->intervals[k].end;
+        }
+        mean.intervals[k].begin = begin / double(neighbours.size());
+        mean.intervals[k].end = end / double(neighbours.size());
+    }
+}
+
+// The regions as a coloured fog over one pixel: lit yellow, uncertain grey, unlit black.
+// Uncertain and unlit absorb 8x more than lit so that thin shadow volumes show through the lit
+// air in front of them.
+void shade(const PixelRegions& regions, double far, uint8_t* pixel) {
+    const glm::dvec3 colors[3] = {{1.0, 0.82, 0.1}, {0.55, 0.55, 0.55}, {0.0, 0.0, 0.0}};
+    const double extinction[3] = {1.5 / far, 12.0 / far, 12.0 / far};
+    dvec3 color(0.0);
+    double transparency = 1.0;
+    for (const RegionInterval& interval : regions.intervals) {
+        const auto region = size_t(interval.region);
+        const double alpha = 1.0 - std::exp(-extinction[region] * (interval.end - interval.begin));
+        color += transparency * alpha * colors[region];
+        transparency *= 1.0 - alpha;
+    }
+    for (int c = 0; c < 3; ++c) {
+        pixel[c] = static_cast<uint8_t>(
+            std::lround(transparency * pixel[c] + 255.0 * std::min(1.0, color[c])));
+    }
+}
+
 }  // namespace
 
 std::vector<uint8_t> draw_regions(const Scene& scene, const BeamTree& tree,
@@ -62,11 +114,8 @@ std::vector<uint8_t> draw_regions(const Scene& scene, const BeamTree& tree,
              srgb8.size());
     }
     const PixelUnprojector pixels(scene.camera, width, height);
-    const double far = double(scene.light.far);
-    const glm::dvec3 colors[3] = {{1.0, 0.82, 0.1}, {0.55, 0.55, 0.55}, {0.0, 0.0, 0.0}};
-    // Uncertain and unlit absorb 8x more than lit so that thin shadow volumes show through the
-    // lit air in front of them.
-    const double extinction[3] = {1.5 / far, 12.0 / far, 12.0 / far};
+    // Every other pixel in x and y is traced; the rest take their traced neighbours' mean where
+    // those agree, or are traced too.
     const int coarse_width = (width + 1) / 2, coarse_height = (height + 1) / 2;
     std::vector<PixelRegions> coarse(size_t(coarse_width) * coarse_height);
     tbb::parallel_for(0, coarse_height, [&](int j) {
@@ -91,51 +140,19 @@ std::vector<uint8_t> draw_regions(const Scene& scene, const BeamTree& tree,
                 }
             }
             const bool traced = x % 2 == 0 && y % 2 == 0;
-            bool alike = !traced && neighbours.size() == size_t((x % 2 + 1) * (y % 2 + 1));
-            for (const PixelRegions* n : neighbours) {
-                const PixelRegions& first = *neighbours.front();
-                alike = alike && n->inside == first.inside &&
-                        n->intervals.size() == first.intervals.size() &&
-                        std::abs(n->end - first.end) <= 0.01 * first.end;
-                for (size_t k = 0; alike && k < n->intervals.size(); ++k) {
-                    alike = n->intervals[k].region == first.intervals[k].region;
-                }
-            }
             const PixelRegions* regions = nullptr;
             if (traced) {
                 regions = neighbours.front();
-            } else if (alike) {
-                mean = *neighbours.front();
-                for (size_t k = 0; k < mean.intervals.size(); ++k) {
-                    double begin = 0.0, end = 0.0;
-                    for (const PixelRegions* n : neighbours) {
-                        begin += n->intervals[k].begin;
-                        end += n->intervals[k].end;
-                    }
-                    mean.intervals[k].begin = begin / double(neighbours.size());
-                    mean.intervals[k].end = end / double(neighbours.size());
-                }
+            } else if (neighbours.size() == size_t((x % 2 + 1) * (y % 2 + 1)) &&
+                       alike(neighbours)) {
+                mean_of(neighbours, mean);
                 regions = &mean;
             } else {
                 own = trace_pixel(tree, pixels, depth, width, x, y);
                 regions = &own;
             }
-            if (!regions->inside) {
-                continue;
-            }
-            dvec3 color(0.0);
-            double transparency = 1.0;
-            for (const RegionInterval& interval : regions->intervals) {
-                const auto region = size_t(interval.region);
-                const double alpha =
-                    1.0 - std::exp(-extinction[region] * (interval.end - interval.begin));
-                color += transparency * alpha * colors[region];
-                transparency *= 1.0 - alpha;
-            }
-            for (int c = 0; c < 3; ++c) {
-                uint8_t& pixel = image[(size_t(y) * width + x) * 3 + c];
-                pixel = static_cast<uint8_t>(
-                    std::lround(transparency * pixel + 255.0 * std::min(1.0, color[c])));
+            if (regions->inside) {
+                shade(*regions, double(scene.light.far), &image[(size_t(y) * width + x) * 3]);
             }
         }
     });
