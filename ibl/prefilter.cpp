@@ -50,19 +50,26 @@ private:
 };
 
 // Runs body(face, y) for every row of every face of a level of `size`, on `threads` threads.
-void for_each_row(int size, int threads, std::atomic<int64_t>& rows_done, int64_t rows_total,
-                  const std::function<void(double)>& progress,
-                  const std::function<void(int, int)>& body) {
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+// The chain's rows done so far, for the progress callback.
+struct RowProgress {
+    int threads = 0;
+    int64_t total = 0;
+    const std::function<void(double)>& report;
+    std::atomic<int64_t> done{0};
+};
+
+// Calls body(face, row) for each of the 6 x size rows of a level, in parallel.
+void for_each_row(int size, RowProgress& rows, const std::function<void(int, int)>& body) {
+    tbb::task_arena arena(rows.threads > 0 ? rows.threads : tbb::task_arena::automatic);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, 6 * size),
                           [&](const tbb::blocked_range<int>& r) {
                               for (int row = r.begin(); row != r.end(); ++row) {
                                   body(row / size, row % size);
                               }
-                              const int64_t done = rows_done += r.size();
-                              if (progress) {
-                                  progress(double(done) / double(rows_total));
+                              const int64_t done = rows.done += r.size();
+                              if (rows.report) {
+                                  rows.report(double(done) / double(rows.total));
                               }
                           });
     });
@@ -167,6 +174,69 @@ int chain_length(PrefilterMethod method, int face_size, int min_face_size) {
     return levels;
 }
 
+namespace {
+
+// Level l by Moschos algorithm 6: random points on the cone's base disk (radius tan θ at unit
+// distance), cosine weighted; self-normalised (see the header). Returns its roughness.
+float cone_level(const CubeMap& source, const PrefilterSettings& s, int l, CubeMap& level,
+                 RowProgress& rows) {
+    const ConeLevel cone = moschos_cone_levels()[size_t(l)];
+    const float radius = std::tan(cone.cone_degrees * kPi / 180.0f);
+    const int size = level.size;
+    for_each_row(size, rows, [&](int f, int y) {
+        for (int x = 0; x < size; ++x) {
+            const glm::vec3 n = level.direction(f, x, y);
+            glm::vec3 t, b;
+            orthonormal_basis(n, t, b);
+            TexelRandom random(s.seed * 0x100000001B3ull ^ (uint64_t(l) << 56 | uint64_t(f) << 48 |
+                                                            uint64_t(y) << 24 | uint64_t(x)));
+            glm::vec3 sum(0.0f);
+            float weights = 0.0f;
+            for (int i = 0; i < s.samples; ++i) {
+                const float r = radius * std::sqrt(random.next());
+                const float phi = 2.0f * kPi * random.next();
+                const glm::vec3 d =
+                    glm::normalize(n + r * std::cos(phi) * t + r * std::sin(phi) * b);
+                const float w = glm::dot(n, d);
+                sum += w * source.sample(d);
+                weights += w;
+            }
+            level.set(f, x, y, sum / weights);
+        }
+    });
+    return cone.roughness;
+}
+
+// Level l of `levels` by importance sampling the GGX or Beckmann lobe, the same directions for
+// every texel, read from the source's mip chain where filtered. Returns its roughness.
+float importance_level(const CubeMap& source, const CubeMipChain& source_mips,
+                       const PrefilterSettings& s, int l, int levels, CubeMap& level,
+                       RowProgress& rows) {
+    const float alpha = importance_roughness(l, levels);
+    const std::vector<LobeSample> samples = lobe_samples(s, alpha, source.size);
+    float weights = 0.0f;
+    for (const LobeSample& sample : samples)
+        weights += sample.weight;
+    const int size = level.size;
+    for_each_row(size, rows, [&](int f, int y) {
+        for (int x = 0; x < size; ++x) {
+            const glm::vec3 n = level.direction(f, x, y);
+            glm::vec3 t, b;
+            orthonormal_basis(n, t, b);
+            glm::vec3 sum(0.0f);
+            for (const LobeSample& sample : samples) {
+                const glm::vec3 d = sample.l.x * t + sample.l.y * b + sample.l.z * n;
+                sum += sample.weight *
+                       (s.filtered ? sample_lod(source_mips, d, sample.lod) : source.sample(d));
+            }
+            level.set(f, x, y, weights > 0.0f ? sum / weights : source.sample(n));
+        }
+    });
+    return alpha;
+}
+
+}  // namespace
+
 PrefilteredChain prefilter(const CubeMap& source, const PrefilterSettings& s,
                            const std::function<void(double)>& progress) {
     check(s, source);
@@ -174,10 +244,9 @@ PrefilteredChain prefilter(const CubeMap& source, const PrefilterSettings& s,
     PrefilteredChain chain;
     chain.settings = s;
     const int levels = chain_length(s.method, source.size, s.min_face_size);
-    int64_t rows_total = 0;
+    RowProgress rows{s.threads, 0, progress};
     for (int l = 1; l < levels; ++l)
-        rows_total += 6 * (source.size >> l);
-    std::atomic<int64_t> rows_done{0};
+        rows.total += 6 * (source.size >> l);
 
     CubeMipChain source_mips;
     if (s.method == PrefilterMethod::importance && s.filtered) {
@@ -188,58 +257,11 @@ PrefilteredChain prefilter(const CubeMap& source, const PrefilterSettings& s,
     chain.level_seconds.push_back(0.0);
     for (int l = 1; l < levels; ++l) {
         const auto level_start = std::chrono::steady_clock::now();
-        const int size = source.size >> l;
-        CubeMap level(size);
-        if (s.method == PrefilterMethod::cone) {
-            const ConeLevel cone = moschos_cone_levels()[size_t(l)];
-            const float radius = std::tan(cone.cone_degrees * kPi / 180.0f);
-            chain.roughness.push_back(cone.roughness);
-            // Moschos algorithm 6: random points on the cone's base disk (radius tan θ at unit
-            // distance), cosine weighted; self-normalised (see the header).
-            for_each_row(size, s.threads, rows_done, rows_total, progress, [&](int f, int y) {
-                for (int x = 0; x < size; ++x) {
-                    const glm::vec3 n = level.direction(f, x, y);
-                    glm::vec3 t, b;
-                    orthonormal_basis(n, t, b);
-                    TexelRandom random(
-                        s.seed * 0x100000001B3ull ^
-                        (uint64_t(l) << 56 | uint64_t(f) << 48 | uint64_t(y) << 24 | uint64_t(x)));
-                    glm::vec3 sum(0.0f);
-                    float weights = 0.0f;
-                    for (int i = 0; i < s.samples; ++i) {
-                        const float r = radius * std::sqrt(random.next());
-                        const float phi = 2.0f * kPi * random.next();
-                        const glm::vec3 d =
-                            glm::normalize(n + r * std::cos(phi) * t + r * std::sin(phi) * b);
-                        const float w = glm::dot(n, d);
-                        sum += w * source.sample(d);
-                        weights += w;
-                    }
-                    level.set(f, x, y, sum / weights);
-                }
-            });
-        } else {
-            const float alpha = importance_roughness(l, levels);
-            chain.roughness.push_back(alpha);
-            const std::vector<LobeSample> samples = lobe_samples(s, alpha, source.size);
-            float weights = 0.0f;
-            for (const LobeSample& sample : samples)
-                weights += sample.weight;
-            for_each_row(size, s.threads, rows_done, rows_total, progress, [&](int f, int y) {
-                for (int x = 0; x < size; ++x) {
-                    const glm::vec3 n = level.direction(f, x, y);
-                    glm::vec3 t, b;
-                    orthonormal_basis(n, t, b);
-                    glm::vec3 sum(0.0f);
-                    for (const LobeSample& sample : samples) {
-                        const glm::vec3 d = sample.l.x * t + sample.l.y * b + sample.l.z * n;
-                        sum += sample.weight * (s.filtered ? sample_lod(source_mips, d, sample.lod)
-                                                           : source.sample(d));
-                    }
-                    level.set(f, x, y, weights > 0.0f ? sum / weights : source.sample(n));
-                }
-            });
-        }
+        CubeMap level(source.size >> l);
+        chain.roughness.push_back(
+            s.method == PrefilterMethod::cone
+                ? cone_level(source, s, l, level, rows)
+                : importance_level(source, source_mips, s, l, levels, level, rows));
         for (int f = 0; f < 6; ++f) {
             require_finite(level.faces[size_t(f)],
                            fmt::format("prefiltered level {} face {}", l, f));

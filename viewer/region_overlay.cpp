@@ -30,20 +30,71 @@ gl::VertexArray RegionOverlay::colored_vertex_array(const gl::Buffer& buffer) {
     return array;
 }
 
-void RegionOverlay::upload(const bt::Regions& regions, float far) {
-    if (!thickness_program_) {
-        thickness_program_ =
-            gl::create_program({{GL_VERTEX_SHADER, "viewer/shaders/region_thickness.vert"},
-                                {GL_FRAGMENT_SHADER, "viewer/shaders/region_thickness.frag"}});
-        composite_program_ =
-            gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                                {GL_FRAGMENT_SHADER, "viewer/shaders/region_composite.frag"}});
-        lines_program_ = gl::create_program({{GL_VERTEX_SHADER, "viewer/shaders/lines.vert"},
-                                             {GL_FRAGMENT_SHADER, "viewer/shaders/lines.frag"}});
-        empty_array_ = gl::create_vertex_array();
-    }
-    density_ = {1.5f / far, 12.0f / far, 12.0f / far};
+namespace {
 
+// The beams' lines and faces, as the overlay draws them.
+struct BeamGeometry {
+    std::vector<RegionOverlay::ColoredVertex> outlines, light, light_edges;
+};
+
+// Each beam's type from its pieces: open (lit only), solid (uncertain behind), blocker (unlit
+// behind the stopper); its faces filled in the type's colour, a shade per beam (a hash of its
+// index) so that neighbouring leaves of one type stay apart, and its edges in its region's.
+BeamGeometry beam_geometry(const bt::Regions& regions) {
+    std::vector<int> kind(regions.beam_count, 0);
+    for (int r = 1; r < 3; ++r) {
+        for (const bt::RegionPiece& piece : regions.pieces[size_t(r)]) {
+            kind[piece.beam] = std::max(kind[piece.beam], r);
+        }
+    }
+    BeamGeometry out;
+    const glm::vec4 edge_colors[3] = {with_alpha(kRegionColors[0], 0.3f),
+                                      with_alpha(kRegionColors[1], 0.4f),
+                                      with_alpha(kUnlitOutline, 0.4f)};
+    const glm::vec4 light_edge(0.05f, 0.05f, 0.05f, 1.0f);
+    for (int r = 0; r < 3; ++r) {
+        for (const bt::RegionPiece& piece : regions.pieces[size_t(r)]) {
+            const float shade = 0.7f + 0.3f * float((piece.beam * 2654435761u) >> 24) / 255.0f;
+            const auto& base =
+                kind[piece.beam] == 2 ? kBlockerLeaf : kRegionColors[size_t(kind[piece.beam])];
+            const glm::vec4 fill(shade * base[0], shade * base[1], shade * base[2], 1.0f);
+            for (const bt::Polygon& face : piece.polyhedron.faces) {
+                const size_t n = face.size();
+                for (size_t i = 0; i < n; ++i) {
+                    const glm::vec3 a(face.vertices[i]), b(face.vertices[(i + 1) % n]);
+                    out.outlines.push_back({a, edge_colors[r]});
+                    out.outlines.push_back({b, edge_colors[r]});
+                    if (r == 0) {
+                        out.light_edges.push_back({a, light_edge});
+                        out.light_edges.push_back({b, light_edge});
+                    }
+                }
+                for (size_t i = 1; i + 1 < n; ++i) {  // convex: a fan
+                    out.light.push_back({glm::vec3(face.vertices[0]), fill});
+                    out.light.push_back({glm::vec3(face.vertices[i]), fill});
+                    out.light.push_back({glm::vec3(face.vertices[i + 1]), fill});
+                }
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+void RegionOverlay::create_programs() {
+    thickness_program_ =
+        gl::create_program({{GL_VERTEX_SHADER, "viewer/shaders/region_thickness.vert"},
+                            {GL_FRAGMENT_SHADER, "viewer/shaders/region_thickness.frag"}});
+    composite_program_ =
+        gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                            {GL_FRAGMENT_SHADER, "viewer/shaders/region_composite.frag"}});
+    lines_program_ = gl::create_program({{GL_VERTEX_SHADER, "viewer/shaders/lines.vert"},
+                                         {GL_FRAGMENT_SHADER, "viewer/shaders/lines.frag"}});
+    empty_array_ = gl::create_vertex_array();
+}
+
+void RegionOverlay::upload_volumes(const bt::Regions& regions) {
     // Volumes: every region's faces with the region as a vertex attribute.
     std::vector<float> vertices;  // x, y, z, region
     std::vector<glm::uvec3> triangles;
@@ -59,60 +110,29 @@ void RegionOverlay::upload(const bt::Regions& regions, float far) {
     }
     index_count_ = GLsizei(triangles.size() * 3);
     volume_array_ = gl::create_vertex_array();
-    if (index_count_ > 0) {
-        volume_vertices_ = gl::create_buffer(vertices.data(), vertices.size() * sizeof(float));
-        volume_indices_ =
-            gl::create_buffer(triangles.data(), triangles.size() * sizeof(glm::uvec3));
-        const GLuint vao = volume_array_.id();
-        GL.VertexArrayVertexBuffer(vao, 0, volume_vertices_.id(), 0, 4 * sizeof(float));
-        GL.VertexArrayElementBuffer(vao, volume_indices_.id());
-        GL.EnableVertexArrayAttrib(vao, 0);
-        GL.VertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-        GL.VertexArrayAttribBinding(vao, 0, 0);
-        GL.EnableVertexArrayAttrib(vao, 1);
-        GL.VertexArrayAttribFormat(vao, 1, 1, GL_FLOAT, GL_FALSE, 3 * sizeof(float));
-        GL.VertexArrayAttribBinding(vao, 1, 0);
+    if (index_count_ == 0) {
+        return;
     }
+    volume_vertices_ = gl::create_buffer(vertices.data(), vertices.size() * sizeof(float));
+    volume_indices_ = gl::create_buffer(triangles.data(), triangles.size() * sizeof(glm::uvec3));
+    const GLuint vao = volume_array_.id();
+    GL.VertexArrayVertexBuffer(vao, 0, volume_vertices_.id(), 0, 4 * sizeof(float));
+    GL.VertexArrayElementBuffer(vao, volume_indices_.id());
+    GL.EnableVertexArrayAttrib(vao, 0);
+    GL.VertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    GL.VertexArrayAttribBinding(vao, 0, 0);
+    GL.EnableVertexArrayAttrib(vao, 1);
+    GL.VertexArrayAttribFormat(vao, 1, 1, GL_FLOAT, GL_FALSE, 3 * sizeof(float));
+    GL.VertexArrayAttribBinding(vao, 1, 0);
+}
 
-    // Each beam's type from its pieces: open (lit only), solid (uncertain behind), blocker
-    // (unlit behind the stopper).
-    std::vector<int> kind(regions.beam_count, 0);
-    for (int r = 1; r < 3; ++r) {
-        for (const bt::RegionPiece& piece : regions.pieces[size_t(r)]) {
-            kind[piece.beam] = std::max(kind[piece.beam], r);
-        }
+void RegionOverlay::upload(const bt::Regions& regions, float far) {
+    if (!thickness_program_) {
+        create_programs();
     }
-    std::vector<ColoredVertex> outlines, light, light_edges;
-    const glm::vec4 edge_colors[3] = {with_alpha(kRegionColors[0], 0.3f),
-                                      with_alpha(kRegionColors[1], 0.4f),
-                                      with_alpha(kUnlitOutline, 0.4f)};
-    for (int r = 0; r < 3; ++r) {
-        for (const bt::RegionPiece& piece : regions.pieces[size_t(r)]) {
-            // A shade per beam (a hash of its index) so that neighbouring leaves of one type
-            // stay apart.
-            const float shade = 0.7f + 0.3f * float((piece.beam * 2654435761u) >> 24) / 255.0f;
-            const auto& base =
-                kind[piece.beam] == 2 ? kBlockerLeaf : kRegionColors[size_t(kind[piece.beam])];
-            const glm::vec4 fill(shade * base[0], shade * base[1], shade * base[2], 1.0f);
-            for (const bt::Polygon& face : piece.polyhedron.faces) {
-                const size_t n = face.size();
-                for (size_t i = 0; i < n; ++i) {
-                    const glm::vec3 a(face.vertices[i]), b(face.vertices[(i + 1) % n]);
-                    outlines.push_back({a, edge_colors[r]});
-                    outlines.push_back({b, edge_colors[r]});
-                    if (r == 0) {
-                        light_edges.push_back({a, {0.05f, 0.05f, 0.05f, 1.0f}});
-                        light_edges.push_back({b, {0.05f, 0.05f, 0.05f, 1.0f}});
-                    }
-                }
-                for (size_t i = 1; i + 1 < n; ++i) {  // convex: a fan
-                    light.push_back({glm::vec3(face.vertices[0]), fill});
-                    light.push_back({glm::vec3(face.vertices[i]), fill});
-                    light.push_back({glm::vec3(face.vertices[i + 1]), fill});
-                }
-            }
-        }
-    }
+    density_ = {1.5f / far, 12.0f / far, 12.0f / far};
+    upload_volumes(regions);
+    const BeamGeometry beams = beam_geometry(regions);
     auto upload_colored = [](const std::vector<ColoredVertex>& data, gl::Buffer& buffer,
                              gl::VertexArray& array, GLsizei& count) {
         count = GLsizei(data.size());
@@ -120,9 +140,9 @@ void RegionOverlay::upload(const bt::Regions& regions, float far) {
                               : gl::create_buffer(data.data(), data.size() * sizeof(data[0]));
         array = data.empty() ? gl::create_vertex_array() : colored_vertex_array(buffer);
     };
-    upload_colored(outlines, outline_vertices_, outline_array_, outline_count_);
-    upload_colored(light, light_vertices_, light_array_, light_count_);
-    upload_colored(light_edges, light_edge_vertices_, light_edge_array_, light_edge_count_);
+    upload_colored(beams.outlines, outline_vertices_, outline_array_, outline_count_);
+    upload_colored(beams.light, light_vertices_, light_array_, light_count_);
+    upload_colored(beams.light_edges, light_edge_vertices_, light_edge_array_, light_edge_count_);
     gl::check_errors("uploading the region overlay");
 }
 

@@ -46,12 +46,17 @@ public:
     size_t triangle_count() const { return size_t(index_count_) / 3; }
     size_t edge_count() const { return size_t(outline_count_) / 2; }
 
-private:
+    // A vertex of the beams' outlines and of the light view's faces.
     struct ColoredVertex {
         glm::vec3 position;
         glm::vec4 color;
     };
+
+private:
     static gl::VertexArray colored_vertex_array(const gl::Buffer& buffer);
+    void create_programs();
+    // The regions' boundary meshes with the region as a vertex attribute (volume_array_).
+    void upload_volumes(const bt::Regions& regions);
 
     gl::Program thickness_program_, composite_program_, lines_program_;
     gl::Buffer volume_vertices_, volume_indices_;

@@ -239,33 +239,75 @@ void Viewer::draw_frame() {
     gl::check_errors("drawing the viewer's frame");
 }
 
+std::optional<Clock::time_point> Viewer::play_script_frame(float orbit_step) {
+    std::optional<Clock::time_point> change_start;
+    if (path_) {
+        // Frame k at start + k / fps, held at the end.
+        const double time = std::min(path_->frame_time(frame_), path_->end);
+        scene_ = scene_at(scene_, *path_, time);
+        controller_ = CameraController(scene_.camera);
+        const SceneChange change = scene_change(*applied_, scene_);
+        if (change.light || change.medium || !change.objects.empty()) {
+            change_start = Clock::now();
+            scene_changed();
+        }
+    }
+    if (frame_ > 0 && orbit_step != 0.0f) {
+        controller_.orbit(orbit_step, 0.0f);
+        controller_.apply(scene_.camera);
+    }
+    return change_start;
+}
+
+void Viewer::finish_script() {
+    if (!options_.screenshot.empty())
+        screenshot(options_.screenshot);
+    if (!options_.in_scattering.empty())
+        write_in_scattering(options_.in_scattering);
+    if (!options_.save_experiment.empty()) {
+        const SavedView saved =
+            save_view_as_experiment(options_.save_experiment, scene_, options_.scene, *method_,
+                                    width_, height_, options_.shadow);
+        std::printf("shaftlab view: saved %s and %s\n", saved.experiment.c_str(),
+                    saved.scene.c_str());
+    }
+    std::printf(
+        "shaftlab view: %d frames of %s with %s at %dx%d; last frame %.2f ms GPU, %.2f ms "
+        "CPU; beam tree %zu beams, %.2f ms\n",
+        options_.frames, scene_.name.c_str(), method_->name().c_str(), width_, height_,
+        timings_.gpu.total_ms(), timings_.cpu_ms, beams_, tree_ms_);
+    if (!change_latency_ms_.empty()) {
+        std::printf(
+            "shaftlab view: %zu scene changes; from a change to the end of the first "
+            "frame that shows it: median %.2f ms, max %.2f ms (method update %.2f ms, "
+            "regions overlay %.2f ms of the last)\n",
+            change_latency_ms_.size(), sl::median(change_latency_ms_),
+            *std::max_element(change_latency_ms_.begin(), change_latency_ms_.end()), update_ms_,
+            tree_ms_ + extract_ms_);
+    }
+    if (layer("error")) {
+        if (reference_) {
+            std::printf("shaftlab view: error against the cached reference: rel_rmse %.4g\n",
+                        error_.rel_rmse);
+        } else {
+            std::printf("shaftlab view: no cached reference for this view\n");
+        }
+    }
+}
+
 int Viewer::run() {
     const float orbit_step = options_.frames > 1
                                  ? glm::radians(options_.orbit_degrees) / float(options_.frames - 1)
                                  : 0.0f;
     while (!platform_->should_close()) {
-        std::optional<Clock::time_point> change_start;
         platform_->poll_events();
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
         const double dt = std::min(ImGui::GetIO().DeltaTime, 0.1f);
+        std::optional<Clock::time_point> change_start;
         if (scripted()) {
-            if (path_) {
-                // Frame k at start + k / fps, held at the end.
-                const double time = std::min(path_->frame_time(frame_), path_->end);
-                scene_ = scene_at(scene_, *path_, time);
-                controller_ = CameraController(scene_.camera);
-                const SceneChange change = scene_change(*applied_, scene_);
-                if (change.light || change.medium || !change.objects.empty()) {
-                    change_start = Clock::now();
-                    scene_changed();
-                }
-            }
-            if (frame_ > 0 && orbit_step != 0.0f) {
-                controller_.orbit(orbit_step, 0.0f);
-                controller_.apply(scene_.camera);
-            }
+            change_start = play_script_frame(orbit_step);
         } else {
             handle_input(dt);
         }
@@ -289,41 +331,7 @@ int Viewer::run() {
                 fmt::format("shaftlab-{}-{}-{:04}.png", scene_.name, method_->name(), frame_));
         }
         if (last) {
-            if (!options_.screenshot.empty())
-                screenshot(options_.screenshot);
-            if (!options_.in_scattering.empty())
-                write_in_scattering(options_.in_scattering);
-            if (!options_.save_experiment.empty()) {
-                const SavedView saved =
-                    save_view_as_experiment(options_.save_experiment, scene_, options_.scene,
-                                            *method_, width_, height_, options_.shadow);
-                std::printf("shaftlab view: saved %s and %s\n", saved.experiment.c_str(),
-                            saved.scene.c_str());
-            }
-            double gpu = timings_.gpu.total_ms();
-            std::printf(
-                "shaftlab view: %d frames of %s with %s at %dx%d; last frame %.2f ms GPU, %.2f ms "
-                "CPU; beam tree %zu beams, %.2f ms\n",
-                options_.frames, scene_.name.c_str(), method_->name().c_str(), width_, height_, gpu,
-                timings_.cpu_ms, beams_, tree_ms_);
-            if (!change_latency_ms_.empty()) {
-                std::printf(
-                    "shaftlab view: %zu scene changes; from a change to the end of the first "
-                    "frame that shows it: median %.2f ms, max %.2f ms (method update %.2f ms, "
-                    "regions overlay %.2f ms of the last)\n",
-                    change_latency_ms_.size(), sl::median(change_latency_ms_),
-                    *std::max_element(change_latency_ms_.begin(), change_latency_ms_.end()),
-                    update_ms_, tree_ms_ + extract_ms_);
-            }
-            if (layer("error")) {
-                if (reference_) {
-                    std::printf(
-                        "shaftlab view: error against the cached reference: rel_rmse %.4g\n",
-                        error_.rel_rmse);
-                } else {
-                    std::printf("shaftlab view: no cached reference for this view\n");
-                }
-            }
+            finish_script();
         }
         platform_->swap_buffers();
         ++frame_;

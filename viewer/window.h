@@ -80,12 +80,21 @@ public:
 
 private:
     bool scripted() const { return options_.frames > 0; }
+    // Scripted mode: frame frame_'s scene along the path and the orbit; when the scene changed,
+    // the time of the change.
+    std::optional<Clock::time_point> play_script_frame(float orbit_step);
+    // Scripted mode, after the last frame: the files asked for and the run's summary.
+    void finish_script();
     void switch_method(const std::string& name);
     // The light, an object or the medium changed: the overlay's regions and the method's
     // per-frame update (VolumeMethod::update), through the path every moving frame takes.
     void scene_changed();
     void prepare_method();
-    void handle_input(double dt);  // input.cpp
+    void handle_input(double dt);  // input.cpp: keys and mouse; true where the camera moved
+    bool handle_keys(double dt);
+    bool handle_mouse();
+    // The world-space move of `point` dragged by `pixels` in the camera's view plane.
+    glm::vec3 view_plane_drag(const glm::vec3& point, glm::vec2 pixels) const;
     void draw_frame();
     void update_error_view();  // error_view.cpp
     void draw_ui();

@@ -119,18 +119,12 @@ constexpr const char* kStageHeader =
     " volumes | tree | regions | lit mesh | uncertain mesh | GPU tree | total (median) | p95 |";
 constexpr const char* kStageRule = "---:|---:|---:|---:|---:|---:|---:|---:|";
 
-// real: the same tables for the real scenes (house, house-sweep) instead of the canonical ones,
-// without the scaling runs.
-int run(bool real) {
-    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-    const SceneSearchPaths paths = SceneSearchPaths::defaults();
-    constexpr double kBudget = 2.0;
-    constexpr int kFrames = 24;
+constexpr int kFrames = 24;  // of a light move
 
-    const std::vector<std::string> stills =
-        real ? std::vector<std::string>{"house"} : canonical_scene_names();
-    const std::vector<std::string> animations =
-        real ? std::vector<std::string>{"house-sweep"} : animated_scene_names();
+// 1. A light move on each still scene: the uncached path against the cached one, per route.
+void light_move_table(const std::vector<std::string>& stills, const SceneSearchPaths& paths,
+                      bool real) {
+    constexpr double kBudget = 2.0;
     fmt::print("## A light move on the {} scenes\n\n", real ? "real" : "canonical");
     fmt::print(
         "The light circles 0.5 m about its place over {} frames; milliseconds per frame, one "
@@ -160,7 +154,11 @@ int run(bool real) {
         }
         std::fflush(stdout);
     }
+}
 
+// 2. Every frame of each animation, per route.
+void animations_table(const std::vector<std::string>& animations, const SceneSearchPaths& paths,
+                      bool real) {
     fmt::print("\n## The {} animations, every frame\n\n", real ? "real" : "canonical");
     fmt::print("| scene | route | frames | {} worst |\n|---|---|---:|{}---:|\n", kStageHeader,
                kStageRule);
@@ -178,38 +176,37 @@ int run(bool real) {
             std::fflush(stdout);
         }
     }
+}
 
-    for (const auto& [route, request] : {std::pair{"mesh route, what the hybrids need", kHybrids},
-                                         std::pair{"walk route, what all four need", kWalk}}) {
-        if (real) {
-            break;
-        }
-        fmt::print("\n## Scaling: a light move on multiple:N ({})\n\n", route);
-        fmt::print("| N | triangles | light-facing polygons | {}\n|---:|---:|---:|{}\n",
-                   kStageHeader, kStageRule);
-        std::vector<std::pair<double, double>> fit;
-        for (const int n : {4, 8, 16, 32, 64, 128, 256}) {
-            const Scene scene = load_scene(fmt::format("multiple:{}", n), paths);
-            std::vector<Scene> states;
-            const int frames = request.lit ? (n <= 64 ? 12 : 6) : 24;
-            for (int k = 0; k < frames; ++k)
-                states.push_back(light_moved(scene, k, frames));
-            const StageSamples s = play(states, request);
-            const BeamTreeStats stats = build_frame_regions(scene, request).tree->stats();
-            fit.emplace_back(std::log(double(n)), std::log(quantile(s.totals(), 0.5)));
-            fmt::print("| {} | {} | {} |{}\n", n, scene.triangle_count(),
-                       stats.outer_polygons + stats.stopper_polygons, stage_cells(s));
-            std::fflush(stdout);
-        }
-        double sx = 0, sy = 0, sxx = 0, sxy = 0;
-        for (const auto& [x, y] : fit) {
-            sx += x, sy += y, sxx += x * x, sxy += x * y;
-        }
-        const double k =
-            (double(fit.size()) * sxy - sx * sy) / (double(fit.size()) * sxx - sx * sx);
-        fmt::print("\nFitted exponent (total ∝ N^k): **k = {:.2f}**.\n", k);
+// 3. A light move on multiple:N for growing N, with the fitted exponent of the total.
+void scaling_table(const char* route, const RegionRequest& request, const SceneSearchPaths& paths) {
+    fmt::print("\n## Scaling: a light move on multiple:N ({})\n\n", route);
+    fmt::print("| N | triangles | light-facing polygons | {}\n|---:|---:|---:|{}\n", kStageHeader,
+               kStageRule);
+    std::vector<std::pair<double, double>> fit;
+    for (const int n : {4, 8, 16, 32, 64, 128, 256}) {
+        const Scene scene = load_scene(fmt::format("multiple:{}", n), paths);
+        std::vector<Scene> states;
+        const int frames = request.lit ? (n <= 64 ? 12 : 6) : 24;
+        for (int k = 0; k < frames; ++k)
+            states.push_back(light_moved(scene, k, frames));
+        const StageSamples s = play(states, request);
+        const BeamTreeStats stats = build_frame_regions(scene, request).tree->stats();
+        fit.emplace_back(std::log(double(n)), std::log(quantile(s.totals(), 0.5)));
+        fmt::print("| {} | {} | {} |{}\n", n, scene.triangle_count(),
+                   stats.outer_polygons + stats.stopper_polygons, stage_cells(s));
+        std::fflush(stdout);
     }
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (const auto& [x, y] : fit) {
+        sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+    const double k = (double(fit.size()) * sxy - sx * sy) / (double(fit.size()) * sxx - sx * sx);
+    fmt::print("\nFitted exponent (total ∝ N^k): **k = {:.2f}**.\n", k);
+}
 
+// 4. Each still scene's local volumes computed from scratch, and read back from the disk.
+void static_half_table(const std::vector<std::string>& stills, const SceneSearchPaths& paths) {
     fmt::print("\n## The static half, once per mesh\n\n");
     fmt::print(
         "Each scene's local volumes (hulls, reduced hulls, inner boxes and their verification) "
@@ -239,6 +236,24 @@ int run(bool real) {
         const double disk = ms_since(start);
         fmt::print("| {} | {} | {:.1f} | {:.2f} |\n", name, meshes, computed, disk);
     }
+}
+
+// real: the same tables for the real scenes (house, house-sweep) instead of the canonical ones,
+// without the scaling runs.
+int run(bool real) {
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    const SceneSearchPaths paths = SceneSearchPaths::defaults();
+    const std::vector<std::string> stills =
+        real ? std::vector<std::string>{"house"} : canonical_scene_names();
+    const std::vector<std::string> animations =
+        real ? std::vector<std::string>{"house-sweep"} : animated_scene_names();
+    light_move_table(stills, paths, real);
+    animations_table(animations, paths, real);
+    if (!real) {
+        scaling_table("mesh route, what the hybrids need", kHybrids, paths);
+        scaling_table("walk route, what all four need", kWalk, paths);
+    }
+    static_half_table(stills, paths);
     return 0;
 }
 
