@@ -173,13 +173,8 @@ std::shared_ptr<const Mesh> random_terrain(std::mt19937& rng, int n, bool inside
     return b.finish(inside_out);
 }
 
-// On every fourth seed about half the objects hang around the light rather than in its cone
-// (random_scenes.h says what each Shapes holds).
-RandomScene random_scene(int seed, bt::VolumeLibrary& library, Shapes kinds) {
-    std::mt19937 rng(seed);
-    RandomScene result;
-    Scene& scene = result.scene;
-    SpotLight& light = scene.light;
+// A random spot light looking down (its axis within 35 degrees of -y); returns the axis.
+dvec3 random_light(std::mt19937& rng, SpotLight& light) {
     light.position = glm::vec3(uniform(rng, -2, 2), uniform(rng, 2, 5), uniform(rng, -2, 2));
     const dvec3 axis =
         glm::normalize(dvec3(uniform(rng, -0.7, 0.7), -1.0, uniform(rng, -0.7, 0.7)));
@@ -187,138 +182,167 @@ RandomScene random_scene(int seed, bt::VolumeLibrary& library, Shapes kinds) {
     light.cone_half_angle_degrees = float(uniform(rng, 15, 55));
     light.near = float(uniform(rng, 0.05, 0.8));
     light.far = float(uniform(rng, 6, 12));
+    return axis;
+}
+
+// An object's centre: in the light's cone, or (`around_light`, half the time) anywhere 0.8 to
+// 3 m from the light.
+dvec3 random_center(std::mt19937& rng, const SpotLight& light, const dvec3& axis,
+                    bool around_light) {
+    if (around_light && rng() % 2) {
+        return dvec3(light.position) + uniform(rng, 0.8, 3.0) * random_unit(rng);
+    }
     const double spread = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
+    const double depth = uniform(rng, 1.0, 0.9 * light.far);
+    const dvec3 lateral = random_unit(rng) * uniform(rng, 0, spread * depth);
+    return dvec3(light.position) + depth * axis + lateral - glm::dot(lateral, axis) * axis;
+}
+
+// The object(s) of one kind (random_scenes.h's Shapes) at `center`, of about `size`, placed by
+// `transform` (a random rotation about the centre, which some kinds replace); the first is the
+// object, the rest go with it.
+std::vector<Object> random_object(std::mt19937& rng, int kind, int seed, const dvec3& center,
+                                  double size, glm::mat4 transform, const SpotLight& light) {
+    Object object;
+    std::vector<Object> extra;
+    switch (kind) {
+        case 12: {
+            object.mesh = random_terrain(rng, 4 + int(rng() % 6), seed % 2 == 0);
+            transform = glm::translate(glm::mat4(1.0f), glm::vec3(center));
+            transform =
+                glm::rotate(transform, float(uniform(rng, 0, 6.3)), glm::vec3(0.0f, 1.0f, 0.0f));
+            transform = glm::rotate(transform, float(glm::radians(uniform(rng, 0, 35))),
+                                    glm::vec3(1.0f, 0.0f, 0.0f));
+            transform = glm::scale(transform, glm::vec3(2.0 * size));
+            break;
+        }
+        case 6:
+            object.mesh = random_wall(rng);
+            transform = glm::scale(transform, glm::vec3(size));
+            break;
+        case 7:
+            object.mesh = random_parts(rng);
+            transform = glm::scale(transform, glm::vec3(size));
+            break;
+        case 8:
+            object.mesh = random_open_box(rng);
+            transform = glm::scale(transform, glm::vec3(size));
+            break;
+        case 9:
+            object.mesh = random_terrain(rng);
+            transform = glm::scale(transform, glm::vec3(size));
+            break;
+        case 10:
+            object.mesh = shapes().torus;
+            transform = glm::scale(transform, glm::vec3(2.0 * size));
+            break;
+        case 11: {
+            // A room around the light: a large open box (often without a floor), the
+            // light off its centre.
+            object.mesh = random_open_box(rng);
+            const glm::vec3 offset(uniform(rng, -0.2, 0.2), uniform(rng, -0.2, 0.2),
+                                   uniform(rng, -0.2, 0.2));
+            transform = glm::translate(glm::mat4(1.0f), light.position + offset);
+            transform = glm::scale(transform, glm::vec3(float(uniform(rng, 2.5, 6.0))));
+            break;
+        }
+        case 0:
+            object.mesh = shapes().box;
+            transform = glm::scale(transform, glm::vec3(size * uniform(rng, 0.4, 1.0), size,
+                                                        size * uniform(rng, 0.4, 1.6)));
+            if (rng() % 2)
+                object.inner_boxes = {{glm::vec3(-0.4f), glm::vec3(0.4f)}};
+            break;
+        case 1:
+            object.mesh = shapes().sphere;
+            transform = glm::scale(transform, glm::vec3(size));
+            break;
+        case 2:
+            object.mesh = shapes().torus;
+            transform = glm::scale(transform, glm::vec3(size));
+            break;
+        case 3:
+            object.mesh = shapes().bunny;
+            transform = glm::scale(transform, glm::vec3(size));
+            break;
+        case 4: {
+            object.mesh = shapes().plane;
+            if (rng() % 2) {
+                // Edge-on: the plane's normal is perpendicular to the direction to the
+                // light.
+                const dvec3 to_light = glm::normalize(dvec3(light.position) - center);
+                const dvec3 normal = glm::normalize(glm::cross(to_light, random_unit(rng)));
+                const dvec3 tangent = glm::cross(normal, to_light);
+                glm::dmat4 m(1.0);
+                m[0] = glm::dvec4(to_light, 0.0);
+                m[1] = glm::dvec4(normal, 0.0);
+                m[2] = glm::dvec4(tangent, 0.0);
+                m[3] = glm::dvec4(center, 1.0);
+                transform = glm::mat4(m);
+            }
+            transform = glm::scale(transform, glm::vec3(2.0 * size, 1.0, 2.0 * size));
+            break;
+        }
+        default: {
+            // Two boxes sharing a face (coplanar faces), overlapping a third.
+            object.mesh = shapes().box;
+            transform = glm::scale(transform, glm::vec3(size));
+            extra = {make_object("twin", shapes().box,
+                                 glm::translate(transform, glm::vec3(1.0f, 0.0f, 0.0f))),
+                     make_object("overlap", shapes().box,
+                                 glm::scale(glm::translate(transform, glm::vec3(0.5f, 0.4f, 0.3f)),
+                                            glm::vec3(0.9f)))};
+            break;
+        }
+    }
+    object.transform = transform;
+    extra.insert(extra.begin(), object);
+    return extra;
+}
+
+// Whether an outer volume (a hull, or a piece's) of any of the objects holds the light.
+bool holds_light(bt::VolumeLibrary& library, const std::vector<Object>& objects,
+                 const SpotLight& light) {
+    bool contains_light = false;
+    for (const Object& o : objects) {
+        const bt::LocalVolumes& local = library.local(o.mesh);
+        auto holds = [&](const bt::ConvexVolume& outer) {
+            return outer.transformed(glm::dmat4(o.transform))
+                .contains(dvec3(light.position), -1e-3);
+        };
+        contains_light |= local.pieces.empty() && holds(local.outer);
+        for (const bt::LocalPiece& piece : local.pieces) {
+            contains_light |= holds(piece.outer);
+        }
+    }
+    return contains_light;
+}
+
+// On every fourth seed about half the objects hang around the light rather than in its cone
+// (random_scenes.h says what each Shapes holds).
+RandomScene random_scene(int seed, bt::VolumeLibrary& library, Shapes kinds) {
+    std::mt19937 rng(seed);
+    RandomScene result;
+    Scene& scene = result.scene;
+    const dvec3 axis = random_light(rng, scene.light);
     const bool around_light = seed % 4 == 0;
     const int count = 1 + int(rng() % 7);
     for (int i = 0; i < count; ++i) {
         for (int attempt = 0; attempt < 20; ++attempt) {
-            dvec3 center;
-            if (around_light && rng() % 2) {
-                center = dvec3(light.position) + uniform(rng, 0.8, 3.0) * random_unit(rng);
-            } else {
-                const double depth = uniform(rng, 1.0, 0.9 * light.far);
-                const dvec3 lateral = random_unit(rng) * uniform(rng, 0, spread * depth);
-                center =
-                    dvec3(light.position) + depth * axis + lateral - glm::dot(lateral, axis) * axis;
-            }
+            const dvec3 center = random_center(rng, scene.light, axis, around_light);
             const double size = uniform(rng, 0.3, 1.6);
             glm::mat4 transform = glm::translate(glm::mat4(1.0f), glm::vec3(center));
             transform =
                 glm::rotate(transform, float(uniform(rng, 0, 6.3)), glm::vec3(random_unit(rng)));
-            Object object;
             const int kind =
                 kinds == Shapes::terrain ? 12 : int(rng() % 6) + (kinds == Shapes::real ? 6 : 0);
-            std::vector<Object> extra;
-            switch (kind) {
-                case 12: {
-                    object.mesh = random_terrain(rng, 4 + int(rng() % 6), seed % 2 == 0);
-                    transform = glm::translate(glm::mat4(1.0f), glm::vec3(center));
-                    transform = glm::rotate(transform, float(uniform(rng, 0, 6.3)),
-                                            glm::vec3(0.0f, 1.0f, 0.0f));
-                    transform = glm::rotate(transform, float(glm::radians(uniform(rng, 0, 35))),
-                                            glm::vec3(1.0f, 0.0f, 0.0f));
-                    transform = glm::scale(transform, glm::vec3(2.0 * size));
-                    break;
-                }
-                case 6:
-                    object.mesh = random_wall(rng);
-                    transform = glm::scale(transform, glm::vec3(size));
-                    break;
-                case 7:
-                    object.mesh = random_parts(rng);
-                    transform = glm::scale(transform, glm::vec3(size));
-                    break;
-                case 8:
-                    object.mesh = random_open_box(rng);
-                    transform = glm::scale(transform, glm::vec3(size));
-                    break;
-                case 9:
-                    object.mesh = random_terrain(rng);
-                    transform = glm::scale(transform, glm::vec3(size));
-                    break;
-                case 10:
-                    object.mesh = shapes().torus;
-                    transform = glm::scale(transform, glm::vec3(2.0 * size));
-                    break;
-                case 11: {
-                    // A room around the light: a large open box (often without a floor), the
-                    // light off its centre.
-                    object.mesh = random_open_box(rng);
-                    const glm::vec3 offset(uniform(rng, -0.2, 0.2), uniform(rng, -0.2, 0.2),
-                                           uniform(rng, -0.2, 0.2));
-                    transform = glm::translate(glm::mat4(1.0f), light.position + offset);
-                    transform = glm::scale(transform, glm::vec3(float(uniform(rng, 2.5, 6.0))));
-                    break;
-                }
-                case 0:
-                    object.mesh = shapes().box;
-                    transform = glm::scale(transform, glm::vec3(size * uniform(rng, 0.4, 1.0), size,
-                                                                size * uniform(rng, 0.4, 1.6)));
-                    if (rng() % 2)
-                        object.inner_boxes = {{glm::vec3(-0.4f), glm::vec3(0.4f)}};
-                    break;
-                case 1:
-                    object.mesh = shapes().sphere;
-                    transform = glm::scale(transform, glm::vec3(size));
-                    break;
-                case 2:
-                    object.mesh = shapes().torus;
-                    transform = glm::scale(transform, glm::vec3(size));
-                    break;
-                case 3:
-                    object.mesh = shapes().bunny;
-                    transform = glm::scale(transform, glm::vec3(size));
-                    break;
-                case 4: {
-                    object.mesh = shapes().plane;
-                    if (rng() % 2) {
-                        // Edge-on: the plane's normal is perpendicular to the direction to the
-                        // light.
-                        const dvec3 to_light = glm::normalize(dvec3(light.position) - center);
-                        const dvec3 normal = glm::normalize(glm::cross(to_light, random_unit(rng)));
-                        const dvec3 tangent = glm::cross(normal, to_light);
-                        glm::dmat4 m(1.0);
-                        m[0] = glm::dvec4(to_light, 0.0);
-                        m[1] = glm::dvec4(normal, 0.0);
-                        m[2] = glm::dvec4(tangent, 0.0);
-                        m[3] = glm::dvec4(center, 1.0);
-                        transform = glm::mat4(m);
-                    }
-                    transform = glm::scale(transform, glm::vec3(2.0 * size, 1.0, 2.0 * size));
-                    break;
-                }
-                default: {
-                    // Two boxes sharing a face (coplanar faces), overlapping a third.
-                    object.mesh = shapes().box;
-                    transform = glm::scale(transform, glm::vec3(size));
-                    extra = {make_object("twin", shapes().box,
-                                         glm::translate(transform, glm::vec3(1.0f, 0.0f, 0.0f))),
-                             make_object(
-                                 "overlap", shapes().box,
-                                 glm::scale(glm::translate(transform, glm::vec3(0.5f, 0.4f, 0.3f)),
-                                            glm::vec3(0.9f)))};
-                    break;
-                }
-            }
-            object.transform = transform;
-            object.name = fmt::format("object{}-kind{}", i, kind);
-            extra.insert(extra.begin(), object);
-            bool contains_light = false;
-            for (const Object& o : extra) {
-                const bt::LocalVolumes& local = library.local(o.mesh);
-                auto holds_light = [&](const bt::ConvexVolume& outer) {
-                    return outer.transformed(glm::dmat4(o.transform))
-                        .contains(dvec3(light.position), -1e-3);
-                };
-                contains_light |= local.pieces.empty() && holds_light(local.outer);
-                for (const bt::LocalPiece& piece : local.pieces) {
-                    contains_light |= holds_light(piece.outer);
-                }
-            }
-            if (contains_light) {
+            std::vector<Object> objects =
+                random_object(rng, kind, seed, center, size, transform, scene.light);
+            objects.front().name = fmt::format("object{}-kind{}", i, kind);
+            if (holds_light(library, objects, scene.light)) {
                 continue;
             }
-            for (Object& o : extra) {
+            for (Object& o : objects) {
                 scene.objects.push_back(std::move(o));
             }
             result.kinds += fmt::format("{} ", kind);
