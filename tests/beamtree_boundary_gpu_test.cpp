@@ -83,8 +83,9 @@ Image lit_integral(const Scene& scene, const frame::Frame& frame, int width, int
 //   its front and back faces, seen almost edge-on, snap to different pixel centres, and the pixel
 //   gets one of the pair's ±G(z). The cell mesh, without slivers, has as many (seeds 505, 511).
 using BoundaryOnTheGpu = GlTest;
-TEST_F(BoundaryOnTheGpu, IntegratesLikeTheTreePixelByPixel) {
-    bt::VolumeLibrary library;
+
+// The canonical scenes, and 20 random ones seen from the side of the beam's middle.
+std::vector<BoundaryCase> gpu_boundary_cases(bt::VolumeLibrary& library) {
     std::vector<BoundaryCase> cases;
     for (const char* name : {"toplight", "parallel", "multiple"}) {
         cases.push_back({name, load_canonical(name)});
@@ -105,79 +106,106 @@ TEST_F(BoundaryOnTheGpu, IntegratesLikeTheTreePixelByPixel) {
         scene.camera.fov_y_degrees = 60.0f;
         cases.push_back({fmt::format("seed {} (kinds {})", seed, random.kinds), std::move(scene)});
     }
+    return cases;
+}
+
+// The worst figures over the cases, printed at the end.
+struct GpuBoundaryTotals {
     double worst_merged = 0.0, worst_canonical = 0.0, worst_pixels = 0.0;
     double worst_walk = 0.0, worst_walk_exact = 0.0, worst_walk_pixels = 0.0;
-    size_t compared = 0;
-    const std::vector<std::pair<std::string, std::string>> by_mesh = {{"route", "mesh"}};
-    const std::vector<std::pair<std::string, std::string>> by_walk = {{"route", "walk"}};
-    for (const BoundaryCase& c : cases) {
-        const bool canonical = !c.name.starts_with("seed");
-        const int w = canonical ? 160 : 96, h = canonical ? 90 : 96;
-        const frame::Frame boundary = render_method(c.scene, "beamtree", w, h, by_mesh);
-        const Image oracle = lit_integral(c.scene, boundary, w, h);
-        double peak = 0.0;
-        size_t lit = 0;
-        for (const float v : oracle.rgb) {
-            peak = std::max(peak, double(v));
-            lit += v > 0.0f ? 1 : 0;
+};
+
+// One case's image on the mesh route, and the CPU integral it is held to.
+struct CaseImages {
+    const BoundaryCase& c;
+    bool canonical;
+    int w, h;
+    frame::Frame boundary;  // beamtree, mesh route, maximal polygons
+    Image oracle;           // lit_integral
+    double peak = 0.0;
+    size_t lit = 0;
+};
+
+const std::vector<std::pair<std::string, std::string>> kByMesh = {{"route", "mesh"}};
+const std::vector<std::pair<std::string, std::string>> kByWalk = {{"route", "walk"}};
+
+// The mesh route: maximal polygons against fanned faces, the CPU integral and the cells.
+void check_mesh_route(const CaseImages& k, GpuBoundaryTotals& totals) {
+    const frame::Frame fragments = render_method(k.c.scene, "beamtree", k.w, k.h,
+                                                 {{"route", "mesh"}, {"surfaces", "fragments"}});
+    const ErrorMetrics merged = compare_images(k.boundary.in_scattering, fragments.in_scattering);
+    totals.worst_merged = std::max(totals.worst_merged, merged.rel_rmse);
+    EXPECT_LT(merged.rel_rmse, 1e-4) << k.c.name << ": max_abs " << merged.max_abs;
+    if (k.canonical) {
+        const ErrorMetrics exact = compare_images(k.boundary.in_scattering, k.oracle);
+        totals.worst_canonical = std::max(totals.worst_canonical, exact.rel_rmse);
+        EXPECT_LT(exact.rel_rmse, 1e-4) << k.c.name << ": max_abs " << exact.max_abs;
+        if (k.c.name != "parallel") {
+            const frame::Frame cells = render_method(k.c.scene, "beamtree", k.w, k.h,
+                                                     {{"route", "mesh"}, {"surfaces", "cells"}});
+            EXPECT_LT(compare_images(k.boundary.in_scattering, cells.in_scattering).rel_rmse, 1e-4)
+                << k.c.name;
         }
-        if (!(peak > 1e-5)) {
+    }
+    const size_t off = pixels_off(k.boundary.in_scattering, k.oracle, k.peak);
+    totals.worst_pixels = std::max(totals.worst_pixels, double(off) / double(k.lit));
+    EXPECT_LE(double(off), 1e-3 * double(k.lit)) << k.c.name << ": " << off << " of " << k.lit;
+}
+
+// The walk route: the tree's own integral, and the mesh route's image but for the mesh route's
+// sliver pixels; the hybrids read the walk's region lists as the meshes'.
+void check_walk_route(const CaseImages& k, GpuBoundaryTotals& totals) {
+    const frame::Frame walk = render_method(k.c.scene, "beamtree", k.w, k.h, kByWalk);
+    const size_t walk_off = pixels_off(walk.in_scattering, k.oracle, k.peak);
+    EXPECT_LE(double(walk_off), 1e-3 * double(k.lit)) << k.c.name << ": walk, " << walk_off;
+    totals.worst_walk_pixels = std::max(totals.worst_walk_pixels, double(walk_off) / double(k.lit));
+    if (k.canonical) {
+        const double exact = compare_images(walk.in_scattering, k.oracle).rel_rmse;
+        totals.worst_walk_exact = std::max(totals.worst_walk_exact, exact);
+        EXPECT_LT(exact, 1e-4) << k.c.name << ": walk against the CPU integral";
+    }
+    for (const char* method : {"beamtree", "hybrid1", "hybrid2", "hybrid3"}) {
+        const bool beamtree = std::string(method) == "beamtree";
+        const frame::Frame mesh_frame =
+            beamtree ? frame::Frame{} : render_method(k.c.scene, method, k.w, k.h, kByMesh);
+        const frame::Frame walk_frame =
+            beamtree ? frame::Frame{} : render_method(k.c.scene, method, k.w, k.h, kByWalk);
+        const Image& from_mesh = beamtree ? k.boundary.in_scattering : mesh_frame.in_scattering;
+        const Image& from_walk = beamtree ? walk.in_scattering : walk_frame.in_scattering;
+        const ErrorMetrics e = compare_images(from_walk, from_mesh);
+        const size_t apart = pixels_off(from_walk, from_mesh, k.peak);
+        EXPECT_LE(double(apart), 1e-3 * double(k.lit)) << k.c.name << ": " << method;
+        if (k.canonical) {
+            // hybrid1 and hybrid2 classify plane samples at fixed depths: one that lies between
+            // a face's float crossing and the plane's own flips between the shadow map and the
+            // closed form (measured 2.0e-4 on toplight; the planes' own error against the
+            // reference is 100 times that).
+            const bool planes = !beamtree && std::string(method) != "hybrid3";
+            totals.worst_walk = std::max(totals.worst_walk, e.rel_rmse);
+            EXPECT_LT(e.rel_rmse, planes ? 5e-4 : 1e-4)
+                << k.c.name << ": " << method << " walk against mesh";
+        }
+    }
+}
+
+TEST_F(BoundaryOnTheGpu, IntegratesLikeTheTreePixelByPixel) {
+    bt::VolumeLibrary library;
+    GpuBoundaryTotals totals;
+    size_t compared = 0;
+    for (const BoundaryCase& c : gpu_boundary_cases(library)) {
+        const bool canonical = !c.name.starts_with("seed");
+        CaseImages k{c, canonical, canonical ? 160 : 96, canonical ? 90 : 96, {}, {}};
+        k.boundary = render_method(c.scene, "beamtree", k.w, k.h, kByMesh);
+        k.oracle = lit_integral(c.scene, k.boundary, k.w, k.h);
+        for (const float v : k.oracle.rgb) {
+            k.peak = std::max(k.peak, double(v));
+            k.lit += v > 0.0f ? 1 : 0;
+        }
+        if (!(k.peak > 1e-5)) {
             continue;  // the beam is not in view
         }
-        const frame::Frame fragments = render_method(
-            c.scene, "beamtree", w, h, {{"route", "mesh"}, {"surfaces", "fragments"}});
-        const ErrorMetrics merged = compare_images(boundary.in_scattering, fragments.in_scattering);
-        worst_merged = std::max(worst_merged, merged.rel_rmse);
-        EXPECT_LT(merged.rel_rmse, 1e-4) << c.name << ": max_abs " << merged.max_abs;
-        if (canonical) {
-            const ErrorMetrics exact = compare_images(boundary.in_scattering, oracle);
-            worst_canonical = std::max(worst_canonical, exact.rel_rmse);
-            EXPECT_LT(exact.rel_rmse, 1e-4) << c.name << ": max_abs " << exact.max_abs;
-            if (c.name != "parallel") {
-                const frame::Frame cells = render_method(
-                    c.scene, "beamtree", w, h, {{"route", "mesh"}, {"surfaces", "cells"}});
-                EXPECT_LT(compare_images(boundary.in_scattering, cells.in_scattering).rel_rmse,
-                          1e-4)
-                    << c.name;
-            }
-        }
-        const size_t off = pixels_off(boundary.in_scattering, oracle, peak);
-        worst_pixels = std::max(worst_pixels, double(off) / double(lit));
-        EXPECT_LE(double(off), 1e-3 * double(lit)) << c.name << ": " << off << " of " << lit;
-
-        // The walk route: the tree's own integral, and the mesh route's image but for the mesh
-        // route's sliver pixels; the hybrids read the walk's region lists as the meshes'.
-        const frame::Frame walk = render_method(c.scene, "beamtree", w, h, by_walk);
-        const size_t walk_off = pixels_off(walk.in_scattering, oracle, peak);
-        EXPECT_LE(double(walk_off), 1e-3 * double(lit)) << c.name << ": walk, " << walk_off;
-        worst_walk_pixels = std::max(worst_walk_pixels, double(walk_off) / double(lit));
-        if (canonical) {
-            const double exact = compare_images(walk.in_scattering, oracle).rel_rmse;
-            worst_walk_exact = std::max(worst_walk_exact, exact);
-            EXPECT_LT(exact, 1e-4) << c.name << ": walk against the CPU integral";
-        }
-        for (const char* method : {"beamtree", "hybrid1", "hybrid2", "hybrid3"}) {
-            const bool beamtree = std::string(method) == "beamtree";
-            const frame::Frame mesh_frame =
-                beamtree ? frame::Frame{} : render_method(c.scene, method, w, h, by_mesh);
-            const frame::Frame walk_frame =
-                beamtree ? frame::Frame{} : render_method(c.scene, method, w, h, by_walk);
-            const Image& from_mesh = beamtree ? boundary.in_scattering : mesh_frame.in_scattering;
-            const Image& from_walk = beamtree ? walk.in_scattering : walk_frame.in_scattering;
-            const ErrorMetrics e = compare_images(from_walk, from_mesh);
-            const size_t apart = pixels_off(from_walk, from_mesh, peak);
-            EXPECT_LE(double(apart), 1e-3 * double(lit)) << c.name << ": " << method;
-            if (canonical) {
-                // hybrid1 and hybrid2 classify plane samples at fixed depths: one that lies
-                // between a face's float crossing and the plane's own flips between the shadow
-                // map and the closed form (measured 2.0e-4 on toplight; the planes' own error
-                // against the reference is 100 times that).
-                const bool planes = !beamtree && std::string(method) != "hybrid3";
-                worst_walk = std::max(worst_walk, e.rel_rmse);
-                EXPECT_LT(e.rel_rmse, planes ? 5e-4 : 1e-4)
-                    << c.name << ": " << method << " walk against mesh";
-            }
-        }
+        check_mesh_route(k, totals);
+        check_walk_route(k, totals);
         ++compared;
     }
     std::printf(
@@ -185,8 +213,8 @@ TEST_F(BoundaryOnTheGpu, IntegratesLikeTheTreePixelByPixel) {
         "scenes against the CPU integral %.2e, worst share of pixels off %.2e\n"
         "walk route: canonical scenes against the mesh route %.2e (all four methods), against "
         "the CPU integral %.2e; worst share of pixels off the CPU integral %.2e\n",
-        compared, worst_merged, worst_canonical, worst_pixels, worst_walk, worst_walk_exact,
-        worst_walk_pixels);
+        compared, totals.worst_merged, totals.worst_canonical, totals.worst_pixels,
+        totals.worst_walk, totals.worst_walk_exact, totals.worst_walk_pixels);
     EXPECT_GE(compared, 20u);
 }
 
@@ -240,6 +268,53 @@ struct WalkCase {
     std::vector<std::string> defines;
 };
 
+// Random segments between points of the influence volume and a little around it, with float
+// ends so that both sides walk the same segment: per texel an origin and a direction with t1 in w.
+struct WalkSegments {
+    std::vector<glm::vec4> origins, directions;
+    std::vector<std::pair<dvec3, dvec3>> lines;  // origin, direction in double
+};
+
+WalkSegments random_segments(std::mt19937& rng, const SpotLight& light, size_t count) {
+    const double size = double(light.far);
+    WalkSegments out;
+    for (size_t i = 0; i < count; ++i) {
+        dvec3 a, b;
+        do {
+            a = random_point(rng, light) + random_unit(rng) * uniform(rng, 0, 0.3 * size);
+            b = random_point(rng, light) + random_unit(rng) * uniform(rng, 0, 0.3 * size);
+        } while (!(glm::length(b - a) > 1e-3 * size));
+        a = dvec3(glm::vec3(a));
+        const dvec3 direction = dvec3(glm::normalize(glm::vec3(b - a)));
+        const double t1 = double(float(glm::length(b - a) + uniform(rng, 0.0, 0.2 * size)));
+        out.origins.push_back(glm::vec4(glm::vec3(a), 0.0f));
+        out.directions.push_back(glm::vec4(glm::vec3(direction), float(t1)));
+        out.lines.push_back({a, direction});
+    }
+    return out;
+}
+
+// What walk.frag finds along each segment (rgb: lit, uncertain, unlit lengths; a: pieces), with
+// the tree uploaded as the methods upload it.
+std::vector<float> walk_on_gpu(const WalkCase& c, const bt::BeamTree& tree,
+                               const WalkSegments& segments, int width, int height) {
+    analytic::GpuTreeBuffers buffers;  // what the methods upload, at classify.glsl's bindings
+    buffers.upload(tree.gpu_tree());
+    buffers.bind();
+    const gl::Texture origin_texture = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
+    const gl::Texture direction_texture =
+        gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
+    gl::GL.TextureSubImage2D(origin_texture.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT,
+                             segments.origins.data());
+    gl::GL.TextureSubImage2D(direction_texture.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT,
+                             segments.directions.data());
+    gl::GL.BindTextureUnit(0, origin_texture.id());
+    gl::GL.BindTextureUnit(1, direction_texture.id());
+    const gl::shared::FrameUniforms uniforms =
+        frame::make_frame_uniforms(c.scene, {.width = width, .height = height});
+    return render_test_pattern(uniforms, "tests/shaders/walk.frag", width, height, c.defines);
+}
+
 TEST_F(BoundaryOnTheGpu, WalkFindsTheTreesIntervalsAlongRandomLines) {
     constexpr int kWidth = 128, kHeight = 64;
     bt::VolumeLibrary library;
@@ -264,47 +339,12 @@ TEST_F(BoundaryOnTheGpu, WalkFindsTheTreesIntervalsAlongRandomLines) {
                                        .automatic_inner = c.scene.bounds.automatic_inner});
         const bt::BeamTree tree(c.scene.light, volumes.build(c.scene, nullptr));
         deepest = std::max(deepest, tree.stats().max_depth);
-        analytic::GpuTreeBuffers buffers;  // what the methods upload, at classify.glsl's bindings
-        buffers.upload(tree.gpu_tree());
-        buffers.bind();
-        // Segments between random points of the influence volume and a little around it.
         const double size = double(c.scene.light.far);
-        std::vector<glm::vec4> origins(size_t(kWidth) * kHeight), directions(origins.size());
-        std::vector<std::pair<dvec3, dvec3>> lines(origins.size());
-        for (size_t i = 0; i < origins.size(); ++i) {
-            dvec3 a, b;
-            do {
-                a = random_point(rng, c.scene.light) +
-                    random_unit(rng) * uniform(rng, 0, 0.3 * size);
-                b = random_point(rng, c.scene.light) +
-                    random_unit(rng) * uniform(rng, 0, 0.3 * size);
-            } while (!(glm::length(b - a) > 1e-3 * size));
-            // Float ends, so that both sides walk the same segment.
-            a = dvec3(glm::vec3(a));
-            const dvec3 direction = dvec3(glm::normalize(glm::vec3(b - a)));
-            const double t1 = double(float(glm::length(b - a) + uniform(rng, 0.0, 0.2 * size)));
-            origins[i] = glm::vec4(glm::vec3(a), 0.0f);
-            directions[i] = glm::vec4(glm::vec3(direction), float(t1));
-            lines[i] = {a, direction};
-        }
-        const gl::Texture origin_texture =
-            gl::create_texture_2d(GL_RGBA32F, kWidth, kHeight, GL_NEAREST);
-        const gl::Texture direction_texture =
-            gl::create_texture_2d(GL_RGBA32F, kWidth, kHeight, GL_NEAREST);
-        gl::GL.TextureSubImage2D(origin_texture.id(), 0, 0, 0, kWidth, kHeight, GL_RGBA, GL_FLOAT,
-                                 origins.data());
-        gl::GL.TextureSubImage2D(direction_texture.id(), 0, 0, 0, kWidth, kHeight, GL_RGBA,
-                                 GL_FLOAT, directions.data());
-        gl::GL.BindTextureUnit(0, origin_texture.id());
-        gl::GL.BindTextureUnit(1, direction_texture.id());
-        const gl::shared::FrameUniforms uniforms =
-            frame::make_frame_uniforms(c.scene, {.width = kWidth, .height = kHeight});
-        const std::vector<float> rgba =
-            render_test_pattern(uniforms, "tests/shaders/walk.frag", kWidth, kHeight, c.defines);
-        for (size_t i = 0; i < lines.size(); ++i) {
-            const auto& [a, direction] = lines[i];
-            const double t1 = double(directions[i].w);
-            tree.trace(a, direction, 0.0, t1, intervals);
+        const WalkSegments lines = random_segments(rng, c.scene.light, size_t(kWidth) * kHeight);
+        const std::vector<float> rgba = walk_on_gpu(c, tree, lines, kWidth, kHeight);
+        for (size_t i = 0; i < lines.lines.size(); ++i) {
+            const auto& [a, direction] = lines.lines[i];
+            tree.trace(a, direction, 0.0, double(lines.directions[i].w), intervals);
             std::array<double, 3> expected{};
             for (const bt::RegionInterval& interval : intervals) {
                 expected[size_t(interval.region)] += interval.end - interval.begin;

@@ -113,14 +113,16 @@ TEST(SceneFile, MinimalSceneTakesDefaults) {
     EXPECT_EQ(scene.materials[size_t(scene.objects[0].material)].name, "default");
 }
 
-// Each bad input gives one error line naming the file, the line, the table and the key, and why.
-TEST(SceneFile, BadInputsGiveOneClearError) {
-    struct Case {
-        std::string text;
-        std::string expected;
-    };
+struct BadInput {
+    std::string text;      // the scene file
+    std::string expected;  // in its error message
+};
+
+// Bad scene files and what their errors say. Longer than a screen because it is one table: a
+// line per case, read down the column of messages.
+std::vector<BadInput> bad_inputs() {
     const std::string s = kMinimalScene;
-    const Case cases[] = {
+    return {
         {"[camera\n", "malformed TOML"},
         {s + "[extra]\nx = 1\n", "extra: unknown key"},
         {replace(s, "fov = 45.0", "fov = 45.0\nfocus = 3.0"), ":5: [camera] focus: unknown key"},
@@ -211,8 +213,12 @@ TEST(SceneFile, BadInputsGiveOneClearError) {
         {"[light]\nposition = [0.0, 5.0, 0.0]\ntarget = [0.0, 0.0, 0.0]\n",
          "missing required table [camera]"},
     };
+}
+
+// Each bad input gives one error line naming the file, the line, the table and the key, and why.
+TEST(SceneFile, BadInputsGiveOneClearError) {
     TempDir dir;
-    for (const Case& c : cases) {
+    for (const BadInput& c : bad_inputs()) {
         const fs::path path = dir / "scene.toml";
         write_text(path, c.text);
         try {
