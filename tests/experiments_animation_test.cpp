@@ -263,6 +263,51 @@ std::map<std::string, std::string> rows_in(const fs::path& out) {
     return found;
 }
 
+// Each animated row: its frames, every second one scored, and the temporal metrics.
+void expect_animated_rows(const std::map<std::string, std::string>& after) {
+    for (const auto& [name, text] : after) {
+        const auto row = nlohmann::json::parse(text).at("row");
+        EXPECT_EQ(row["protocol"], "animation");
+        EXPECT_EQ(row["frames"], 6);
+        EXPECT_EQ(row["scored_frames"], 3) << "frames 0, 2, 4";
+        EXPECT_EQ(row["per_frame"]["frame"].size(), 6u);
+        EXPECT_EQ(row["frame_ms_samples"].size(), 6u);
+        for (size_t k = 0; k < 6; ++k) {
+            EXPECT_EQ(row["per_frame"]["rel_rmse"][k].is_number(), k % 2 == 0) << name << " " << k;
+        }
+        for (const char* key :
+             {"rel_rmse", "rel_rmse_p95", "rel_rmse_worst", "temporal_error", "flicker",
+              "frame_ms_p95", "frame_ms_worst", "cpu_ms_update", "cpu_ms_critical"}) {
+            ASSERT_TRUE(row[key].is_number()) << name << " " << key;
+            EXPECT_GE(row[key].get<double>(), 0.0) << name << " " << key;
+        }
+        EXPECT_LT(row["rel_rmse"].get<double>(), 0.2) << name;
+        EXPECT_TRUE(row["pops"].is_number_integer());
+    }
+}
+
+// frames.csv: each row's frames once, in order.
+void expect_frames_csv(const fs::path& out) {
+    std::ifstream frames(out / "frames.csv");
+    std::string header;
+    std::getline(frames, header);
+    EXPECT_TRUE(header.starts_with("cell,scene,method,width,height,params,rep,frame,")) << header;
+    std::map<std::string, std::vector<int>> listed;
+    for (std::string line; std::getline(frames, line);) {
+        std::vector<std::string> fields;
+        std::istringstream in(line);
+        for (std::string f; std::getline(in, f, ',');) {
+            fields.push_back(f);
+        }
+        ASSERT_GE(fields.size(), 8u) << line;
+        listed[fields[0]].push_back(std::stoi(fields[7]));
+    }
+    EXPECT_EQ(listed.size(), 4u);
+    for (const auto& [cell, list] : listed) {
+        EXPECT_EQ(list, (std::vector<int>{0, 1, 2, 3, 4, 5})) << cell;
+    }
+}
+
 // Animation cells end to end: every frame measured, every stride-th scored, the temporal metrics
 // and the per-frame series in the row, frames.csv and the table's section; then an interruption
 // mid-cell (as a kill would stop it) and the rerun: rows written before are untouched, the
@@ -310,44 +355,8 @@ TEST(Bench, AnimatedCellsMeasureEveryFrameAndResumeAfterAnInterruption) {
         EXPECT_EQ(after.at(name), text) << name << " was measured again";
     }
 
-    for (const auto& [name, text] : after) {
-        const auto row = nlohmann::json::parse(text).at("row");
-        EXPECT_EQ(row["protocol"], "animation");
-        EXPECT_EQ(row["frames"], 6);
-        EXPECT_EQ(row["scored_frames"], 3) << "frames 0, 2, 4";
-        EXPECT_EQ(row["per_frame"]["frame"].size(), 6u);
-        EXPECT_EQ(row["frame_ms_samples"].size(), 6u);
-        for (size_t k = 0; k < 6; ++k) {
-            EXPECT_EQ(row["per_frame"]["rel_rmse"][k].is_number(), k % 2 == 0) << name << " " << k;
-        }
-        for (const char* key :
-             {"rel_rmse", "rel_rmse_p95", "rel_rmse_worst", "temporal_error", "flicker",
-              "frame_ms_p95", "frame_ms_worst", "cpu_ms_update", "cpu_ms_critical"}) {
-            ASSERT_TRUE(row[key].is_number()) << name << " " << key;
-            EXPECT_GE(row[key].get<double>(), 0.0) << name << " " << key;
-        }
-        EXPECT_LT(row["rel_rmse"].get<double>(), 0.2) << name;
-        EXPECT_TRUE(row["pops"].is_number_integer());
-    }
-    // frames.csv: each row's frames once, in order.
-    std::ifstream frames(out / "frames.csv");
-    std::string header;
-    std::getline(frames, header);
-    EXPECT_TRUE(header.starts_with("cell,scene,method,width,height,params,rep,frame,")) << header;
-    std::map<std::string, std::vector<int>> listed;
-    for (std::string line; std::getline(frames, line);) {
-        std::vector<std::string> fields;
-        std::istringstream in(line);
-        for (std::string f; std::getline(in, f, ',');) {
-            fields.push_back(f);
-        }
-        ASSERT_GE(fields.size(), 8u) << line;
-        listed[fields[0]].push_back(std::stoi(fields[7]));
-    }
-    EXPECT_EQ(listed.size(), 4u);
-    for (const auto& [cell, list] : listed) {
-        EXPECT_EQ(list, (std::vector<int>{0, 1, 2, 3, 4, 5})) << cell;
-    }
+    expect_animated_rows(after);
+    expect_frames_csv(out);
     const std::string table = read_file(out / "table.md");
     EXPECT_NE(table.find("## Along the animation"), std::string::npos) << table;
     EXPECT_NE(table.find("| toplight-orbit | beamtree |"), std::string::npos) << table;

@@ -198,13 +198,10 @@ dvec3 random_center(std::mt19937& rng, const SpotLight& light, const dvec3& axis
     return dvec3(light.position) + depth * axis + lateral - glm::dot(lateral, axis) * axis;
 }
 
-// The object(s) of one kind (random_scenes.h's Shapes) at `center`, of about `size`, placed by
-// `transform` (a random rotation about the centre, which some kinds replace); the first is the
-// object, the rest go with it.
-std::vector<Object> random_object(std::mt19937& rng, int kind, int seed, const dvec3& center,
-                                  double size, glm::mat4 transform, const SpotLight& light) {
-    Object object;
-    std::vector<Object> extra;
+// The open kinds (6 to 12 of random_scenes.h's Shapes: walls, parts, open boxes, terrain, a
+// room around the light): the object's mesh, its placement changed where the kind needs.
+void open_object(std::mt19937& rng, int kind, int seed, const dvec3& center, double size,
+                 const SpotLight& light, Object& object, glm::mat4& transform) {
     switch (kind) {
         case 12: {
             object.mesh = random_terrain(rng, 4 + int(rng() % 6), seed % 2 == 0);
@@ -246,6 +243,15 @@ std::vector<Object> random_object(std::mt19937& rng, int kind, int seed, const d
             transform = glm::scale(transform, glm::vec3(float(uniform(rng, 2.5, 6.0))));
             break;
         }
+    }
+}
+
+// The closed kinds (0 to 5: box, sphere, torus, bunny, plane, boxes sharing a face): the
+// object's mesh and placement, and the objects that go with it.
+void closed_object(std::mt19937& rng, int kind, const dvec3& center, double size,
+                   const SpotLight& light, Object& object, glm::mat4& transform,
+                   std::vector<Object>& extra) {
+    switch (kind) {
         case 0:
             object.mesh = shapes().box;
             transform = glm::scale(transform, glm::vec3(size * uniform(rng, 0.4, 1.0), size,
@@ -294,6 +300,20 @@ std::vector<Object> random_object(std::mt19937& rng, int kind, int seed, const d
                                             glm::vec3(0.9f)))};
             break;
         }
+    }
+}
+
+// The object(s) of one kind at `center`, of about `size`, placed by `transform` (a random
+// rotation about the centre, which some kinds replace); the first is the object, the rest go
+// with it.
+std::vector<Object> random_object(std::mt19937& rng, int kind, int seed, const dvec3& center,
+                                  double size, glm::mat4 transform, const SpotLight& light) {
+    Object object;
+    std::vector<Object> extra;
+    if (kind >= 6) {
+        open_object(rng, kind, seed, center, size, light, object, transform);
+    } else {
+        closed_object(rng, kind, center, size, light, object, transform, extra);
     }
     object.transform = transform;
     extra.insert(extra.begin(), object);
