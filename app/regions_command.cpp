@@ -31,6 +31,7 @@ struct RegionsArguments : CommonOptions {
     int max_planes = -1;  // -1: the scene's setting
     bool no_automatic_inner = false;
     bool no_pieces = false;
+    bool verbose = false;
 };
 
 std::vector<dvec3> read_points(const std::string& path) {
@@ -79,11 +80,21 @@ int run_regions(const RegionsArguments& args) {
         {.max_outer_planes = max_planes,
          .automatic_inner = scene.bounds.automatic_inner && !args.no_automatic_inner,
          .pieces = pieces});
-    std::vector<std::string> warnings;
-    const std::vector<bt::ObjectVolumes> volumes = library.build(scene, &warnings);
+    std::vector<bt::MissingInner> missing_inner;
+    const std::vector<bt::ObjectVolumes> volumes = library.build(scene, &missing_inner);
     timings.volumes_ms = ms_since(start);
-    for (const std::string& warning : warnings) {
-        std::fprintf(stderr, "shaftlab: warning: %s\n", warning.c_str());
+    // One line for the scene; each object's behind --verbose and in regions.json.
+    if (const std::string summary = bt::missing_inner_summary(missing_inner, scene.objects.size());
+        !summary.empty()) {
+        std::fprintf(
+            stderr, "shaftlab: warning: %s: %s. %s\n", scene.name.c_str(), summary.c_str(),
+            args.verbose ? "Each one:" : "Each is listed in regions.json and with --verbose.");
+    }
+    if (args.verbose) {
+        for (const bt::MissingInner& m : missing_inner) {
+            std::fprintf(stderr, "shaftlab: warning: object '%s': no automatic inner volume: %s\n",
+                         m.object.c_str(), m.reason.c_str());
+        }
     }
     start = Clock::now();
     const bt::BeamTree tree(scene.light, volumes);
@@ -122,7 +133,7 @@ int run_regions(const RegionsArguments& args) {
         .eye_lengths = methods::eye_ray_lengths(scene, tree, frame.depth, width, height),
         .max_outer_planes = max_planes,
         .timings = timings,
-        .warnings = warnings};
+        .missing_inner = missing_inner};
     start = Clock::now();
     OutputFiles outputs(args.out);
     outputs.add("regions.ply",
@@ -156,6 +167,8 @@ Command add_regions_command(CLI::App& app) {
                       "Use only explicit inner boxes from the scene file");
     command->add_flag("--no-pieces", args->no_pieces,
                       "One convex hull per object, not convex pieces where the hull is loose");
+    command->add_flag("--verbose", args->verbose,
+                      "List each object without an automatic inner volume, not only the count");
     return [args] { return run_regions(*args); };
 }
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
@@ -546,6 +547,29 @@ bool VolumeLibrary::box_verified(const Mesh& mesh, uint64_t key, const Box& box)
     return inside;
 }
 
+std::string missing_inner_summary(const std::vector<MissingInner>& missing, size_t objects) {
+    if (missing.empty()) {
+        return {};
+    }
+    std::map<std::string, size_t> by_reason;
+    for (const MissingInner& m : missing) {
+        ++by_reason[m.reason];
+    }
+    std::vector<std::pair<size_t, std::string>> reasons;
+    for (const auto& [reason, count] : by_reason) {
+        reasons.emplace_back(count, reason);
+    }
+    std::stable_sort(reasons.begin(), reasons.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::string line = fmt::format("{} of {} objects {} no automatic inner volume", missing.size(),
+                                   objects, missing.size() == 1 ? "has" : "have");
+    for (size_t i = 0; i < reasons.size(); ++i) {
+        line += fmt::format("{} {} because {}", i == 0 ? ":" : ";", reasons[i].first,
+                            reasons[i].second);
+    }
+    return line;
+}
+
 void VolumeLibrary::compute_missing(const Scene& scene) {
     // The meshes not seen before, computed in parallel (each is independent of the others),
     // then cached in scene order.
@@ -617,7 +641,7 @@ void VolumeLibrary::append_volumes(const Object& object, int index,
 }
 
 std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
-                                                std::vector<std::string>* warnings) {
+                                                std::vector<MissingInner>* missing) {
     compute_missing(scene);
     std::vector<ObjectVolumes> result;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
@@ -628,9 +652,8 @@ std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
         append_volumes(object, int(i), result);
         const LocalVolumes& local = *entry(object.mesh).volumes;
         if (object.inner_boxes.empty() && !local.self_inner && !local.no_inner.empty() &&
-            options_.automatic_inner && warnings) {
-            warnings->push_back(fmt::format("object '{}': no automatic inner volume: {}",
-                                            object.name, local.no_inner));
+            options_.automatic_inner && missing) {
+            missing->push_back({object.name, local.no_inner});
         }
     }
     return result;

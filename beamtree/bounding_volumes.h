@@ -72,6 +72,17 @@ struct VolumeLibraryStats {
 // disk (core/cache.h, folder `volumes`), so that every later frame, scene or run that shows the
 // mesh only transforms them. The verification of explicit inner boxes is cached the same way.
 // Thread-safe: the pipelined frame loop builds on a worker thread.
+// An object of a scene that gets no automatic inner volume, and why (LocalVolumes::no_inner).
+struct MissingInner {
+    std::string object;
+    std::string reason;
+};
+
+// One line that sums them up by reason, most common first: "90 of 116 objects have no automatic
+// inner volume: 89 because the mesh is not closed ...; 1 because no box fits inside it ...";
+// empty when there are none. `objects` counts the scene's objects.
+std::string missing_inner_summary(const std::vector<MissingInner>& missing, size_t objects);
+
 class VolumeLibrary {
 public:
     // Pieces are cut from full hulls (the scene reader refuses them with reduced hulls).
@@ -92,9 +103,9 @@ public:
 
     const LocalVolumes& local(const std::shared_ptr<const Mesh>& mesh);
     // World-space volumes of every object. Throws sl::Error naming the object when an explicit
-    // inner box is not strictly inside its mesh. Open meshes get no automatic inner volume and
-    // a line in `warnings`.
-    std::vector<ObjectVolumes> build(const Scene& scene, std::vector<std::string>* warnings);
+    // inner box is not strictly inside its mesh. Each object that gets no automatic inner
+    // volume (an open mesh, one too thin for a box) is listed in `missing` with the reason.
+    std::vector<ObjectVolumes> build(const Scene& scene, std::vector<MissingInner>* missing);
     VolumeLibraryStats stats() const;
 
 private:

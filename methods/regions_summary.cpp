@@ -73,6 +73,15 @@ Row regions_summary_json(const RegionsSummaryInputs& in) {
         pieces_json[std::to_string(count)] = objects;
     }
     const bt::BeamTreeStats stats = in.tree.stats();
+    Row warnings = Row::array(), missing = Row::array();
+    if (const std::string summary =
+            bt::missing_inner_summary(in.missing_inner, in.scene.objects.size());
+        !summary.empty()) {
+        warnings.push_back(summary);
+    }
+    for (const bt::MissingInner& m : in.missing_inner) {
+        missing.push_back({{"object", m.object}, {"reason", m.reason}});
+    }
     size_t inner_volumes = 0, outer_faces = 0;
     for (const bt::ObjectVolumes& v : in.volumes) {
         inner_volumes += v.inner.size();
@@ -112,7 +121,8 @@ Row regions_summary_json(const RegionsSummaryInputs& in) {
         {"extract_ms", t.extract_ms},
         {"render_ms", t.render_ms},
         {"picture_ms", t.picture_ms},
-        {"warnings", in.warnings},
+        {"warnings", warnings},
+        {"objects_without_inner_volume", missing},
     };
 }
 

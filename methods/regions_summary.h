@@ -42,7 +42,7 @@ struct RegionsSummaryInputs {
     std::array<double, 3> eye_lengths{};  // eye_ray_lengths()
     int max_outer_planes = 0;
     RegionsTimings timings;
-    const std::vector<std::string>& warnings;
+    const std::vector<bt::MissingInner>& missing_inner;
 };
 
 // regions.json.

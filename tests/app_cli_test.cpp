@@ -573,6 +573,77 @@ TEST(Cli, RegionsWritesPlyJsonAndPng) {
     EXPECT_EQ(json_faces, faces);
 }
 
+// Objects without an automatic inner volume are summed up in one warning line per scene (by
+// reason), listed one by one in regions.json, and printed one by one with --verbose: two open
+// height fields and a closed box give one line, two entries, and two more lines.
+TEST(Cli, RegionsSumsUpObjectsWithoutInnerVolumesInOneLine) {
+    TempDir dir;
+    const std::string data = std::string(SHAFTLAB_SOURCE_DIR) + "/tests/data/terrain-pieces/";
+    // The repro's scene (a floor and a terrain), with a second terrain and a box.
+    write_text(dir / "scene.toml", fmt::format(R"([scene]
+name = "two-terrains"
+[camera]
+position = [6.0, 4.0, 7.0]
+target = [0.0, 1.5, 0.0]
+[light]
+position = [0.57, 6.0, -0.86]
+target = [0.0, 0.0, 0.0]
+cone_angle = 32.0
+near = 0.5
+far = 12.0
+[beamtree]
+pieces = true
+[[objects]]
+name = "floor"
+shape = "plane"
+size = [40.0, 0.0, 40.0]
+[[objects]]
+name = "terrain"
+shape = "mesh"
+file = "{0}terrain.obj"
+[[objects]]
+name = "second terrain"
+shape = "mesh"
+file = "{0}terrain.obj"
+translate = [0.0, -0.5, 0.0]
+[[objects]]
+name = "box"
+shape = "box"
+translate = [3.0, 0.5, 3.0]
+)",
+                                               data));
+    auto lines_with = [](const std::string& text, const std::string& needle) {
+        size_t count = 0;
+        for (size_t at = text.find(needle); at != std::string::npos;
+             at = text.find(needle, at + 1)) {
+            ++count;
+        }
+        return count;
+    };
+    const std::string scene = (dir / "scene.toml").string();
+    const CommandResult run =
+        run_shaftlab("regions --scene " + scene + " --size 32x18 --out " + (dir / "a").string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_EQ(lines_with(run.output, "warning:"), 1u) << run.output;
+    EXPECT_NE(run.output.find("2 of 4 objects have no automatic inner volume: 2 because the mesh "
+                              "is not closed"),
+              std::string::npos)
+        << run.output;
+    std::ifstream json_file(dir / "a" / "regions.json");
+    const nlohmann::json json = nlohmann::json::parse(json_file);
+    ASSERT_EQ(json["objects_without_inner_volume"].size(), 2u) << json.dump(2);
+    EXPECT_EQ(json["objects_without_inner_volume"][1]["object"], "second terrain");
+    EXPECT_EQ(json["warnings"].size(), 1u);
+
+    const CommandResult verbose = run_shaftlab("regions --verbose --scene " + scene +
+                                               " --size 32x18 --out " + (dir / "b").string());
+    ASSERT_EQ(verbose.exit_code, 0) << verbose.output;
+    EXPECT_EQ(lines_with(verbose.output, "warning:"), 3u) << verbose.output;
+    EXPECT_NE(verbose.output.find("object 'second terrain': no automatic inner volume"),
+              std::string::npos)
+        << verbose.output;
+}
+
 // `regions --classify` prints one region per point: lit in the open cone under the light, unlit
 // under the floor (a flat object is its own inner volume) and outside the influence volume.
 TEST(Cli, RegionsClassifiesPoints) {
