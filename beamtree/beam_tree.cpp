@@ -77,7 +77,8 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     }
 
     for (const ObjectVolumes& object : volumes) {
-        if (object.outer.contains(apex_, -epsilon_)) {
+        // Triangles need the light outside no volume: one through the light is edge-on to it.
+        if (object.triangles.empty() && object.outer.contains(apex_, -epsilon_)) {
             fail(
                 "the light at ({}, {}, {}) is inside the outer bounding volume of object {}{}: "
                 "the beam tree needs the light outside every outer volume (move the light out of "
@@ -97,7 +98,7 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     size_t faces = 0;
     for (const ObjectVolumes& object : volumes) {
         by_distance.emplace_back(distance_to_box(apex_, object.outer), &object);
-        faces += object.outer.faces.size();
+        faces += object.triangles.empty() ? object.outer.faces.size() : 2 * object.triangles.size();
         for (const ConvexVolume& inner : object.inner) {
             faces += inner.faces.size();
         }
@@ -110,6 +111,10 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     }
     nodes_.reserve(nodes_.size() + 16 * faces);
     for (const ObjectVolumes* object : order) {
+        if (!object->triangles.empty()) {
+            insert_triangles(object->triangles, false);
+            continue;
+        }
         for (size_t f = 0; f < object->outer.faces.size(); ++f) {
             insert(object->outer.faces[f], object->outer.planes[f], false);
         }
@@ -117,10 +122,29 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     // Stopper polygons from the inner volumes turn parts of solid leaves into blocker leaves
     // (Nilsson §5.2.1, figure 5.5).
     for (const ObjectVolumes* object : order) {
+        insert_triangles(object->triangles, true);
         for (const ConvexVolume& inner : object->inner) {
             for (size_t f = 0; f < inner.faces.size(); ++f) {
                 insert(inner.faces[f], inner.planes[f], true);
             }
+        }
+    }
+}
+
+void BeamTree::insert_triangles(const std::vector<Polygon>& triangles, bool stopper) {
+    // An opaque triangle stops the light whatever its winding: it goes in facing the light, once
+    // as an occluder and once as a stopper on the same plane, so that behind it the leaf is a
+    // blocker whose uncertain layer (between occluder and stopper) is empty: unlit, exactly.
+    for (const Polygon& triangle : triangles) {
+        const std::vector<dvec3>& v = triangle.vertices;
+        Plane plane;
+        if (!Plane::through(v[0], v[1], v[2], plane)) {
+            continue;  // degenerate: it covers nothing
+        }
+        if (plane.distance(apex_) < 0.0) {
+            insert(Polygon({v[0], v[2], v[1]}), plane.flipped(), stopper);
+        } else {
+            insert(triangle, plane, stopper);
         }
     }
 }

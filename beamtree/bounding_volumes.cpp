@@ -640,14 +640,72 @@ void VolumeLibrary::append_volumes(const Object& object, int index,
     }
 }
 
+std::vector<bool> VolumeLibrary::exact_objects(const Scene& scene) {
+    const BoundsSettings& b = scene.bounds;
+    std::vector<bool> exact(scene.objects.size(), false);
+    if (b.occluders == Occluders::volumes) {
+        return exact;
+    }
+    // auto: the objects without an inner volume, smallest first, within the triangle budget.
+    std::vector<std::pair<size_t, size_t>> candidates;  // (triangles, object)
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const Object& object = scene.objects[i];
+        if (!scene.casts_shadow(object)) {
+            continue;
+        }
+        if (b.occluders == Occluders::triangles) {
+            exact[i] = true;
+            continue;
+        }
+        const LocalVolumes& local = *entry(object.mesh).volumes;
+        if (object.inner_boxes.empty() && !local.self_inner && !local.no_inner.empty()) {
+            candidates.emplace_back(object.mesh->triangles.size(), i);
+        }
+    }
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    size_t total = 0;
+    for (const auto& [triangles, i] : candidates) {
+        if (total + triangles > size_t(b.max_triangles)) {
+            break;
+        }
+        total += triangles;
+        exact[i] = true;
+    }
+    return exact;
+}
+
+ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
+    const glm::dmat4 transform(object.transform);
+    ObjectVolumes volumes;
+    volumes.object = index;
+    volumes.name = object.name;
+    volumes.outer = entry(object.mesh).volumes->outer.transformed(transform);
+    const Mesh& mesh = *object.mesh;
+    volumes.triangles.reserve(mesh.triangles.size());
+    for (const glm::uvec3& t : mesh.triangles) {
+        std::vector<dvec3> corners;
+        for (int k = 0; k < 3; ++k) {
+            corners.emplace_back(transform * glm::dvec4(dvec3(mesh.positions[t[k]]), 1.0));
+        }
+        volumes.triangles.emplace_back(std::move(corners));
+    }
+    return volumes;
+}
+
 std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
                                                 std::vector<MissingInner>* missing) {
     compute_missing(scene);
+    const std::vector<bool> exact = exact_objects(scene);
     std::vector<ObjectVolumes> result;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const Object& object = scene.objects[i];
         if (!scene.casts_shadow(object)) {
             continue;  // glass: the light passes it
+        }
+        if (exact[i]) {
+            result.push_back(triangles_of(object, int(i)));
+            continue;  // exact: it needs no inner volume
         }
         append_volumes(object, int(i), result);
         const LocalVolumes& local = *entry(object.mesh).volumes;

@@ -32,6 +32,10 @@ struct ObjectVolumes {
     int pieces = 1;
     ConvexVolume outer;
     std::vector<ConvexVolume> inner;
+    // Exact occluders ([beamtree] occluders = triangles, or auto for an object without an inner
+    // volume): the object's triangles in world space, each unlit behind it. Then `outer` (its
+    // hull) only orders the objects by distance and `inner` is empty.
+    std::vector<Polygon> triangles;
 };
 
 // One convex piece of a mesh: its hull and the inner boxes found inside it.
@@ -121,6 +125,10 @@ private:
     void compute_missing(const Scene& scene);
     // The world-space volumes of scene object `index`: one per convex piece, or its hull.
     void append_volumes(const Object& object, int index, std::vector<ObjectVolumes>& result);
+    // Scene object `index` as its triangles (exact occluders).
+    ObjectVolumes triangles_of(const Object& object, int index);
+    // Which objects enter the tree as triangles under the scene's [beamtree] occluders.
+    std::vector<bool> exact_objects(const Scene& scene);
 
     BoundsSettings options_;
     bool caching_ = true;

@@ -43,7 +43,9 @@ std::array<double, 3> eye_ray_lengths(const Scene& scene, const bt::BeamTree& tr
 std::map<int, int> objects_by_pieces(const std::vector<bt::ObjectVolumes>& volumes) {
     std::map<int, int> pieces_of;
     for (const bt::ObjectVolumes& v : volumes) {
-        pieces_of[v.object] = v.pieces;
+        if (v.triangles.empty()) {  // exact occluders are no pieces
+            pieces_of[v.object] = v.pieces;
+        }
     }
     std::map<int, int> objects;
     for (const auto& [object, count] : pieces_of) {
@@ -81,6 +83,12 @@ Row regions_summary_json(const RegionsSummaryInputs& in) {
     }
     for (const bt::MissingInner& m : in.missing_inner) {
         missing.push_back({{"object", m.object}, {"reason", m.reason}});
+    }
+    Row as_triangles = Row::array();
+    for (const bt::ObjectVolumes& v : in.volumes) {
+        if (!v.triangles.empty()) {
+            as_triangles.push_back({{"object", v.name}, {"triangles", v.triangles.size()}});
+        }
     }
     size_t inner_volumes = 0, outer_faces = 0;
     for (const bt::ObjectVolumes& v : in.volumes) {
@@ -123,6 +131,8 @@ Row regions_summary_json(const RegionsSummaryInputs& in) {
         {"picture_ms", t.picture_ms},
         {"warnings", warnings},
         {"objects_without_inner_volume", missing},
+        {"occluders", to_string(in.scene.bounds.occluders)},
+        {"objects_as_triangles", as_triangles},
     };
 }
 
@@ -133,15 +143,25 @@ std::string regions_summary_text(const RegionsSummaryInputs& in, double write_ms
     for (const auto& [count, objects] : by_pieces) {
         pieces += fmt::format("{}{} x {}", pieces.empty() ? "" : ", ", objects, count);
     }
+    size_t exact_objects = 0, exact_triangles = 0;
+    for (const bt::ObjectVolumes& v : in.volumes) {
+        exact_objects += v.triangles.empty() ? 0 : 1;
+        exact_triangles += v.triangles.size();
+    }
     const int casting =
-        std::accumulate(by_pieces.begin(), by_pieces.end(), 0,
+        std::accumulate(by_pieces.begin(), by_pieces.end(), int(exact_objects),
                         [](int sum, const auto& entry) { return sum + entry.second; });
+    const std::string exact =
+        exact_objects == 0
+            ? std::string()
+            : fmt::format("; {} objects as {} exact triangles (occluders = {})", exact_objects,
+                          exact_triangles, to_string(in.scene.bounds.occluders));
     const bt::Regions& r = in.regions;
     const RegionsTimings& t = in.timings;
     return fmt::format(
-               "{}: {} objects casting shadows in {} convex pieces ({} objects x pieces); eye "
-               "rays in the cone: {:.1f}% lit, {:.1f}% uncertain, {:.1f}% unlit\n",
-               in.scene.name, casting, in.volumes.size(), pieces,
+               "{}: {} objects casting shadows in {} convex pieces ({} objects x pieces){}; "
+               "eye rays in the cone: {:.1f}% lit, {:.1f}% uncertain, {:.1f}% unlit\n",
+               in.scene.name, casting, in.volumes.size() - exact_objects, pieces, exact,
                100.0 * eye_share(in, bt::Region::lit), 100.0 * eye_share(in, bt::Region::uncertain),
                100.0 * eye_share(in, bt::Region::unlit)) +
            fmt::format(

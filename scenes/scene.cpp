@@ -157,6 +157,18 @@ const char* to_string(SplatWeighting weighting) {
     return weighting == SplatWeighting::jacobian ? "jacobian" : "seed";
 }
 
+const char* to_string(Occluders occluders) {
+    switch (occluders) {
+        case Occluders::volumes:
+            return "volumes";
+        case Occluders::triangles:
+            return "triangles";
+        case Occluders::automatic:
+            return "auto";
+    }
+    return "?";
+}
+
 bool Scene::casts_shadow(const Object& object) const {
     return object.material < 0 || size_t(object.material) >= materials.size() ||
            materials[size_t(object.material)].casts_shadow;

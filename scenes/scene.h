@@ -153,6 +153,9 @@ struct Medium {
 
 // How the beam tree bounds the objects ([beamtree] in scene files; beamtree/bounding_volumes.h
 // computes them with these settings).
+enum class Occluders { volumes, triangles, automatic };
+const char* to_string(Occluders occluders);
+
 struct BoundsSettings {
     int max_outer_planes = 0;     // 0: the full convex hull; else at most this many planes (>= 8)
     bool automatic_inner = true;  // find an inner box for closed meshes without explicit ones
@@ -160,6 +163,13 @@ struct BoundsSettings {
     // mesh's size. Off by default: the boundary meshes of thin grown pieces (random tori) keep a
     // few faces that separate nothing, within 1e-9 of the volume.
     bool pieces = false;
+    // What each object enters the beam tree as: its bounding volumes (hulls or pieces, and inner
+    // volumes); its triangles, each an exact occluder (unlit behind it, whatever the mesh's
+    // winding or closedness); or, automatically, triangles for the objects without an inner
+    // volume (smallest first, while the scene's total stays within max_triangles) and volumes
+    // for the rest.
+    Occluders occluders = Occluders::volumes;
+    int max_triangles = 50000;
 };
 
 // Image-based lighting from an HDR environment (ibl/, Moschos §3.3); off when `file` is empty.

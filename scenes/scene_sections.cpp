@@ -274,6 +274,16 @@ BoundsSettings read_bounds(TableReader r) {
                                       "scene may set it) or pieces = false",
                                       b.max_outer_planes));
     }
+    const std::string occluders = r.string("occluders", "volumes");
+    if (occluders == "volumes" || occluders == "triangles" || occluders == "auto") {
+        b.occluders = occluders == "volumes"     ? Occluders::volumes
+                      : occluders == "triangles" ? Occluders::triangles
+                                                 : Occluders::automatic;
+    } else {
+        r.error("occluders",
+                fmt::format("unknown value {} (volumes, triangles, auto)", quote(occluders)));
+    }
+    b.max_triangles = r.integer_in("max_triangles", b.max_triangles, 0, 10000000);
     r.finish();
     return b;
 }

@@ -50,6 +50,79 @@ TEST(BeamTree, IsSoundOnRandomTerrainCutIntoPiecesFacingEitherWay) {
     check_random_scenes(Shapes::terrain, {.pieces = true}, 8);
 }
 
+// Triangles as exact occluders ([beamtree] occluders = triangles): on the random scenes of what
+// real models hold (open walls, open boxes, terrain, inside-out meshes, rooms around the light)
+// the tree agrees with ray casts through the triangles themselves and is sound against the
+// meshes, and decides every point: the uncertain regions shrink to the planes' ε thickness.
+TEST(BeamTree, WithTrianglesAsOccludersDecidesEveryPointOfOpenMeshes) {
+    const BoundsSettings triangles{.occluders = Occluders::triangles};
+    check_random_scenes(Shapes::real, triangles, 24);
+    check_random_scenes(Shapes::terrain, triangles, 8);
+    bt::VolumeLibrary library(triangles);
+    library.set_caching(false);
+    double worst = 0.0;
+    for (int seed = 1; seed <= 24; ++seed) {
+        RandomScene random = random_scene(seed, library, Shapes::real);
+        random.scene.bounds = triangles;
+        const bt::BeamTree tree(random.scene.light, library.build(random.scene, nullptr));
+        const bt::Regions regions = bt::extract_regions(tree);
+        const double share =
+            regions.volume[size_t(bt::Region::uncertain)] / regions.influence_volume;
+        worst = std::max(worst, share);
+        EXPECT_LT(share, 1e-6) << "scene " << seed << " (kinds " << random.kinds << ")";
+    }
+    std::printf("triangles as occluders: worst uncertain share of the influence volume %.2e\n",
+                worst);
+}
+
+// The repro's two points behind the open terrain (tests/data/terrain-pieces): uncertain with
+// its volumes (an open mesh has no inner volume), unlit with its triangles, and with auto, which
+// gives the terrain its triangles because it has no inner volume.
+TEST(BeamTree, TheTerrainsShadowIsUnlitWithItsTriangles) {
+    const std::filesystem::path dir =
+        std::filesystem::path(SHAFTLAB_SOURCE_DIR) / "tests/data/terrain-pieces";
+    Scene scene = load_scene_file(dir / "scene.toml", SceneSearchPaths::defaults());
+    for (const Occluders occluders :
+         {Occluders::volumes, Occluders::triangles, Occluders::automatic}) {
+        scene.bounds.occluders = occluders;
+        const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
+        std::ifstream points(dir / "points.txt");
+        dvec3 p;
+        while (points >> p.x >> p.y >> p.z) {
+            EXPECT_EQ(tree.classify(p),
+                      occluders == Occluders::volumes ? bt::Region::uncertain : bt::Region::unlit)
+                << to_string(occluders);
+        }
+    }
+}
+
+// auto gives its triangles to each object without an inner volume, smallest first, while the
+// scene's total stays within max_triangles; the closed objects keep their volumes.
+TEST(BeamTree, AutomaticOccludersTakeTrianglesWithinTheBudget) {
+    Scene scene = load_canonical("house");
+    scene.bounds.occluders = Occluders::automatic;
+    bt::VolumeLibrary library({.pieces = true});
+    std::vector<bt::MissingInner> missing;
+    size_t exact = 0, triangles = 0;
+    for (const bt::ObjectVolumes& v : library.build(scene, &missing)) {
+        exact += v.triangles.empty() ? 0 : 1;
+        triangles += v.triangles.size();
+    }
+    EXPECT_EQ(exact, 29u) << "the house's open objects";
+    EXPECT_TRUE(missing.empty());
+    EXPECT_LE(triangles, size_t(scene.bounds.max_triangles));
+    scene.bounds.max_triangles = int(triangles) - 1;
+    missing.clear();
+    size_t within = 0, kept = 0;
+    for (const bt::ObjectVolumes& v : library.build(scene, &missing)) {
+        within += v.triangles.size();
+        kept += v.triangles.empty() ? 0 : 1;
+    }
+    EXPECT_LE(within, triangles - 1);
+    EXPECT_EQ(kept + missing.size(), 29u) << "the largest goes back to its volumes";
+    EXPECT_GE(missing.size(), 1u);
+}
+
 // The configuration behind tests/data/terrain-pieces, built on purpose: a thin triangular
 // occluder C (a 2.9 degree corner) is inserted first; a farther face F crosses C's plane so near
 // that corner that F's part in front of C, inside C's beam, is a sliver whose two long edges lie

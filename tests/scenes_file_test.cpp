@@ -175,6 +175,9 @@ std::vector<BadInput> bad_inputs() {
          "rotate: component 1 is 1e+39"},
         {s + "[medium]\na0 = 1e39\n", "[medium] a0: must be in [0, "},
         // Pieces are cut from full hulls; with reduced hulls they were ignored without a word.
+        {s + "[beamtree]\noccluders = \"mesh\"\n",
+         "[beamtree] occluders: unknown value 'mesh' (volumes, triangles, auto)"},
+        {s + "[beamtree]\nmax_triangles = -1\n", "[beamtree] max_triangles: "},
         {s + "[beamtree]\nmax_outer_planes = 24\npieces = true\n",
          "[beamtree] pieces: convex pieces need full hulls, but max_outer_planes = 24"},
         {replace(s, "cone_angle = 30.0", "cone_angle = 95.0"), "[light] cone_angle: must be in"},
