@@ -151,18 +151,23 @@ std::string regions_summary_text(const RegionsSummaryInputs& in, double write_ms
     const int casting =
         std::accumulate(by_pieces.begin(), by_pieces.end(), int(exact_objects),
                         [](int sum, const auto& entry) { return sum + entry.second; });
-    const std::string exact =
-        exact_objects == 0
+    const size_t piece_count = in.volumes.size() - exact_objects;
+    std::string objects =
+        piece_count == 0 && exact_objects > 0
             ? std::string()
-            : fmt::format("; {} objects as {} exact triangles (occluders = {})", exact_objects,
-                          exact_triangles, to_string(in.scene.bounds.occluders));
+            : fmt::format(" in {} convex pieces ({} objects x pieces)", piece_count, pieces);
+    if (exact_objects > 0) {
+        objects += fmt::format("{} {} objects as {} exact triangles (occluders = {})",
+                               objects.empty() ? ":" : ";", exact_objects, exact_triangles,
+                               to_string(in.scene.bounds.occluders));
+    }
     const bt::Regions& r = in.regions;
     const RegionsTimings& t = in.timings;
     return fmt::format(
-               "{}: {} objects casting shadows in {} convex pieces ({} objects x pieces){}; "
-               "eye rays in the cone: {:.1f}% lit, {:.1f}% uncertain, {:.1f}% unlit\n",
-               in.scene.name, casting, in.volumes.size() - exact_objects, pieces, exact,
-               100.0 * eye_share(in, bt::Region::lit), 100.0 * eye_share(in, bt::Region::uncertain),
+               "{}: {} objects casting shadows{}; eye rays in the cone: {:.1f}% lit, {:.1f}% "
+               "uncertain, {:.1f}% unlit\n",
+               in.scene.name, casting, objects, 100.0 * eye_share(in, bt::Region::lit),
+               100.0 * eye_share(in, bt::Region::uncertain),
                100.0 * eye_share(in, bt::Region::unlit)) +
            fmt::format(
                "{}: {} beams ({} lit, {} uncertain, {} unlit pieces); volumes {:.0f} ms, tree "
