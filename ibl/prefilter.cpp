@@ -75,6 +75,24 @@ void for_each_row(int size, RowProgress& rows, const std::function<void(int, int
     });
 }
 
+// A texel's direction n and a tangent frame (t, b) about it.
+struct TexelFrame {
+    glm::vec3 n, t, b;
+};
+
+// Sets every texel of `level` to shade(face, x, y, frame), rows in parallel.
+void for_each_texel(CubeMap& level, RowProgress& rows,
+                    const std::function<glm::vec3(int, int, int, const TexelFrame&)>& shade) {
+    for_each_row(level.size, rows, [&](int f, int y) {
+        for (int x = 0; x < level.size; ++x) {
+            TexelFrame frame;
+            frame.n = level.direction(f, x, y);
+            orthonormal_basis(frame.n, frame.t, frame.b);
+            level.set(f, x, y, shade(f, x, y, frame));
+        }
+    });
+}
+
 // One importance-sampled direction of the level's lobe in the local frame (n = v = +z), with
 // its cosine weight and the source lod it is read at: the same for every texel of the level.
 struct LobeSample {
@@ -182,27 +200,21 @@ float cone_level(const CubeMap& source, const PrefilterSettings& s, int l, CubeM
                  RowProgress& rows) {
     const ConeLevel cone = moschos_cone_levels()[size_t(l)];
     const float radius = std::tan(cone.cone_degrees * kPi / 180.0f);
-    const int size = level.size;
-    for_each_row(size, rows, [&](int f, int y) {
-        for (int x = 0; x < size; ++x) {
-            const glm::vec3 n = level.direction(f, x, y);
-            glm::vec3 t, b;
-            orthonormal_basis(n, t, b);
-            TexelRandom random(s.seed * 0x100000001B3ull ^ (uint64_t(l) << 56 | uint64_t(f) << 48 |
-                                                            uint64_t(y) << 24 | uint64_t(x)));
-            glm::vec3 sum(0.0f);
-            float weights = 0.0f;
-            for (int i = 0; i < s.samples; ++i) {
-                const float r = radius * std::sqrt(random.next());
-                const float phi = 2.0f * kPi * random.next();
-                const glm::vec3 d =
-                    glm::normalize(n + r * std::cos(phi) * t + r * std::sin(phi) * b);
-                const float w = glm::dot(n, d);
-                sum += w * source.sample(d);
-                weights += w;
-            }
-            level.set(f, x, y, sum / weights);
+    for_each_texel(level, rows, [&](int f, int x, int y, const TexelFrame& frame) {
+        const auto& [n, t, b] = frame;
+        TexelRandom random(s.seed * 0x100000001B3ull ^ (uint64_t(l) << 56 | uint64_t(f) << 48 |
+                                                        uint64_t(y) << 24 | uint64_t(x)));
+        glm::vec3 sum(0.0f);
+        float weights = 0.0f;
+        for (int i = 0; i < s.samples; ++i) {
+            const float r = radius * std::sqrt(random.next());
+            const float phi = 2.0f * kPi * random.next();
+            const glm::vec3 d = glm::normalize(n + r * std::cos(phi) * t + r * std::sin(phi) * b);
+            const float w = glm::dot(n, d);
+            sum += w * source.sample(d);
+            weights += w;
         }
+        return sum / weights;
     });
     return cone.roughness;
 }
@@ -217,20 +229,15 @@ float importance_level(const CubeMap& source, const CubeMipChain& source_mips,
     float weights = 0.0f;
     for (const LobeSample& sample : samples)
         weights += sample.weight;
-    const int size = level.size;
-    for_each_row(size, rows, [&](int f, int y) {
-        for (int x = 0; x < size; ++x) {
-            const glm::vec3 n = level.direction(f, x, y);
-            glm::vec3 t, b;
-            orthonormal_basis(n, t, b);
-            glm::vec3 sum(0.0f);
-            for (const LobeSample& sample : samples) {
-                const glm::vec3 d = sample.l.x * t + sample.l.y * b + sample.l.z * n;
-                sum += sample.weight *
-                       (s.filtered ? sample_lod(source_mips, d, sample.lod) : source.sample(d));
-            }
-            level.set(f, x, y, weights > 0.0f ? sum / weights : source.sample(n));
+    for_each_texel(level, rows, [&](int, int, int, const TexelFrame& frame) {
+        const auto& [n, t, b] = frame;
+        glm::vec3 sum(0.0f);
+        for (const LobeSample& sample : samples) {
+            const glm::vec3 d = sample.l.x * t + sample.l.y * b + sample.l.z * n;
+            sum += sample.weight *
+                   (s.filtered ? sample_lod(source_mips, d, sample.lod) : source.sample(d));
         }
+        return weights > 0.0f ? sum / weights : source.sample(n);
     });
     return alpha;
 }
