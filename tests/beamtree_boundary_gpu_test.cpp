@@ -315,8 +315,54 @@ std::vector<float> walk_on_gpu(const WalkCase& c, const bt::BeamTree& tree,
     return render_test_pattern(uniforms, "tests/shaders/walk.frag", width, height, c.defines);
 }
 
-TEST_F(BoundaryOnTheGpu, WalkFindsTheTreesIntervalsAlongRandomLines) {
+// The walk against trace() over many segments, summed over cases.
+struct WalkTotals {
+    double worst = 0.0;  // of the far range
+    size_t segments = 0, beyond = 0, deepest = 0;
+    std::array<double, 3> lengths{};
+};
+
+// One case: kWidth x kHeight random segments walked on the GPU and traced on the CPU; the
+// lengths per region agree to 2e-4 of the far range (float round-off: a ray nearly in a plane's
+// direction moves its crossing by more, far below a shaft's width), the pieces tile each segment
+// and no walk gives up.
+void walk_against_trace(const WalkCase& c, const bt::BeamTree& tree, std::mt19937& rng,
+                        WalkTotals& totals) {
     constexpr int kWidth = 128, kHeight = 64;
+    totals.deepest = std::max(totals.deepest, tree.stats().max_depth);
+    const double size = double(c.scene.light.far);
+    const WalkSegments lines = random_segments(rng, c.scene.light, size_t(kWidth) * kHeight);
+    const std::vector<float> rgba = walk_on_gpu(c, tree, lines, kWidth, kHeight);
+    std::vector<bt::RegionInterval> intervals;
+    for (size_t i = 0; i < lines.lines.size(); ++i) {
+        const auto& [a, direction] = lines.lines[i];
+        tree.trace(a, direction, 0.0, double(lines.directions[i].w), intervals);
+        std::array<double, 3> expected{};
+        for (const bt::RegionInterval& interval : intervals) {
+            expected[size_t(interval.region)] += interval.end - interval.begin;
+        }
+        const float pieces = rgba[i * 4 + 3];
+        ASSERT_GT(pieces, 0.0f) << c.name << ": the walk gave up on segment " << i;
+        ASSERT_LT(pieces, 1000.0f) << c.name << ": pieces do not tile segment " << i;
+        for (size_t r = 0; r < 3; ++r) {
+            const double error = std::abs(double(rgba[i * 4 + r]) - expected[r]) / size;
+            totals.worst = std::max(totals.worst, error);
+            totals.lengths[r] += expected[r];
+            EXPECT_LT(error, 2e-4) << c.name << " segment " << i << " region " << r;
+            totals.beyond += error > 1e-5 ? 1 : 0;
+        }
+        ++totals.segments;
+    }
+}
+
+void print_walk(const char* what, const WalkTotals& t) {
+    std::printf(
+        "%s: %zu segments, deepest tree %zu; lengths lit %.0f, uncertain %.0f, unlit %.0f m; "
+        "worst error %.2e of the far range, %zu lengths beyond 1e-5\n",
+        what, t.segments, t.deepest, t.lengths[0], t.lengths[1], t.lengths[2], t.worst, t.beyond);
+}
+
+TEST_F(BoundaryOnTheGpu, WalkFindsTheTreesIntervalsAlongRandomLines) {
     bt::VolumeLibrary library;
     std::vector<WalkCase> cases;
     for (const char* name : {"toplight", "parallel", "multiple"}) {
@@ -329,51 +375,38 @@ TEST_F(BoundaryOnTheGpu, WalkFindsTheTreesIntervalsAlongRandomLines) {
         cases.push_back({fmt::format("seed {}", seed), random_scene(seed, library).scene, {}});
     }
     std::mt19937 rng(23);
-    double worst = 0.0;
-    size_t segments = 0, beyond = 0, deepest = 0;
-    std::array<double, 3> totals{};
-    std::vector<bt::RegionInterval> intervals;
+    WalkTotals totals;
     for (const WalkCase& c : cases) {
         bt::VolumeLibrary& volumes =
             bt::VolumeLibrary::shared({.max_outer_planes = c.scene.bounds.max_outer_planes,
                                        .automatic_inner = c.scene.bounds.automatic_inner});
-        const bt::BeamTree tree(c.scene.light, volumes.build(c.scene, nullptr));
-        deepest = std::max(deepest, tree.stats().max_depth);
-        const double size = double(c.scene.light.far);
-        const WalkSegments lines = random_segments(rng, c.scene.light, size_t(kWidth) * kHeight);
-        const std::vector<float> rgba = walk_on_gpu(c, tree, lines, kWidth, kHeight);
-        for (size_t i = 0; i < lines.lines.size(); ++i) {
-            const auto& [a, direction] = lines.lines[i];
-            tree.trace(a, direction, 0.0, double(lines.directions[i].w), intervals);
-            std::array<double, 3> expected{};
-            for (const bt::RegionInterval& interval : intervals) {
-                expected[size_t(interval.region)] += interval.end - interval.begin;
-            }
-            const float pieces = rgba[i * 4 + 3];
-            ASSERT_GT(pieces, 0.0f) << c.name << ": the walk gave up on segment " << i;
-            ASSERT_LT(pieces, 1000.0f) << c.name << ": pieces do not tile segment " << i;
-            for (size_t r = 0; r < 3; ++r) {
-                const double error = std::abs(double(rgba[i * 4 + r]) - expected[r]) / size;
-                worst = std::max(worst, error);
-                totals[r] += expected[r];
-                // Float round-off: a ray nearly in a plane's direction moves its crossing by
-                // more; 2e-4 of the size (measured 2.9e-5) allows for it, far below a shaft's
-                // width.
-                EXPECT_LT(error, 2e-4) << c.name << " segment " << i << " region " << r;
-                beyond += error > 1e-5 ? 1 : 0;
-            }
-            ++segments;
-        }
+        walk_against_trace(c, bt::BeamTree(c.scene.light, volumes.build(c.scene, nullptr)), rng,
+                           totals);
     }
-    std::printf(
-        "walk on the GPU: %zu segments, deepest tree %zu; lengths lit %.0f, uncertain %.0f, "
-        "unlit %.0f m; worst error %.2e of the far range, %zu lengths beyond 1e-5\n",
-        segments, deepest, totals[0], totals[1], totals[2], worst, beyond);
-    EXPECT_GT(deepest, 100u) << "multiple:256 should overflow the walk's stack";
-    EXPECT_LT(double(beyond), 1e-3 * double(segments) * 3.0);
-    for (double total : totals) {
-        EXPECT_GT(total, 0.1 * double(segments)) << "every region should be crossed";
+    print_walk("walk on the GPU", totals);
+    EXPECT_GT(totals.deepest, 100u) << "multiple:256 should overflow the walk's stack";
+    EXPECT_LT(double(totals.beyond), 1e-3 * double(totals.segments) * 3.0);
+    for (double total : totals.lengths) {
+        EXPECT_GT(total, 0.1 * double(totals.segments)) << "every region should be crossed";
     }
+}
+
+// A tree of over 10^6 nodes walked exactly: the engine's 110,338 triangles as exact occluders
+// ([beamtree] occluders = triangles) make a tree of about 1.8 M nodes, which the GPU walks
+// (its short stack overflowing and restarting) to the lengths trace() finds.
+TEST_F(BoundaryOnTheGpu, WalkIsExactOnATreeOfAMillionNodes) {
+    WalkCase c{"engine, triangles", load_canonical("engine"), {}};
+    c.scene.bounds.occluders = Occluders::triangles;
+    const bt::BeamTree tree = bt::build_scene_beam_tree(c.scene);
+    ASSERT_GT(tree.stats().nodes, 1000000u);
+    std::mt19937 rng(29);
+    WalkTotals totals;
+    walk_against_trace(c, tree, rng, totals);
+    print_walk("walk on a tree of a million nodes", totals);
+    std::printf("  %zu nodes\n", tree.stats().nodes);
+    EXPECT_LT(double(totals.beyond), 1e-3 * double(totals.segments) * 3.0);
+    EXPECT_GT(totals.lengths[0], 0.1 * double(totals.segments)) << "lit crossed";
+    EXPECT_GT(totals.lengths[2], 0.1 * double(totals.segments)) << "unlit crossed";
 }
 
 }  // namespace
