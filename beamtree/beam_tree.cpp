@@ -135,7 +135,21 @@ void BeamTree::insert_triangles(const std::vector<Polygon>& triangles, bool stop
     // An opaque triangle stops the light whatever its winding: it goes in facing the light, once
     // as an occluder and once as a stopper on the same plane, so that behind it the leaf is a
     // blocker whose uncertain layer (between occluder and stopper) is empty: unlit, exactly.
+    // Nearest first, as the objects: a farther triangle then mostly lands in leaves a nearer
+    // one already closed, and is dropped there without splitting them.
+    std::vector<std::pair<double, const Polygon*>> by_distance;
+    by_distance.reserve(triangles.size());
     for (const Polygon& triangle : triangles) {
+        double nearest = std::numeric_limits<double>::max();
+        for (const dvec3& v : triangle.vertices) {
+            nearest = std::min(nearest, glm::length(v - apex_));
+        }
+        by_distance.emplace_back(nearest, &triangle);
+    }
+    std::stable_sort(by_distance.begin(), by_distance.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& entry : by_distance) {
+        const Polygon& triangle = *entry.second;
         const std::vector<dvec3>& v = triangle.vertices;
         Plane plane;
         if (!Plane::through(v[0], v[1], v[2], plane)) {

@@ -391,18 +391,19 @@ TEST_F(BoundaryOnTheGpu, WalkFindsTheTreesIntervalsAlongRandomLines) {
     }
 }
 
-// A tree of over 10^6 nodes walked exactly: the engine's 110,338 triangles as exact occluders
-// ([beamtree] occluders = triangles) make a tree of about 1.8 M nodes, which the GPU walks
-// (its short stack overflowing and restarting) to the lengths trace() finds.
-TEST_F(BoundaryOnTheGpu, WalkIsExactOnATreeOfAMillionNodes) {
+// A tree of more than half a million nodes walked exactly: the engine's 110,338 triangles as
+// exact occluders ([beamtree] occluders = triangles) make a tree of about 660,000 nodes and depth
+// near 300, which the GPU walks (its short stack overflowing and restarting) to the lengths
+// trace() finds.
+TEST_F(BoundaryOnTheGpu, WalkIsExactOnATreeOfHalfAMillionNodes) {
     WalkCase c{"engine, triangles", load_canonical("engine"), {}};
     c.scene.bounds.occluders = Occluders::triangles;
     const bt::BeamTree tree = bt::build_scene_beam_tree(c.scene);
-    ASSERT_GT(tree.stats().nodes, 1000000u);
+    ASSERT_GT(tree.stats().nodes, 500000u);
     std::mt19937 rng(29);
     WalkTotals totals;
     walk_against_trace(c, tree, rng, totals);
-    print_walk("walk on a tree of a million nodes", totals);
+    print_walk("walk on a tree of half a million nodes", totals);
     std::printf("  %zu nodes\n", tree.stats().nodes);
     EXPECT_LT(double(totals.beyond), 1e-3 * double(totals.segments) * 3.0);
     EXPECT_GT(totals.lengths[0], 0.1 * double(totals.segments)) << "lit crossed";
