@@ -59,6 +59,24 @@ std::vector<dvec3> read_points(const std::string& path) {
     return points;
 }
 
+// The objects without an automatic inner volume: one line for the scene, each object's behind
+// --verbose (and in regions.json).
+void warn_missing_inner(const Scene& scene, const std::vector<bt::MissingInner>& missing,
+                        bool verbose) {
+    const std::string summary = bt::missing_inner_summary(missing, scene.objects.size());
+    if (summary.empty()) {
+        return;
+    }
+    std::fprintf(stderr, "shaftlab: warning: %s: %s. %s\n", scene.name.c_str(), summary.c_str(),
+                 verbose ? "Each one:" : "Each is listed in regions.json and with --verbose.");
+    if (verbose) {
+        for (const bt::MissingInner& m : missing) {
+            std::fprintf(stderr, "shaftlab: warning: object '%s': no automatic inner volume: %s\n",
+                         m.object.c_str(), m.reason.c_str());
+        }
+    }
+}
+
 int run_regions(const RegionsArguments& args) {
     int width = 0, height = 0;
     parse_size(args.size, width, height);
@@ -83,19 +101,7 @@ int run_regions(const RegionsArguments& args) {
     std::vector<bt::MissingInner> missing_inner;
     const std::vector<bt::ObjectVolumes> volumes = library.build(scene, &missing_inner);
     timings.volumes_ms = ms_since(start);
-    // One line for the scene; each object's behind --verbose and in regions.json.
-    if (const std::string summary = bt::missing_inner_summary(missing_inner, scene.objects.size());
-        !summary.empty()) {
-        std::fprintf(
-            stderr, "shaftlab: warning: %s: %s. %s\n", scene.name.c_str(), summary.c_str(),
-            args.verbose ? "Each one:" : "Each is listed in regions.json and with --verbose.");
-    }
-    if (args.verbose) {
-        for (const bt::MissingInner& m : missing_inner) {
-            std::fprintf(stderr, "shaftlab: warning: object '%s': no automatic inner volume: %s\n",
-                         m.object.c_str(), m.reason.c_str());
-        }
-    }
+    warn_missing_inner(scene, missing_inner, args.verbose);
     start = Clock::now();
     const bt::BeamTree tree(scene.light, volumes);
     timings.build_ms = ms_since(start);
