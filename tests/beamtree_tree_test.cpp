@@ -96,6 +96,32 @@ TEST(BeamTree, TheTerrainsShadowIsUnlitWithItsTriangles) {
     }
 }
 
+// A light inside a closed room: its volumes would hold the light (refused), its triangles do not
+// (a triangle through the light is edge-on to it): lit in the open air of the cone, unlit under
+// the table and outside the room's walls (points off the beams' planes: a ray through a box
+// face's diagonal lies on one).
+TEST(BeamTree, ALightInsideARoomIsTakenWithTriangles) {
+    Scene scene;
+    scene.light.position = glm::vec3(0.0f, 1.0f, 0.0f);
+    scene.light.target = glm::vec3(0.0f);
+    scene.light.cone_half_angle_degrees = 40.0f;
+    scene.light.near = 0.1f;
+    scene.light.far = 8.0f;
+    const glm::mat4 room = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.5f, 0.0f)),
+                                      glm::vec3(8.0f, 4.0f, 8.0f));
+    const glm::mat4 table = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.3f, 0.0f)),
+                                       glm::vec3(1.0f, 0.2f, 1.0f));
+    scene.objects = {make_object("room", shapes().box, room),
+                     make_object("table", shapes().box, table)};
+    scene.materials.emplace_back();
+    EXPECT_THROW(bt::build_scene_beam_tree(scene), Error) << "the room's hull holds the light";
+    scene.bounds.occluders = Occluders::triangles;
+    const bt::BeamTree tree = bt::build_scene_beam_tree(scene);
+    EXPECT_EQ(tree.classify({0.2, 0.7, -0.15}), bt::Region::lit) << "between the light and table";
+    EXPECT_EQ(tree.classify({0.2, 0.1, -0.15}), bt::Region::unlit) << "under the table";
+    EXPECT_EQ(tree.classify({1.0, -0.3, 0.2}), bt::Region::unlit) << "below the floor";
+}
+
 // auto gives its triangles to each object without an inner volume, smallest first, while the
 // scene's total stays within max_triangles; the closed objects keep their volumes.
 TEST(BeamTree, AutomaticOccludersTakeTrianglesWithinTheBudget) {
