@@ -82,9 +82,10 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
             fail(
                 "the light at ({}, {}, {}) is inside the outer bounding volume of object {}{}: "
                 "the beam tree needs the light outside every outer volume (move the light out of "
-                "it; or cut the object into convex pieces, [beamtree] pieces = true, when the "
-                "light is outside each piece; or use a method without regions: planes, march, "
-                "froxel, lightvolume, epipolar)",
+                "it; or make the objects exact occluders, [beamtree] occluders = \"triangles\"; "
+                "or cut the object into convex pieces, [beamtree] "
+                "pieces = true, when the light is outside each piece; or use a method without "
+                "regions: planes, march, froxel, lightvolume, epipolar)",
                 apex_.x, apex_.y, apex_.z,
                 object.name.empty() ? std::to_string(object.object) : "'" + object.name + "'",
                 object.pieces > 1
