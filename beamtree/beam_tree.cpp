@@ -30,15 +30,58 @@ const char* to_string(Region region) {
 
 namespace {
 
-double distance_to_box(const dvec3& p, const ConvexVolume& volume) {
+// From p to the box around the polygons (an object's outer volume, or its exact triangles).
+double distance_to_box(const dvec3& p, const std::vector<Polygon>& polygons) {
     dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
-    for (const Polygon& face : volume.faces) {
+    for (const Polygon& face : polygons) {
         for (const dvec3& v : face.vertices) {
             lo = glm::min(lo, v);
             hi = glm::max(hi, v);
         }
     }
     return glm::length(glm::max(dvec3(0.0), glm::max(lo - p, p - hi)));
+}
+
+// An exact occluder as it goes into the tree: turned to face the light, with its plane.
+struct FacingTriangle {
+    Polygon polygon;
+    Plane plane;
+};
+
+// An opaque triangle stops the light whatever its winding: it goes in facing the light, once as
+// an occluder and once as a stopper on the same plane, so that behind it the leaf is a blocker
+// whose uncertain layer (between occluder and stopper) is empty: unlit, exactly. Nearest first,
+// as the objects: a farther triangle then mostly lands in leaves a nearer one already closed,
+// and is dropped there without splitting them. Degenerate triangles cover nothing and are left
+// out.
+std::vector<FacingTriangle> facing_triangles(const std::vector<Polygon>& triangles,
+                                             const dvec3& light) {
+    std::vector<std::pair<double, const Polygon*>> by_distance;
+    by_distance.reserve(triangles.size());
+    for (const Polygon& triangle : triangles) {
+        double nearest = std::numeric_limits<double>::max();
+        for (const dvec3& v : triangle.vertices) {
+            nearest = std::min(nearest, glm::length(v - light));
+        }
+        by_distance.emplace_back(nearest, &triangle);
+    }
+    std::stable_sort(by_distance.begin(), by_distance.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<FacingTriangle> out;
+    out.reserve(triangles.size());
+    for (const auto& entry : by_distance) {
+        const std::vector<dvec3>& v = entry.second->vertices;
+        Plane plane;
+        if (!Plane::through(v[0], v[1], v[2], plane)) {
+            continue;
+        }
+        if (plane.distance(light) < 0.0) {
+            out.push_back({Polygon({v[0], v[2], v[1]}), plane.flipped()});
+        } else {
+            out.push_back({*entry.second, plane});
+        }
+    }
+    return out;
 }
 
 }  // namespace
@@ -98,7 +141,10 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     std::vector<std::pair<double, const ObjectVolumes*>> by_distance;
     size_t faces = 0;
     for (const ObjectVolumes& object : volumes) {
-        by_distance.emplace_back(distance_to_box(apex_, object.outer), &object);
+        by_distance.emplace_back(
+            distance_to_box(apex_,
+                            object.triangles.empty() ? object.outer.faces : object.triangles),
+            &object);
         faces += object.triangles.empty() ? object.outer.faces.size() : 2 * object.triangles.size();
         for (const ConvexVolume& inner : object.inner) {
             faces += inner.faces.size();
@@ -111,55 +157,34 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         order.push_back(object);
     }
     nodes_.reserve(nodes_.size() + 16 * faces);
-    for (const ObjectVolumes* object : order) {
-        if (!object->triangles.empty()) {
-            insert_triangles(object->triangles, false);
+    // Exact occluders, turned to the light and ordered once for both passes.
+    std::vector<std::vector<FacingTriangle>> facing(order.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        facing[k] = facing_triangles(order[k]->triangles, apex_);
+    }
+    for (size_t k = 0; k < order.size(); ++k) {
+        for (const FacingTriangle& t : facing[k]) {
+            insert(t.polygon, t.plane, false);
+        }
+        if (!order[k]->triangles.empty()) {
             continue;
         }
-        for (size_t f = 0; f < object->outer.faces.size(); ++f) {
-            insert(object->outer.faces[f], object->outer.planes[f], false);
+        const ConvexVolume& outer = order[k]->outer;
+        for (size_t f = 0; f < outer.faces.size(); ++f) {
+            insert(outer.faces[f], outer.planes[f], false);
         }
     }
     // Stopper polygons from the inner volumes turn parts of solid leaves into blocker leaves
-    // (Nilsson §5.2.1, figure 5.5).
-    for (const ObjectVolumes* object : order) {
-        insert_triangles(object->triangles, true);
+    // (Nilsson §5.2.1, figure 5.5); each exact triangle is its own stopper.
+    for (size_t k = 0; k < order.size(); ++k) {
+        const ObjectVolumes* object = order[k];
+        for (const FacingTriangle& t : facing[k]) {
+            insert(t.polygon, t.plane, true);
+        }
         for (const ConvexVolume& inner : object->inner) {
             for (size_t f = 0; f < inner.faces.size(); ++f) {
                 insert(inner.faces[f], inner.planes[f], true);
             }
-        }
-    }
-}
-
-void BeamTree::insert_triangles(const std::vector<Polygon>& triangles, bool stopper) {
-    // An opaque triangle stops the light whatever its winding: it goes in facing the light, once
-    // as an occluder and once as a stopper on the same plane, so that behind it the leaf is a
-    // blocker whose uncertain layer (between occluder and stopper) is empty: unlit, exactly.
-    // Nearest first, as the objects: a farther triangle then mostly lands in leaves a nearer
-    // one already closed, and is dropped there without splitting them.
-    std::vector<std::pair<double, const Polygon*>> by_distance;
-    by_distance.reserve(triangles.size());
-    for (const Polygon& triangle : triangles) {
-        double nearest = std::numeric_limits<double>::max();
-        for (const dvec3& v : triangle.vertices) {
-            nearest = std::min(nearest, glm::length(v - apex_));
-        }
-        by_distance.emplace_back(nearest, &triangle);
-    }
-    std::stable_sort(by_distance.begin(), by_distance.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& entry : by_distance) {
-        const Polygon& triangle = *entry.second;
-        const std::vector<dvec3>& v = triangle.vertices;
-        Plane plane;
-        if (!Plane::through(v[0], v[1], v[2], plane)) {
-            continue;  // degenerate: it covers nothing
-        }
-        if (plane.distance(apex_) < 0.0) {
-            insert(Polygon({v[0], v[2], v[1]}), plane.flipped(), stopper);
-        } else {
-            insert(triangle, plane, stopper);
         }
     }
 }

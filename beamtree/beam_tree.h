@@ -171,8 +171,6 @@ private:
     void set_leaf(int32_t index, const Leaf& leaf);
 
     void insert(const Polygon& polygon, const Plane& plane, bool stopper);
-    // Exact occluders: each triangle, turned to face the light, as an occluder or a stopper.
-    void insert_triangles(const std::vector<Polygon>& triangles, bool stopper);
     // Takes `fragment` down from node `index` to its leaf, pushing the far parts of straddled
     // splits onto `stack`; -1 where nothing of it is left to attach.
     int32_t descend(int32_t index, Polygon& fragment,

@@ -680,7 +680,6 @@ ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
     ObjectVolumes volumes;
     volumes.object = index;
     volumes.name = object.name;
-    volumes.outer = entry(object.mesh).volumes->outer.transformed(transform);
     const Mesh& mesh = *object.mesh;
     volumes.triangles.reserve(mesh.triangles.size());
     for (const glm::uvec3& t : mesh.triangles) {
@@ -695,7 +694,9 @@ ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
 
 std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
                                                 std::vector<MissingInner>* missing) {
-    compute_missing(scene);
+    if (scene.bounds.occluders != Occluders::triangles) {
+        compute_missing(scene);  // every object as its triangles needs no volume
+    }
     const std::vector<bool> exact = exact_objects(scene);
     std::vector<ObjectVolumes> result;
     for (size_t i = 0; i < scene.objects.size(); ++i) {

@@ -33,8 +33,8 @@ struct ObjectVolumes {
     ConvexVolume outer;
     std::vector<ConvexVolume> inner;
     // Exact occluders ([beamtree] occluders = triangles, or auto for an object without an inner
-    // volume): the object's triangles in world space, each unlit behind it. Then `outer` (its
-    // hull) only orders the objects by distance and `inner` is empty.
+    // volume): the object's triangles in world space, each unlit behind it. Then `outer` and
+    // `inner` are empty.
     std::vector<Polygon> triangles;
 };
 
