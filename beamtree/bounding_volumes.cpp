@@ -547,6 +547,24 @@ bool VolumeLibrary::box_verified(const Mesh& mesh, uint64_t key, const Box& box)
     return inside;
 }
 
+namespace {
+
+// The object has no inner volume: none given, and none found in its mesh.
+bool lacks_inner(const Object& object, const LocalVolumes& local) {
+    return object.inner_boxes.empty() && !local.self_inner && !local.no_inner.empty();
+}
+
+}  // namespace
+
+ExactOccluders exact_occluders(const std::vector<ObjectVolumes>& volumes) {
+    ExactOccluders out;
+    for (const ObjectVolumes& v : volumes) {
+        out.objects += v.triangles.empty() ? 0 : 1;
+        out.triangles += v.triangles.size();
+    }
+    return out;
+}
+
 std::string missing_inner_summary(const std::vector<MissingInner>& missing, size_t objects) {
     if (missing.empty()) {
         return {};
@@ -657,8 +675,7 @@ std::vector<bool> VolumeLibrary::exact_objects(const Scene& scene) {
             exact[i] = true;
             continue;
         }
-        const LocalVolumes& local = *entry(object.mesh).volumes;
-        if (object.inner_boxes.empty() && !local.self_inner && !local.no_inner.empty()) {
+        if (lacks_inner(object, *entry(object.mesh).volumes)) {
             candidates.emplace_back(object.mesh->triangles.size(), i);
         }
     }
@@ -710,8 +727,7 @@ std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
         }
         append_volumes(object, int(i), result);
         const LocalVolumes& local = *entry(object.mesh).volumes;
-        if (object.inner_boxes.empty() && !local.self_inner && !local.no_inner.empty() &&
-            options_.automatic_inner && missing) {
+        if (lacks_inner(object, local) && options_.automatic_inner && missing) {
             missing->push_back({object.name, local.no_inner});
         }
     }

@@ -38,6 +38,12 @@ struct ObjectVolumes {
     std::vector<Polygon> triangles;
 };
 
+// How many objects entered the tree as exact triangles, and those triangles.
+struct ExactOccluders {
+    size_t objects = 0, triangles = 0;
+};
+ExactOccluders exact_occluders(const std::vector<ObjectVolumes>& volumes);
+
 // One convex piece of a mesh: its hull and the inner boxes found inside it.
 struct LocalPiece {
     ConvexVolume outer;

@@ -32,10 +32,7 @@ FrameRegions build_frame_regions(const Scene& scene, const RegionRequest& reques
     };
     VolumeLibrary& library = VolumeLibrary::shared(scene.bounds);
     const std::vector<ObjectVolumes> volumes = library.build(scene, nullptr);
-    for (const ObjectVolumes& v : volumes) {
-        out.exact_objects += v.triangles.empty() ? 0 : 1;
-        out.exact_triangles += v.triangles.size();
-    }
+    out.exact = exact_occluders(volumes);
     lap(out.ms.volumes);
     auto tree = std::make_shared<const BeamTree>(scene.light, volumes);
     lap(out.ms.tree);

@@ -47,8 +47,7 @@ struct FrameRegions {
     RegionMesh lit, uncertain;
     GpuTree gpu;
     RegionStageTimes ms;
-    // The objects that entered the tree as exact triangles ([beamtree] occluders), and those.
-    size_t exact_objects = 0, exact_triangles = 0;
+    ExactOccluders exact;  // [beamtree] occluders
 };
 
 // Throws sl::Error as BeamTree's constructor and VolumeLibrary::build do.

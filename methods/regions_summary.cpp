@@ -143,11 +143,8 @@ std::string regions_summary_text(const RegionsSummaryInputs& in, double write_ms
     for (const auto& [count, objects] : by_pieces) {
         pieces += fmt::format("{}{} x {}", pieces.empty() ? "" : ", ", objects, count);
     }
-    size_t exact_objects = 0, exact_triangles = 0;
-    for (const bt::ObjectVolumes& v : in.volumes) {
-        exact_objects += v.triangles.empty() ? 0 : 1;
-        exact_triangles += v.triangles.size();
-    }
+    const bt::ExactOccluders exact = bt::exact_occluders(in.volumes);
+    const size_t exact_objects = exact.objects, exact_triangles = exact.triangles;
     const int casting =
         std::accumulate(by_pieces.begin(), by_pieces.end(), int(exact_objects),
                         [](int sum, const auto& entry) { return sum + entry.second; });

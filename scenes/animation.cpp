@@ -103,10 +103,6 @@ const toml::table& key_table(const toml::array& keys, size_t i, const std::strin
     return *table;
 }
 
-}  // namespace
-
-namespace {
-
 void read_light_key(TomlTableReader& k, double t, Animation& a) {
     if (k.has("position"))
         add_key(a.light_position, t, k.vec3("position"));

@@ -154,7 +154,9 @@ struct Medium {
 // How the beam tree bounds the objects ([beamtree] in scene files; beamtree/bounding_volumes.h
 // computes them with these settings).
 enum class Occluders { volumes, triangles, automatic };
-const char* to_string(Occluders occluders);
+inline constexpr Occluders kOccluders[] = {Occluders::volumes, Occluders::triangles,
+                                           Occluders::automatic};
+const char* to_string(Occluders occluders);  // as scene files write it: volumes, triangles, auto
 
 struct BoundsSettings {
     int max_outer_planes = 0;     // 0: the full convex hull; else at most this many planes (>= 8)

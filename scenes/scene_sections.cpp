@@ -1,6 +1,8 @@
 #include "scenes/scene_sections.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include <glm/geometric.hpp>
 
@@ -274,15 +276,14 @@ BoundsSettings read_bounds(TableReader r) {
                                       "scene may set it) or pieces = false",
                                       b.max_outer_planes));
     }
-    const std::string occluders = r.string("occluders", "volumes");
-    if (occluders == "volumes" || occluders == "triangles" || occluders == "auto") {
-        b.occluders = occluders == "volumes"     ? Occluders::volumes
-                      : occluders == "triangles" ? Occluders::triangles
-                                                 : Occluders::automatic;
-    } else {
+    const std::string occluders = r.string("occluders", to_string(b.occluders));
+    const auto* chosen = std::find_if(std::begin(kOccluders), std::end(kOccluders),
+                                      [&](Occluders o) { return occluders == to_string(o); });
+    if (chosen == std::end(kOccluders)) {
         r.error("occluders",
                 fmt::format("unknown value {} (volumes, triangles, auto)", quote(occluders)));
     }
+    b.occluders = *chosen;
     b.max_triangles = r.integer_in("max_triangles", b.max_triangles, 0, 10000000);
     r.finish();
     return b;

@@ -33,9 +33,8 @@ void Viewer::ui_regions() {
     ImGui::Text("beam tree %.2f ms, regions %.2f ms, prepare %.2f ms", tree_ms_, extract_ms_,
                 prepare_ms_);
     // What the objects enter the tree as; a change rebuilds the regions and prepares the method.
-    const Occluders choices[3] = {Occluders::volumes, Occluders::triangles, Occluders::automatic};
     if (ImGui::BeginCombo("occluders", to_string(scene_.bounds.occluders))) {
-        for (const Occluders choice : choices) {
+        for (const Occluders choice : kOccluders) {
             if (ImGui::Selectable(to_string(choice), choice == scene_.bounds.occluders) &&
                 choice != scene_.bounds.occluders) {
                 scene_.bounds.occluders = choice;
@@ -48,7 +47,7 @@ void Viewer::ui_regions() {
     help_marker(
         "volumes: bounding volumes (uncertain between outer and inner); triangles: every "
         "object's triangles, exact; auto: triangles for the objects without an inner volume");
-    ImGui::Text("exact occluders: %zu objects, %zu triangles", exact_objects_, exact_triangles_);
+    ImGui::Text("exact occluders: %zu objects, %zu triangles", exact_.objects, exact_.triangles);
 }
 
 void Viewer::ui_light_view() {

@@ -150,8 +150,7 @@ void Viewer::scene_changed() {
             const bt::Regions& regions = *frame.regions;
             overlay_.upload(regions, scene_.light.far);
             beams_ = regions.beam_count;
-            exact_objects_ = frame.exact_objects;
-            exact_triangles_ = frame.exact_triangles;
+            exact_ = frame.exact;
             for (int r = 0; r < 3; ++r) {
                 region_faces_[size_t(r)] = regions.face_count(bt::Region(r));
             }

@@ -145,7 +145,7 @@ private:
 
     // Regions and timings.
     size_t beams_ = 0;
-    size_t exact_objects_ = 0, exact_triangles_ = 0;  // [beamtree] occluders
+    bt::ExactOccluders exact_;  // [beamtree] occluders
     std::array<size_t, 3> region_faces_{};
     std::array<double, 3> region_volume_{};
     double influence_volume_ = 0.0;
