@@ -42,6 +42,28 @@ double distance_to_box(const dvec3& p, const std::vector<Polygon>& polygons) {
     return glm::length(glm::max(dvec3(0.0), glm::max(lo - p, p - hi)));
 }
 
+// The tree needs the light outside every outer volume; an error that says what to do otherwise.
+void require_light_outside(const std::vector<ObjectVolumes>& volumes, const dvec3& light,
+                           double epsilon) {
+    for (const ObjectVolumes& object : volumes) {
+        // Triangles need the light outside no volume: one through the light is edge-on to it.
+        if (object.triangles.empty() && object.outer.contains(light, -epsilon)) {
+            fail(
+                "the light at ({}, {}, {}) is inside the outer bounding volume of object {}{}: "
+                "the beam tree needs the light outside every outer volume (move the light out of "
+                "it; or make the objects exact occluders, [beamtree] occluders = \"triangles\"; "
+                "or cut the object into convex pieces, [beamtree] "
+                "pieces = true, when the light is outside each piece; or use a method without "
+                "regions: planes, march, froxel, lightvolume, epipolar)",
+                light.x, light.y, light.z,
+                object.name.empty() ? std::to_string(object.object) : "'" + object.name + "'",
+                object.pieces > 1
+                    ? fmt::format(" (its convex piece {} of {})", object.piece + 1, object.pieces)
+                    : "");
+        }
+    }
+}
+
 // An exact occluder as it goes into the tree: turned to face the light, with its plane.
 struct FacingTriangle {
     Polygon polygon;
@@ -119,23 +141,7 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         at(i).back = i < 3 ? i + 1 : add_leaf({Kind::open, {}, -1});
     }
 
-    for (const ObjectVolumes& object : volumes) {
-        // Triangles need the light outside no volume: one through the light is edge-on to it.
-        if (object.triangles.empty() && object.outer.contains(apex_, -epsilon_)) {
-            fail(
-                "the light at ({}, {}, {}) is inside the outer bounding volume of object {}{}: "
-                "the beam tree needs the light outside every outer volume (move the light out of "
-                "it; or make the objects exact occluders, [beamtree] occluders = \"triangles\"; "
-                "or cut the object into convex pieces, [beamtree] "
-                "pieces = true, when the light is outside each piece; or use a method without "
-                "regions: planes, march, froxel, lightvolume, epipolar)",
-                apex_.x, apex_.y, apex_.z,
-                object.name.empty() ? std::to_string(object.object) : "'" + object.name + "'",
-                object.pieces > 1
-                    ? fmt::format(" (its convex piece {} of {})", object.piece + 1, object.pieces)
-                    : "");
-        }
-    }
+    require_light_outside(volumes, apex_, epsilon_);
     // Front to back by distance from the light: the result does not depend on the order, but
     // fewer fix-ups keep the tree small.
     std::vector<std::pair<double, const ObjectVolumes*>> by_distance;
