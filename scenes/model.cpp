@@ -17,6 +17,7 @@
 
 #include "core/error.h"
 #include "scenes/model_checks.h"
+#include "scenes/q3_bsp.h"
 
 namespace sl {
 
@@ -200,7 +201,9 @@ Model load_model(const fs::path& path) {
     if (!fs::is_regular_file(path, ec)) {
         fail("{}: cannot open model file", path.string());
     }
-    if (const std::string extension = lower_extension(path); extension == ".obj") {
+    if (const std::string extension = lower_extension(path); extension == ".bsp") {
+        return q3::load_model(path);  // assimp's Q3 BSP importer leaves its faces unset
+    } else if (extension == ".obj") {
         check_obj_indices(path);
     } else if (extension == ".ply") {
         check_ply_header(path);

@@ -2,7 +2,8 @@
 // Models read through assimp (glTF 2.0, OBJ, OFF, PLY, FBX, Collada, IFC, 3DS, STL and the other
 // formats its importers know): every (node, mesh) pair becomes a part that keeps the node's name,
 // its material and its place in the model. Polygons are triangulated by assimp's
-// post-processing, which ear-clips non-convex polygons and keyhole polygons with holes.
+// post-processing, which ear-clips non-convex polygons and keyhole polygons with holes. Quake 3
+// BSP maps (.bsp) are read by the project instead (scenes/q3_bsp.h).
 
 #include <filesystem>
 #include <memory>

@@ -50,7 +50,7 @@ std::vector<std::string> effect_scene_names() {
 }
 
 std::vector<std::string> real_scene_names() {
-    return {"house", "house-sweep", "engine", "engine-orbit"};
+    return {"house", "house-sweep", "engine", "engine-orbit", "arena", "arena-sweep"};
 }
 
 std::vector<std::string> named_scene_names() {

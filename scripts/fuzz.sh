@@ -10,7 +10,7 @@ set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 seconds=${1:-60}
 shift || true
-all=(scene off obj environment experiment animation)
+all=(scene off obj environment experiment animation bsp)
 targets=("$@")
 ((${#targets[@]})) || targets=("${all[@]}")
 

@@ -19,6 +19,7 @@ packages=(
     libimgui-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
     libstb-dev libopenexr-dev libfftw3-dev libassimp-dev assimp-testmodels
     libgtest-dev libbenchmark-dev xvfb python3 python3-matplotlib blender-data parallel
+    openarena-081-maps
 )
 
 source "$repo/scripts/packages.sh"

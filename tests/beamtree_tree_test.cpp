@@ -75,6 +75,64 @@ TEST(BeamTree, WithTrianglesAsOccludersDecidesEveryPointOfOpenMeshes) {
                 worst);
 }
 
+// A game level (scenes/arena.toml: dm6ish, 26 parts of open meshes, patches tessellated): with
+// its triangles as occluders the tree is sound and agrees with ray casts through them, and
+// decides every point, from the scene's light and from lights elsewhere in the level (in the
+// hall, the corridors, above the arches, aimed every way); `auto` gives every part its triangles
+// (none has an inner volume) and answers the same.
+TEST(BeamTree, IsSoundAndDecidesEveryPointOfAGameLevel) {
+    Scene scene = load_canonical("arena");
+    std::mt19937 rng(46);
+    const Bounds level = [&] {
+        Bounds b;
+        for (const Object& object : scene.objects) {
+            for (const glm::vec3& p : object.mesh->positions) {
+                b.extend(glm::vec3(object.transform * glm::vec4(p, 1.0f)));
+            }
+        }
+        return b;
+    }();
+    size_t compared = 0, counts[3] = {0, 0, 0}, failures = 0;
+    const int lights = 6 / kSanitizedSeedStride + 1;
+    for (int trial = 0; trial <= lights; ++trial) {
+        scene.bounds.occluders = trial == 0 ? Occluders::automatic : Occluders::triangles;
+        if (trial > 1) {  // elsewhere: a random point of the level's box, aimed anywhere
+            scene.light.position = glm::mix(
+                level.min, level.max,
+                glm::vec3(uniform(rng, 0.1, 0.9), uniform(rng, 0.1, 0.6), uniform(rng, 0.1, 0.9)));
+            scene.light.target =
+                scene.light.position +
+                glm::vec3(uniform(rng, -1, 1), uniform(rng, -1, 0.3), uniform(rng, -1, 1));
+        }
+        bt::VolumeLibrary library(scene.bounds);
+        const std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
+        for (const bt::ObjectVolumes& v : volumes) {
+            EXPECT_FALSE(v.triangles.empty()) << v.name << ": open, so its triangles";
+        }
+        const bt::BeamTree tree(scene.light, volumes);
+        Oracles oracles;
+        add_volumes(volumes, scene, oracles);
+        auto on_point = [&](const dvec3& p, const PointCheck& check) {
+            ++compared;
+            ++counts[size_t(check.region)];
+            if ((check.region != check.expected || !check.sound) && ++failures <= 10) {
+                ADD_FAILURE() << "light " << trial << " point (" << p.x << ", " << p.y << ", "
+                              << p.z << "): tree " << bt::to_string(check.region) << ", ray cast "
+                              << bt::to_string(check.expected)
+                              << (check.sound ? "" : ", unsound against the meshes");
+            }
+        };
+        for_each_decided_point(tree, oracles, scene.light, rng, 10000, on_point);
+        for_each_decided_point_behind_a_surface(tree, oracles, scene, rng, 10000, on_point);
+    }
+    EXPECT_EQ(failures, 0u) << "of " << compared << " points";
+    EXPECT_EQ(counts[size_t(bt::Region::uncertain)], 0u) << "exact occluders decide every point";
+    EXPECT_GT(counts[size_t(bt::Region::lit)], 1000u);
+    EXPECT_GT(counts[size_t(bt::Region::unlit)], 1000u);
+    std::printf("arena: %zu points decided from %d lights: %zu lit, %zu unlit\n", compared,
+                lights + 1, counts[size_t(bt::Region::lit)], counts[size_t(bt::Region::unlit)]);
+}
+
 // The repro's two points behind the open terrain (tests/data/terrain-pieces): uncertain with
 // its volumes (an open mesh has no inner volume), unlit with its triangles, and with auto, which
 // gives the terrain its triangles because it has no inner volume.
