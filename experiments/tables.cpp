@@ -60,7 +60,7 @@ std::string regions_table(const std::vector<StoredRow>& rows) {
         "ray (the fewest fragments an analytic pass without a depth test draws) and up to the "
         "first surface. Uncertain span: the length from the first uncertain entry to "
         "the last exit over the uncertain length (what one spanning interval per pixel "
-        "marches).\n\n"
+        "marches; none where less than 10^-6 of the length is uncertain).\n\n"
         "| scene | size | beams | region faces | eye-ray fraction lit / uncertain / unlit | "
         "volume fraction lit / uncertain / unlit | lit crossings / px (ray / visible) | "
         "uncertain span | tree + regions ms |\n"
@@ -73,13 +73,16 @@ std::string regions_table(const std::vector<StoredRow>& rows) {
         const Json& v = r.row;
         md += fmt::format(
             "| {} | {} | {} | {} | {:.1f}% / {:.1f}% / {:.1f}% | {:.1f}% / {:.1f}% / {:.1f}% | "
-            "{:.2f} / {:.2f} | {:.2f}x | {:.1f} |\n",
+            "{:.2f} / {:.2f} | {} | {:.1f} |\n",
             scene_label(r.cell.scene), r.cell.size(), v.value("beams", 0),
             v.value("region_faces", 0), 100 * v.value("ray_frac_lit", 0.0),
             100 * v.value("ray_frac_uncertain", 0.0), 100 * v.value("ray_frac_unlit", 0.0),
             100 * v.value("volume_frac_lit", 0.0), 100 * v.value("volume_frac_uncertain", 0.0),
             100 * v.value("volume_frac_unlit", 0.0), v.value("lit_crossings", 0.0),
-            v.value("lit_crossings_visible", 0.0), v.value("uncertain_span_ratio", 0.0),
+            v.value("lit_crossings_visible", 0.0),
+            v.value("uncertain_span_ratio", 0.0) > 0.0
+                ? fmt::format("{:.2f}x", v.value("uncertain_span_ratio", 0.0))
+                : std::string("none"),
             v.value("cpu_ms_beamtree_regions", 0.0));
     }
     return md;

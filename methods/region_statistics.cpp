@@ -100,7 +100,9 @@ void add_eye_rays(const Scene& scene, const bt::BeamTree& tree, int width, int h
             stats.ray_fraction[r] = lengths[r] / total;
         }
     }
-    stats.uncertain_span_ratio = lengths[1] > 0.0 ? span / lengths[1] : 0.0;
+    // Where nothing is uncertain but the planes' ε-thin slabs (exact occluders), the ratio of two
+    // round-off lengths says nothing: 0, shown as none.
+    stats.uncertain_span_ratio = lengths[1] > 1e-6 * total ? span / lengths[1] : 0.0;
 }
 
 }  // namespace

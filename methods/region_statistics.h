@@ -30,7 +30,7 @@ struct RegionStatistics {
     std::array<double, 3> volume_fraction{};  // indexed by bt::Region
     double lit_crossings = 0.0;               // per pixel, whole eye ray
     double lit_crossings_visible = 0.0;       // per pixel, up to the first surface
-    double uncertain_span_ratio = 0.0;        // spanning interval length / uncertain length
+    double uncertain_span_ratio = 0.0;  // spanning length / uncertain length (0: none uncertain)
     size_t beams = 0;
     size_t region_faces = 0;  // faces of all region polyhedra
     double build_ms = 0.0;    // beam tree build + region extraction
