@@ -238,15 +238,16 @@ void static_half_table(const std::vector<std::string>& stills, const SceneSearch
     }
 }
 
-// real: the same tables for the real scenes (house, house-sweep) instead of the canonical ones,
+// real: the same tables for the real scenes (house, house-sweep; the game level arena,
+// arena-sweep) instead of the canonical ones,
 // without the scaling runs.
 int run(bool real) {
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     const SceneSearchPaths paths = SceneSearchPaths::defaults();
     const std::vector<std::string> stills =
-        real ? std::vector<std::string>{"house"} : canonical_scene_names();
+        real ? std::vector<std::string>{"house", "arena"} : canonical_scene_names();
     const std::vector<std::string> animations =
-        real ? std::vector<std::string>{"house-sweep"} : animated_scene_names();
+        real ? std::vector<std::string>{"house-sweep", "arena-sweep"} : animated_scene_names();
     light_move_table(stills, paths, real);
     animations_table(animations, paths, real);
     if (!real) {
