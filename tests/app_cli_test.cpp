@@ -250,7 +250,7 @@ TEST(Cli, ScenesListsEverySceneThatLoadsByName) {
     EXPECT_EQ(run.output,
               "toplight\nparallel\nmultiple\ntoplight-orbit\nparallel-walk\nmultiple-moving\n"
               "ibl-spheres\nsss-bunny\nsss-dragon\nsss-shaft\n"
-              "house\nhouse-sweep\nengine\nengine-orbit\n");
+              "house\nhouse-sweep\nengine\nengine-orbit\narena\narena-sweep\n");
     const CommandResult listing = run_shaftlab("scenes");
     ASSERT_EQ(listing.exit_code, 0) << listing.output;
     for (const std::string& name : named_scene_names()) {
