@@ -211,7 +211,7 @@ int32_t BeamTree::add_leaf(const Leaf& leaf) {
 
 void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) {
     // Only light-facing polygons occlude; edge-on ones (L within ε of their plane) add nothing.
-    if (plane.distance(apex_) <= epsilon_ || area(polygon) <= epsilon_ * epsilon_) {
+    if (plane.distance(apex_) <= epsilon_ || !area_exceeds(polygon, epsilon_ * epsilon_)) {
         return;
     }
     // Nothing beyond the far range matters (Nilsson §4.2): clip to the backplate first.
@@ -256,10 +256,10 @@ int32_t BeamTree::descend(int32_t index, Polygon& fragment,
             continue;
         }
         // Slivers thinner than the planes' thickness add nothing but nodes.
-        if (area(back) > epsilon_ * epsilon_) {
+        if (area_exceeds(back, epsilon_ * epsilon_)) {
             stack.emplace_back(node.back, std::move(back));
         }
-        if (area(front) <= epsilon_ * epsilon_) {
+        if (!area_exceeds(front, epsilon_ * epsilon_)) {
             return -1;
         }
         fragment = std::move(front);
@@ -313,7 +313,7 @@ void BeamTree::attach_nearer(int32_t index, const Polygon& fragment, const Plane
             // leaves slivers out: its edges are shorter than ε, and attach() skips those, so its
             // beam would stay open across the whole leaf.
             const Polygon front = split(fragment, current, epsilon_).front;
-            if (area(front) > epsilon_ * epsilon_) {
+            if (area_exceeds(front, epsilon_ * epsilon_)) {
                 attach(index, front, inside, outside);
             }
             break;

@@ -36,6 +36,21 @@ double area(const Polygon& polygon) {
     return glm::length(area_vector(polygon));
 }
 
+bool area_exceeds(const Polygon& polygon, double threshold) {
+    // area_vector's fan, its triangles' areas summed: for a convex polygon they all turn one way,
+    // so the sum of their lengths is the length of their sum (to round-off).
+    const size_t n = polygon.size();
+    double sum = 0.0;
+    for (size_t i = 1; i + 1 < n; ++i) {
+        const dvec3& o = polygon.vertices[0];
+        sum += 0.5 * glm::length(glm::cross(polygon.vertices[i] - o, polygon.vertices[i + 1] - o));
+        if (sum > threshold) {
+            return true;
+        }
+    }
+    return false;
+}
+
 dvec3 centroid(const Polygon& polygon) {
     dvec3 sum(0.0);
     for (const dvec3& v : polygon.vertices) {

@@ -62,6 +62,9 @@ struct Polygon {
 // Area vector: normal times area (Newell's method), exact for planar polygons of any winding.
 dvec3 area_vector(const Polygon& polygon);
 double area(const Polygon& polygon);
+// area(polygon) > threshold for a convex polygon, usually decided by its first triangle: what the
+// beam tree asks of every fragment it splits (a sliver thinner than its planes is dropped).
+bool area_exceeds(const Polygon& polygon, double threshold);
 dvec3 centroid(const Polygon& polygon);
 
 // Where a polygon lies relative to a plane of thickness ε, without building any part of it.
