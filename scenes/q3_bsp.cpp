@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/text.h"
+#include "scenes/pk3.h"
 
 namespace sl::q3 {
 
@@ -475,6 +476,11 @@ Model load_model(const std::filesystem::path& path) {
                                   std::istreambuf_iterator<char>());
     const auto bytes = std::as_bytes(std::span<const char>(chars));
     return to_model(parse(bytes, path.string()), path.string());
+}
+
+Model load_model(const std::filesystem::path& archive, const std::string& map) {
+    const std::string what = fmt::format("{}: {}", archive.string(), quote(map));
+    return to_model(parse(pk3::read_entry(archive, map), what), what);
 }
 
 }  // namespace sl::q3

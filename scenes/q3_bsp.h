@@ -117,5 +117,7 @@ Model to_model(const Map& map, const std::string& what);
 
 // Reads a .bsp file: parse, then to_model. Throws sl::Error naming the file.
 Model load_model(const std::filesystem::path& path);
+// Reads the map `map` ("maps/dm6ish.bsp") from a pk3 archive (scenes/pk3.h).
+Model load_model(const std::filesystem::path& archive, const std::string& map);
 
 }  // namespace sl::q3

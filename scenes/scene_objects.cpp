@@ -1,6 +1,7 @@
 #include "scenes/scene_objects.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <vector>
 
@@ -9,6 +10,8 @@
 #include "scenes/animation_toml.h"
 #include "scenes/mesh.h"
 #include "scenes/model.h"
+#include "scenes/pk3.h"
+#include "scenes/q3_bsp.h"
 
 namespace sl {
 
@@ -157,6 +160,37 @@ bool matches_any(const std::vector<std::string>& patterns, const ModelPart& part
     });
 }
 
+// The `map` key: for a pk3 archive (scenes/pk3.h) the map inside it to load, required; refused
+// with any other file. "" for a model file.
+std::string read_map_key(TableReader& r, const fs::path& path) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string map = r.string("map", "");
+    if (extension != ".pk3") {
+        if (!map.empty()) {
+            r.error("map", "names a map inside a .pk3 archive, and `file` is not one");
+        }
+        return map;
+    }
+    if (map.empty()) {
+        std::vector<std::string> maps;
+        try {
+            maps = pk3::entries(path, ".bsp");
+        } catch (const Error& e) {
+            r.error("file", e.what());
+        }
+        std::string listed;
+        for (size_t i = 0; i < maps.size() && i < 6; ++i) {
+            listed += (i ? ", " : "") + quote(maps[i]);
+        }
+        r.error("map", fmt::format("required with a .pk3 file: the map inside it to load ({} "
+                                   "maps, such as {})",
+                                   maps.size(), listed.empty() ? "none" : listed));
+    }
+    return map;
+}
+
 // A [[models]] entry: every part of the model file becomes an object named "<name>/<part>" that
 // keeps its node transform (Object::local) under the model's placement. Parts take a scene
 // material per file material (its diffuse colour as albedo) unless `materials` retags them;
@@ -186,11 +220,12 @@ void read_model(TableReader& r, const fs::path& base_dir, const SceneSearchPaths
             retag.emplace_back(std::string(key.str()), it->second);
         }
     }
+    const std::string map = read_map_key(r, path);
     Model model;
     try {
-        model = load_model(path);
+        model = map.empty() ? load_model(path) : q3::load_model(path, map);
     } catch (const Error& e) {
-        r.error("file", e.what());
+        r.error(map.empty() ? "file" : "map", e.what());
     }
     size_t kept = 0;
     for (const ModelPart& part : model.parts) {

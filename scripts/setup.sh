@@ -17,7 +17,7 @@ packages=(
     libgl-dev libegl-dev libosmesa6-dev libglfw3-dev libglm-dev
     libcgal-dev libcgal-demo libembree-dev libtbb-dev
     libimgui-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
-    libstb-dev libopenexr-dev libfftw3-dev libassimp-dev assimp-testmodels
+    libstb-dev libopenexr-dev libfftw3-dev libassimp-dev libminizip-dev assimp-testmodels
     libgtest-dev libbenchmark-dev xvfb python3 python3-matplotlib blender-data parallel
     openarena-081-maps
 )

@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "scenes/model.h"
+#include "scenes/pk3.h"
 #include "scenes/q3_bsp.h"
 #include "scenes/scene_file.h"
 #include "tests/support.h"
@@ -443,6 +444,60 @@ TEST(Q3Bsp, ReadsARealMapAgreeingWithItsLumps) {
         "dm6ish: %zu triangles (%zu of polygons and meshes, %zu of 60 patches), %zu "
         "parts\n",
         triangles, flat, triangles - flat, model.parts.size());
+}
+
+const fs::path kMapsArchive = "/usr/share/games/openarena/baseoa/pak1-maps.pk3";
+
+// A map read from its pk3 (scenes/pk3.h; the archive Debian's openarena-081-maps installs) is the
+// map the build extracted from it; an entry is matched without regard to case, and a missing one
+// is named with the nearest entry; a file that is no zip is refused.
+TEST(Q3Bsp, ReadsAMapFromItsPk3) {
+    const Model extracted = load_model(real_map());
+    const Model archived = q3::load_model(kMapsArchive, "maps/DM6ISH.bsp");
+    ASSERT_EQ(archived.parts.size(), extracted.parts.size());
+    for (size_t i = 0; i < archived.parts.size(); ++i) {
+        EXPECT_EQ(archived.parts[i].name, extracted.parts[i].name);
+        EXPECT_EQ(archived.parts[i].mesh->positions, extracted.parts[i].mesh->positions);
+        EXPECT_EQ(archived.parts[i].mesh->triangles, extracted.parts[i].mesh->triangles);
+    }
+    EXPECT_EQ(pk3::entries(kMapsArchive, ".bsp").size(), 50u);
+    try {
+        q3::load_model(kMapsArchive, "maps/dm6isch.bsp");
+        ADD_FAILURE() << "a missing entry accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("no entry 'maps/dm6isch.bsp' (did you mean "
+                                             "'maps/dm6ish.bsp'?)"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_THROW(q3::load_model(real_map(), "maps/dm6ish.bsp"), Error) << "a .bsp is no zip";
+}
+
+// In a scene file a pk3 takes `map`, which no other model file takes.
+TEST(Q3Bsp, APk3InASceneNamesItsMap) {
+    TempDir dir;
+    const std::string head =
+        "[camera]\nposition = [0.0, 1.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n"
+        "[light]\nposition = [0.0, 5.0, 0.0]\ntarget = [0.0, 0.0, 0.0]\n"
+        "[beamtree]\noccluders = \"triangles\"\n[[models]]\n";
+    auto message = [&](const std::string& models) {
+        write_text(dir.path() / "s.toml", head + models);
+        try {
+            load_scene_file(dir.path() / "s.toml", SceneSearchPaths::defaults());
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("loaded");
+    };
+    const std::string file = "file = \"" + kMapsArchive.string() + "\"\n";
+    EXPECT_EQ(message(file + "map = \"maps/dm6ish.bsp\"\n"), "loaded");
+    EXPECT_NE(message(file).find("map: required with a .pk3 file: the map inside it to load (50 "
+                                 "maps, such as 'maps/aggressor.bsp'"),
+              std::string::npos)
+        << message(file);
+    const std::string bsp = "file = \"" + real_map().string() + "\"\nmap = \"maps/a.bsp\"\n";
+    EXPECT_NE(message(bsp).find("map: names a map inside a .pk3 archive"), std::string::npos)
+        << message(bsp);
 }
 
 }  // namespace
