@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <iterator>
 
@@ -92,6 +94,13 @@ std::string quote(std::string_view text, size_t max_bytes) {
         return fmt::format("'{}'", printable(text));
     }
     return fmt::format("'{}…' ({} bytes)", printable(cut(text, max_bytes)), text.size());
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
 }
 
 std::string read_text_file(const std::filesystem::path& path, std::string_view what) {

@@ -21,6 +21,9 @@ std::string clipped(std::string_view text, size_t max_bytes = 64);
 // The same in single quotes: for a value echoed inside a message ("unknown shape 'sphre'").
 std::string quote(std::string_view text, size_t max_bytes = 64);
 
+// The file's extension in ASCII lower case (".bsp" for "DM6.BSP"): how a loader is picked.
+std::string lower_extension(const std::filesystem::path& path);
+
 // The whole of a text file (scene files, animation paths). Throws sl::Error "PATH: cannot read
 // WHAT", with "(no such file)" when it is not a regular file.
 std::string read_text_file(const std::filesystem::path& path, std::string_view what);

@@ -1,7 +1,6 @@
 #include "scenes/model.h"
 
 #include <algorithm>
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -16,6 +15,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "scenes/model_checks.h"
 #include "scenes/q3_bsp.h"
 
@@ -78,13 +78,6 @@ std::shared_ptr<const Mesh> convert(const aiMesh& in, const std::string& what) {
         }
     }
     return std::make_shared<const Mesh>(std::move(mesh));
-}
-
-std::string lower_extension(const fs::path& path) {
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return extension;
 }
 
 // Fails with assimp's reason.

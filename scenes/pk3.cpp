@@ -1,9 +1,5 @@
 #include "scenes/pk3.h"
 
-#include <algorithm>
-#include <cctype>
-#include <memory>
-
 #include <unzip.h>
 
 #include "core/error.h"
@@ -29,61 +25,54 @@ struct Archive {
     Archive& operator=(const Archive&) = delete;
 };
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return s;
-}
-
-// Every entry's name and uncompressed size, in archive order.
-std::vector<std::pair<std::string, uint64_t>> listing(const Archive& archive,
-                                                      const fs::path& path) {
-    std::vector<std::pair<std::string, uint64_t>> result;
+// Every entry's name, in archive order.
+std::vector<std::string> names(const Archive& archive, const fs::path& path) {
+    std::vector<std::string> result;
     for (int status = unzGoToFirstFile(archive.file); status == UNZ_OK;
          status = unzGoToNextFile(archive.file)) {
-        unz_file_info64 info;
         char name[1024];
-        if (unzGetCurrentFileInfo64(archive.file, &info, name, sizeof name, nullptr, 0, nullptr,
+        if (unzGetCurrentFileInfo64(archive.file, nullptr, name, sizeof name, nullptr, 0, nullptr,
                                     0) != UNZ_OK) {
             fail("{}: cannot read the archive's directory", path.string());
         }
-        result.emplace_back(std::string(name), info.uncompressed_size);
+        result.emplace_back(name);
     }
     return result;
 }
 
 }  // namespace
 
-std::vector<std::string> entries(const fs::path& archive, const std::string& suffix) {
+std::vector<std::string> entries(const fs::path& archive, const std::string& extension) {
     const Archive open(archive);
-    std::vector<std::string> names;
-    for (const auto& [name, size] : listing(open, archive)) {
-        if (lower(name).ends_with(lower(suffix))) {
-            names.push_back(printable(name));
+    std::vector<std::string> found;
+    for (const std::string& name : names(open, archive)) {
+        if (lower_extension(name) == extension) {
+            found.push_back(printable(name));
         }
     }
-    return names;
+    return found;
 }
 
 std::vector<std::byte> read_entry(const fs::path& archive, const std::string& entry) {
     const Archive open(archive);
-    const auto names = listing(open, archive);
-    const auto it = std::find_if(names.begin(), names.end(),
-                                 [&](const auto& n) { return lower(n.first) == lower(entry); });
-    if (it == names.end()) {
+    constexpr int kCaseInsensitive = 2;  // minizip's iCaseSensitivity
+    if (unzLocateFile(open.file, entry.c_str(), kCaseInsensitive) != UNZ_OK) {
         std::vector<std::string> known;
-        for (const auto& [name, size] : names) {
+        for (const std::string& name : names(open, archive)) {
             known.push_back(printable(name));
         }
         fail("{}: no entry {}{}", archive.string(), quote(entry), did_you_mean(entry, known));
     }
-    if (it->second > kMaxEntryBytes) {
-        fail("{}: entry {} is {} bytes, at most {}", archive.string(), quote(entry), it->second,
-             kMaxEntryBytes);
+    unz_file_info64 info;
+    if (unzGetCurrentFileInfo64(open.file, &info, nullptr, 0, nullptr, 0, nullptr, 0) != UNZ_OK) {
+        fail("{}: cannot read the archive's directory", archive.string());
     }
-    std::vector<std::byte> bytes(size_t(it->second));
+    if (info.uncompressed_size > kMaxEntryBytes) {
+        fail("{}: entry {} is {} bytes, at most {}", archive.string(), quote(entry),
+             info.uncompressed_size, kMaxEntryBytes);
+    }
+    std::vector<std::byte> bytes(size_t(info.uncompressed_size));
     const bool read =
-        unzLocateFile(open.file, it->first.c_str(), 0) == UNZ_OK &&
         unzOpenCurrentFile(open.file) == UNZ_OK &&
         (bytes.empty() ||
          unzReadCurrentFile(open.file, bytes.data(), unsigned(bytes.size())) == int(bytes.size()));

@@ -18,7 +18,9 @@ constexpr size_t kMaxEntryBytes = size_t(256) << 20;
 // (with the nearest names it holds), larger than kMaxEntryBytes, or cannot be inflated.
 std::vector<std::byte> read_entry(const std::filesystem::path& archive, const std::string& entry);
 
-// The names of the archive's entries that end in `suffix` (".bsp": its maps), in archive order.
-std::vector<std::string> entries(const std::filesystem::path& archive, const std::string& suffix);
+// The names of the archive's entries of one extension, given in lower case (".bsp": its maps;
+// any case in the archive), in archive order.
+std::vector<std::string> entries(const std::filesystem::path& archive,
+                                 const std::string& extension);
 
 }  // namespace sl::pk3

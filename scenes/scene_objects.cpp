@@ -1,12 +1,12 @@
 #include "scenes/scene_objects.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <vector>
 
 #include "core/error.h"
 #include "core/glob.h"
+#include "core/text.h"
 #include "scenes/animation_toml.h"
 #include "scenes/mesh.h"
 #include "scenes/model.h"
@@ -163,11 +163,8 @@ bool matches_any(const std::vector<std::string>& patterns, const ModelPart& part
 // The `map` key: for a pk3 archive (scenes/pk3.h) the map inside it to load, required; refused
 // with any other file. "" for a model file.
 std::string read_map_key(TableReader& r, const fs::path& path) {
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
     const std::string map = r.string("map", "");
-    if (extension != ".pk3") {
+    if (lower_extension(path) != ".pk3") {
         if (!map.empty()) {
             r.error("map", "names a map inside a .pk3 archive, and `file` is not one");
         }
