@@ -42,7 +42,7 @@ bool area_exceeds(const Polygon& polygon, double threshold) {
     const size_t n = polygon.size();
     double sum = 0.0;
     for (size_t i = 1; i + 1 < n; ++i) {
-        const dvec3& o = polygon.vertices[0];
+        const dvec3& o = polygon.vertices[0];  // as area_vector: relative to the first vertex
         sum += 0.5 * glm::length(glm::cross(polygon.vertices[i] - o, polygon.vertices[i + 1] - o));
         if (sum > threshold) {
             return true;

@@ -280,18 +280,6 @@ std::span<const Vertex> face_vertices(const Map& map, const Face& face) {
         .subspan(size_t(face.first_vertex), size_t(face.vertex_count));
 }
 
-// What a face adds to its part: vertices and triangles (a patch's once tessellated).
-std::pair<long long, long long> face_size(const Map& map, const Face& face) {
-    if (face.type != FaceType::patch) {
-        return {face.vertex_count, face.mesh_vertex_count / 3};
-    }
-    const std::span<const Vertex> control = face_vertices(map, face);
-    const int w = face.patch_width, h = face.patch_height;
-    const long long columns = (w - 1) / 2 * patch_level(control, w, h, true) + 1;
-    const long long rows = (h - 1) / 2 * patch_level(control, w, h, false) + 1;
-    return {columns * rows, 2 * (columns - 1) * (rows - 1)};
-}
-
 // One part's mesh, gathered face by face: a face's vertices are shared by its triangles.
 class PartBuilder {
 public:
@@ -309,9 +297,7 @@ public:
         }
     }
 
-    void add_patch(const Map& map, const Face& face) {
-        const Mesh patch =
-            tessellate_patch(face_vertices(map, face), face.patch_width, face.patch_height);
+    void add_patch(const Mesh& patch) {
         const auto base = uint32_t(mesh_.positions.size());
         mesh_.positions.insert(mesh_.positions.end(), patch.positions.begin(),
                                patch.positions.end());
@@ -431,9 +417,15 @@ Model to_model(const Map& map, const std::string& what) {
         if (face.type == FaceType::billboard || !map.textures[size_t(face.texture)].drawn()) {
             continue;
         }
-        const auto [face_vertex_count, face_triangle_count] = face_size(map, face);
-        vertices += face_vertex_count;
-        triangles += face_triangle_count;
+        // A patch is tessellated before it is counted: one grid is at most (15 x 16 + 1)^2
+        // vertices, so the budget still stops a file of many patches early.
+        const bool patch = face.type == FaceType::patch;
+        const Mesh grid =
+            patch ? tessellate_patch(face_vertices(map, face), face.patch_width, face.patch_height)
+                  : Mesh();
+        vertices += patch ? static_cast<long long>(grid.positions.size()) : face.vertex_count;
+        triangles +=
+            patch ? static_cast<long long>(grid.triangles.size()) : face.mesh_vertex_count / 3;
         if (vertices > kMaxMapTriangles || triangles > kMaxMapTriangles) {
             fail(
                 "{}: more than {} vertices or triangles (patches tessellated); a game level "
@@ -441,7 +433,7 @@ Model to_model(const Map& map, const std::string& what) {
                 what, kMaxMapTriangles);
         }
         PartBuilder& part = builders[size_t(face.texture)];
-        face.type == FaceType::patch ? part.add_patch(map, face) : part.add_triangles(map, face);
+        patch ? part.add_patch(grid) : part.add_triangles(map, face);
     }
     Model model;
     std::unordered_map<std::string, int> names;

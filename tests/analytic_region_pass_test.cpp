@@ -476,7 +476,7 @@ TEST_F(GpuMethod, BeamtreeMatchesTheReferenceOnRandomBoxScenes) {
         median, errors.back(), worst_off);
 }
 
-// Triangles as exact occluders ([beamtree] occluders = triangles, issue 46), on the random box
+// Triangles as exact occluders ([beamtree] occluders = triangles), on the random box
 // scenes at 128x72, 24 seeds:
 //   - closed boxes, which are their own exact volumes: `beamtree` over their triangles draws what
 //     it draws over their volumes (relative difference below 1e-5), so triangles lose nothing;
