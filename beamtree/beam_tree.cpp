@@ -30,7 +30,7 @@ const char* to_string(Region region) {
 
 namespace {
 
-// From p to the box around the polygons (an object's outer volume, or its exact triangles).
+// From p to the box around the polygons (an object's outer volume).
 double distance_to_box(const dvec3& p, const std::vector<Polygon>& polygons) {
     dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
     for (const Polygon& face : polygons) {
@@ -64,46 +64,80 @@ void require_light_outside(const std::vector<ObjectVolumes>& volumes, const dvec
     }
 }
 
-// An exact occluder as it goes into the tree: turned to face the light, with its plane.
-struct FacingTriangle {
+// What the occluder pass inserts, nearest to the light first: the result does not depend on the
+// order, but a farther polygon then mostly lands in leaves a nearer one already closed, and is
+// dropped there without splitting them.
+struct Occluder {
+    double distance;  // an exact triangle's nearest vertex; a volume's faces: its box
     Polygon polygon;
     Plane plane;
+    bool exact;
 };
 
-// An opaque triangle stops the light whatever its winding: it goes in facing the light, once as
-// an occluder and once as a stopper on the same plane, so that behind it the leaf is a blocker
-// whose uncertain layer (between occluder and stopper) is empty: unlit, exactly. Nearest first,
-// as the objects: a farther triangle then mostly lands in leaves a nearer one already closed,
-// and is dropped there without splitting them. Degenerate triangles cover nothing and are left
-// out.
-std::vector<FacingTriangle> facing_triangles(const std::vector<Polygon>& triangles,
-                                             const dvec3& light) {
-    std::vector<std::pair<double, const Polygon*>> by_distance;
-    by_distance.reserve(triangles.size());
-    for (const Polygon& triangle : triangles) {
-        double nearest = std::numeric_limits<double>::max();
-        for (const dvec3& v : triangle.vertices) {
-            nearest = std::min(nearest, glm::length(v - light));
-        }
-        by_distance.emplace_back(nearest, &triangle);
+// The point of triangle abc closest to p (Ericson, Real-Time Collision Detection §5.1.5).
+dvec3 closest_on_triangle(const dvec3& p, const dvec3& a, const dvec3& b, const dvec3& c) {
+    const dvec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) {
+        return a;
     }
-    std::stable_sort(by_distance.begin(), by_distance.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::vector<FacingTriangle> out;
-    out.reserve(triangles.size());
-    for (const auto& entry : by_distance) {
-        const std::vector<dvec3>& v = entry.second->vertices;
+    const dvec3 bp = p - b;
+    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) {
+        return b;
+    }
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+        return a + d1 / (d1 - d3) * ab;
+    }
+    const dvec3 cp = p - c;
+    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) {
+        return c;
+    }
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+        return a + d2 / (d2 - d6) * ac;
+    }
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+        return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+    }
+    const double denominator = 1.0 / (va + vb + vc);
+    return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+// From p to a convex polygon: to the nearest of its fan's triangles.
+double distance_to_polygon(const dvec3& p, const Polygon& polygon) {
+    const std::vector<dvec3>& v = polygon.vertices;
+    double distance = std::numeric_limits<double>::max();
+    for (size_t i = 1; i + 1 < v.size(); ++i) {
+        distance =
+            std::min(distance, glm::length(closest_on_triangle(p, v[0], v[i], v[i + 1]) - p));
+    }
+    return distance;
+}
+
+// An opaque triangle stops the light whatever its winding: it goes in facing the light, as an
+// occluder and a stopper on the same plane at once, so that behind it the leaf is a blocker
+// whose uncertain layer (between occluder and stopper) is empty: unlit, exactly. Each triangle
+// is placed by its own distance, so that the triangles of neighbouring objects interleave.
+// Degenerate triangles cover nothing and are left out.
+void add_facing_triangles(const std::vector<Polygon>& triangles, const dvec3& light,
+                          std::vector<Occluder>& out) {
+    for (const Polygon& triangle : triangles) {
+        const std::vector<dvec3>& v = triangle.vertices;
         Plane plane;
         if (!Plane::through(v[0], v[1], v[2], plane)) {
             continue;
         }
+        const double nearest = distance_to_polygon(light, triangle);
         if (plane.distance(light) < 0.0) {
-            out.push_back({Polygon({v[0], v[2], v[1]}), plane.flipped()});
+            out.push_back({nearest, Polygon({v[0], v[2], v[1]}), plane.flipped(), true});
         } else {
-            out.push_back({*entry.second, plane});
+            out.push_back({nearest, triangle, plane, true});
         }
     }
-    return out;
 }
 
 }  // namespace
@@ -142,54 +176,39 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     }
 
     require_light_outside(volumes, apex_, epsilon_);
-    // Front to back by distance from the light: the result does not depend on the order, but
-    // fewer fix-ups keep the tree small.
-    std::vector<std::pair<double, const ObjectVolumes*>> by_distance;
-    size_t faces = 0;
+    std::vector<Occluder> occluders;
     for (const ObjectVolumes& object : volumes) {
-        by_distance.emplace_back(
-            distance_to_box(apex_,
-                            object.triangles.empty() ? object.outer.faces : object.triangles),
-            &object);
-        faces += object.triangles.empty() ? object.outer.faces.size() : 2 * object.triangles.size();
-        for (const ConvexVolume& inner : object.inner) {
-            faces += inner.faces.size();
-        }
-    }
-    std::sort(by_distance.begin(), by_distance.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::vector<const ObjectVolumes*> order;
-    for (const auto& [distance, object] : by_distance) {
-        order.push_back(object);
-    }
-    nodes_.reserve(nodes_.size() + 16 * faces);
-    // Exact occluders, turned to the light and ordered once for both passes.
-    std::vector<std::vector<FacingTriangle>> facing(order.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        facing[k] = facing_triangles(order[k]->triangles, apex_);
-    }
-    for (size_t k = 0; k < order.size(); ++k) {
-        for (const FacingTriangle& t : facing[k]) {
-            insert(t.polygon, t.plane, false);
-        }
-        if (!order[k]->triangles.empty()) {
+        if (!object.triangles.empty()) {
+            add_facing_triangles(object.triangles, apex_, occluders);
             continue;
         }
-        const ConvexVolume& outer = order[k]->outer;
-        for (size_t f = 0; f < outer.faces.size(); ++f) {
-            insert(outer.faces[f], outer.planes[f], false);
+        // A volume's faces go in together, at the distance of the box around it.
+        const double distance = distance_to_box(apex_, object.outer.faces);
+        for (size_t f = 0; f < object.outer.faces.size(); ++f) {
+            occluders.push_back({distance, object.outer.faces[f], object.outer.planes[f], false});
         }
     }
+    std::stable_sort(occluders.begin(), occluders.end(),
+                     [](const Occluder& a, const Occluder& b) { return a.distance < b.distance; });
+    nodes_.reserve(nodes_.size() + 8 * occluders.size());
+    for (const Occluder& o : occluders) {
+        insert(o.polygon, o.plane, o.exact ? Role::opaque : Role::occluder);
+    }
     // Stopper polygons from the inner volumes turn parts of solid leaves into blocker leaves
-    // (Nilsson §5.2.1, figure 5.5); each exact triangle is its own stopper.
-    for (size_t k = 0; k < order.size(); ++k) {
-        const ObjectVolumes* object = order[k];
-        for (const FacingTriangle& t : facing[k]) {
-            insert(t.polygon, t.plane, true);
+    // (Nilsson §5.2.1, figure 5.5), once every occluder is in: an inner face lies behind its
+    // own outer face, so it only ever lands where some occluder already is.
+    std::vector<std::pair<double, const ObjectVolumes*>> by_distance;
+    for (const ObjectVolumes& object : volumes) {
+        if (!object.inner.empty()) {
+            by_distance.emplace_back(distance_to_box(apex_, object.outer.faces), &object);
         }
+    }
+    std::stable_sort(by_distance.begin(), by_distance.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [distance, object] : by_distance) {
         for (const ConvexVolume& inner : object->inner) {
             for (size_t f = 0; f < inner.faces.size(); ++f) {
-                insert(inner.faces[f], inner.planes[f], true);
+                insert(inner.faces[f], inner.planes[f], Role::stopper);
             }
         }
     }
@@ -209,7 +228,7 @@ int32_t BeamTree::add_leaf(const Leaf& leaf) {
     return int32_t(nodes_.size() - 1);
 }
 
-void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) {
+void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
     // Only light-facing polygons occlude; edge-on ones (L within ε of their plane) add nothing.
     if (plane.distance(apex_) <= epsilon_ || !area_exceeds(polygon, epsilon_ * epsilon_)) {
         return;
@@ -219,13 +238,15 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
     if (clipped.empty()) {
         return;
     }
-    ++(stopper ? stopper_polygons_ : outer_polygons_);
-    int32_t stopper_index = -1;
-    if (stopper) {
-        stopper_index = int32_t(stoppers_.size());
+    const bool stops = role != Role::occluder;
+    ++(role == Role::occluder  ? outer_polygons_
+       : role == Role::stopper ? stopper_polygons_
+                               : exact_triangles_);
+    Inserted inserted{role, plane, -1};
+    if (stops) {
+        inserted.stopper = int32_t(stoppers_.size());
         stoppers_.push_back(plane);
     }
-    const Leaf inserted{Kind::solid, plane, -1};
 
     // Fragments waiting for their descent; kept between calls so that it allocates once.
     thread_local std::vector<std::pair<int32_t, Polygon>> stack;
@@ -236,7 +257,7 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, bool stopper) 
         stack.pop_back();
         const int32_t leaf = descend(next.first, next.second, stack);
         if (leaf >= 0) {
-            insert_at_leaf(leaf, next.second, inserted, stopper_index);
+            insert_at_leaf(leaf, next.second, inserted, stack);
         }
     }
 }
@@ -268,37 +289,83 @@ int32_t BeamTree::descend(int32_t index, Polygon& fragment,
     return index;
 }
 
-void BeamTree::insert_at_leaf(int32_t index, const Polygon& fragment, const Leaf& inserted,
-                              int32_t stopper_index) {
-    const bool stopper = stopper_index >= 0;
+void BeamTree::insert_at_leaf(int32_t index, const Polygon& fragment, const Inserted& inserted,
+                              std::vector<std::pair<int32_t, Polygon>>& stack) {
+    // Each leaf keeps the nearest occluder and the nearest stopper over its beam (the stopper
+    // never nearer than the occluder): a fragment takes over the part of the leaf where it is
+    // nearer than what the leaf has, whatever the order of insertion.
     const Node node = at(index);
-    switch (node.kind) {
-        case Kind::split:
-            break;
-        case Kind::out:
-            break;
-        case Kind::open:
-            if (!stopper) {  // appendix B attachPolygon
-                attach(index, fragment, inserted, {Kind::open, {}, -1});
+    if (node.kind == Kind::split || node.kind == Kind::out) {
+        return;
+    }
+    const Leaf here{node.kind, node.plane, node.kind == Kind::blocker ? node.back : -1};
+    switch (inserted.role) {
+        case Role::occluder:
+            switch (node.kind) {
+                case Kind::open:  // appendix B attachPolygon
+                    attach(index, fragment, {Kind::solid, inserted.plane, -1}, here);
+                    break;
+                case Kind::solid:
+                case Kind::blocker:
+                    // Fix-up: the part nearer to L than the current occluder takes over; a
+                    // blocker keeps its stopper, which lies behind both.
+                    attach_nearer(index, fragment, node.plane,
+                                  {node.kind, inserted.plane, here.stopper}, here);
+                    break;
+                default:
+                    break;
             }
             break;
-        case Kind::solid:
-            if (!stopper) {
-                // Fix-up: the part nearer to L than the current occluder takes over.
-                attach_nearer(index, fragment, node.plane, inserted, {Kind::solid, node.plane, -1});
+        case Role::stopper:
+            switch (node.kind) {
+                case Kind::solid:
+                    attach(index, fragment, {Kind::blocker, node.plane, inserted.stopper}, here);
+                    break;
+                case Kind::blocker:  // keep the nearest stopper, as for occluders
+                    attach_nearer(index, fragment, stopper_of(node),
+                                  {Kind::blocker, node.plane, inserted.stopper}, here);
+                    break;
+                default:
+                    break;  // an inner face where no occluder is: outside its own outer volume
+            }
+            break;
+        case Role::opaque: {
+            // Occluder and stopper at once: where it is nearer than the leaf's occluder it is
+            // both (unlit right behind it); behind the occluder it is the nearer stopper.
+            const Leaf opaque{Kind::blocker, inserted.plane, inserted.stopper};
+            if (node.kind == Kind::open) {
+                attach(index, fragment, opaque, here);
+                break;
+            }
+            Polygon behind;
+            switch (side(fragment, node.plane, epsilon_)) {
+                case Side::front:
+                    attach(index, fragment, opaque, here);
+                    return;
+                case Side::straddling: {
+                    Split parts = split(fragment, node.plane, epsilon_);
+                    if (area_exceeds(parts.front, epsilon_ * epsilon_)) {
+                        attach(index, parts.front, opaque, here);
+                    }
+                    // The leaf is now a subtree: the part behind goes down it again, to the
+                    // leaves outside the front part's beam, which are this leaf as it was.
+                    if (area_exceeds(parts.back, epsilon_ * epsilon_)) {
+                        stack.emplace_back(index, std::move(parts.back));
+                    }
+                    return;
+                }
+                case Side::back:
+                case Side::coplanar:
+                    break;
+            }
+            const Leaf stopped{Kind::blocker, node.plane, inserted.stopper};
+            if (node.kind == Kind::solid) {
+                attach(index, fragment, stopped, here);
             } else {
-                attach(index, fragment, {Kind::blocker, node.plane, stopper_index},
-                       {Kind::solid, node.plane, -1});
+                attach_nearer(index, fragment, stopper_of(node), stopped, here);
             }
             break;
-        case Kind::blocker:
-            if (stopper) {
-                // Keep the nearest stopper, as for occluders.
-                attach_nearer(index, fragment, stopper_of(node),
-                              {Kind::blocker, node.plane, stopper_index},
-                              {Kind::blocker, node.plane, node.back});
-            }
-            break;
+        }
     }
 }
 
@@ -790,6 +857,7 @@ BeamTreeStats BeamTree::stats() const {
     stats.nodes = nodes_.size();
     stats.outer_polygons = outer_polygons_;
     stats.stopper_polygons = stopper_polygons_;
+    stats.exact_triangles = exact_triangles_;
     std::vector<std::pair<int32_t, size_t>> stack = {{0, 1}};
     while (!stack.empty()) {
         const auto [index, depth] = stack.back();

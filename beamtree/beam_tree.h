@@ -64,6 +64,7 @@ struct BeamTreeStats {
     size_t blocker_leaves = 0;
     size_t outer_polygons = 0;    // light-facing outer-volume polygons inserted
     size_t stopper_polygons = 0;  // light-facing inner-volume polygons inserted
+    size_t exact_triangles = 0;   // light-facing exact triangles, each an occluder and a stopper
     size_t max_depth = 0;
 };
 
@@ -170,14 +171,23 @@ private:
     Region leaf_region(const Node& leaf, const dvec3& p) const;
     void set_leaf(int32_t index, const Leaf& leaf);
 
-    void insert(const Polygon& polygon, const Plane& plane, bool stopper);
+    // What an inserted polygon is: an outer volume's face (lit in front, uncertain behind), an
+    // inner volume's face (unlit behind), or an exact triangle, both at once (unlit behind).
+    enum class Role : uint8_t { occluder, stopper, opaque };
+    struct Inserted {
+        Role role;
+        Plane plane;
+        int32_t stopper = -1;  // stopper, opaque: its index into stoppers_
+    };
+    void insert(const Polygon& polygon, const Plane& plane, Role role);
     // Takes `fragment` down from node `index` to its leaf, pushing the far parts of straddled
     // splits onto `stack`; -1 where nothing of it is left to attach.
     int32_t descend(int32_t index, Polygon& fragment,
                     std::vector<std::pair<int32_t, Polygon>>& stack) const;
-    // What a fragment of an occluder (stopper_index < 0) or a stopper does to the leaf it reached.
-    void insert_at_leaf(int32_t index, const Polygon& fragment, const Leaf& inserted,
-                        int32_t stopper_index);
+    // What a fragment does to the leaf it reached; a part that must go down the subtree the
+    // leaf has become is pushed onto `stack`.
+    void insert_at_leaf(int32_t index, const Polygon& fragment, const Inserted& inserted,
+                        std::vector<std::pair<int32_t, Polygon>>& stack);
     void attach(int32_t node, const Polygon& fragment, const Leaf& inside, const Leaf& outside);
     // The planes through L and the fragment's edges (corners merged, edges on a path plane
     // skipped), fragment behind; false where the fragment is edge-on to the light.
@@ -195,6 +205,7 @@ private:
     std::vector<Plane> stoppers_;
     size_t outer_polygons_ = 0;
     size_t stopper_polygons_ = 0;
+    size_t exact_triangles_ = 0;
 };
 
 // The beam tree of a scene's light over its objects' bounding volumes, built with the scene's

@@ -75,6 +75,31 @@ TEST(BeamTree, WithTrianglesAsOccludersDecidesEveryPointOfOpenMeshes) {
                 worst);
 }
 
+// auto on the random scenes of what real models hold: open meshes go in as exact triangles,
+// closed ones as their volumes, in one tree. Nearest object first, so a volume's face often
+// arrives where a triangle already made the leaf a blocker (unlit behind it), and must take over
+// only where it is nearer, keeping the triangle as the stopper behind it; and a triangle arriving
+// at a volume's solid leaf is the leaf's stopper behind its occluder. The tree agrees with ray
+// casts through every occluder and stopper, and is sound against the meshes.
+TEST(BeamTree, VolumesAndExactTrianglesInOneTreeAgreeWithRayCasts) {
+    const BoundsSettings automatic{.occluders = Occluders::automatic};
+    check_random_scenes(Shapes::real, automatic, 24);
+    // Both kinds in one tree, in most scenes.
+    bt::VolumeLibrary library(automatic);
+    library.set_caching(false);
+    int mixed = 0;
+    for (int seed = 1; seed <= 24; ++seed) {
+        RandomScene random = random_scene(seed, library, Shapes::real);
+        random.scene.bounds = automatic;
+        int exact = 0, bounded = 0;
+        for (const bt::ObjectVolumes& v : library.build(random.scene, nullptr)) {
+            ++(v.triangles.empty() ? bounded : exact);
+        }
+        mixed += exact > 0 && bounded > 0;
+    }
+    EXPECT_GE(mixed, 12);
+}
+
 // A game level (scenes/arena.toml: dm6ish, 26 parts of open meshes, patches tessellated): with
 // its triangles as occluders the tree is sound and agrees with ray casts through them, and
 // decides every point, from the scene's light and from lights elsewhere in the level (in the

@@ -42,6 +42,26 @@ void build_tree(benchmark::State& state) {
 // About 10, 100, 1k and 10k light-facing outer polygons.
 BENCHMARK(build_tree)->Arg(2)->Arg(16)->Arg(165)->Arg(1650)->Unit(benchmark::kMillisecond);
 
+// Exact occluders (issue 46 item 2): the real scenes with every object as its triangles, each an
+// occluder and a stopper at once; per exact triangle is the figure to read.
+void build_tree_exact(benchmark::State& state, const char* name) {
+    Scene scene = load_scene(name, SceneSearchPaths::defaults());
+    scene.bounds.occluders = Occluders::triangles;
+    VolumeLibrary library(scene.bounds);
+    const std::vector<ObjectVolumes> volumes = library.build(scene, nullptr);
+    for (auto _ : state) {
+        const BeamTree tree(scene.light, volumes);
+        benchmark::DoNotOptimize(&tree);
+    }
+    const BeamTreeStats stats = BeamTree(scene.light, volumes).stats();
+    state.counters["triangles"] = double(stats.exact_triangles);
+    state.counters["nodes"] = double(stats.nodes);
+    state.counters["depth"] = double(stats.max_depth);
+}
+BENCHMARK_CAPTURE(build_tree_exact, arena, "arena")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(build_tree_exact, house, "house")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(build_tree_exact, engine, "engine")->Unit(benchmark::kMillisecond);
+
 void extract_regions_bench(benchmark::State& state) {
     const Prepared p = prepare(int(state.range(0)));
     const BeamTree tree(p.scene.light, p.volumes);
