@@ -64,14 +64,14 @@ void require_light_outside(const std::vector<ObjectVolumes>& volumes, const dvec
     }
 }
 
-// What the occluder pass inserts, nearest to the light first: the result does not depend on the
+// A polygon as the tree takes it, nearest to the light first: the result does not depend on the
 // order, but a farther polygon then mostly lands in leaves a nearer one already closed, and is
 // dropped there without splitting them.
-struct Occluder {
-    double distance;  // an exact triangle's nearest vertex; a volume's faces: its box
+struct Inserting {
+    double distance;  // an exact triangle's closest point; a volume's faces: its box
     Polygon polygon;
     Plane plane;
-    bool exact;
+    BeamTree::Role role;
 };
 
 // The point of triangle abc closest to p (Ericson, Real-Time Collision Detection §5.1.5).
@@ -124,7 +124,7 @@ double distance_to_polygon(const dvec3& p, const Polygon& polygon) {
 // is placed by its own distance, so that the triangles of neighbouring objects interleave.
 // Degenerate triangles cover nothing and are left out.
 void add_facing_triangles(const std::vector<Polygon>& triangles, const dvec3& light,
-                          std::vector<Occluder>& out) {
+                          std::vector<Inserting>& out) {
     for (const Polygon& triangle : triangles) {
         const std::vector<dvec3>& v = triangle.vertices;
         Plane plane;
@@ -133,9 +133,10 @@ void add_facing_triangles(const std::vector<Polygon>& triangles, const dvec3& li
         }
         const double nearest = distance_to_polygon(light, triangle);
         if (plane.distance(light) < 0.0) {
-            out.push_back({nearest, Polygon({v[0], v[2], v[1]}), plane.flipped(), true});
+            out.push_back(
+                {nearest, Polygon({v[0], v[2], v[1]}), plane.flipped(), BeamTree::Role::opaque});
         } else {
-            out.push_back({nearest, triangle, plane, true});
+            out.push_back({nearest, triangle, plane, BeamTree::Role::opaque});
         }
     }
 }
@@ -176,41 +177,35 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     }
 
     require_light_outside(volumes, apex_, epsilon_);
-    std::vector<Occluder> occluders;
+    // One pass, nearest first. A volume's inner faces (its stoppers, Nilsson §5.2.1) follow its
+    // outer faces at once: what lies behind the volume then finds the leaf's stopper already
+    // there and is dropped, instead of splitting the leaf first. (Nilsson inserts every stopper
+    // after every occluder; the regions are the same, and on multiple:1650 the tree is as big
+    // and 20 % faster to build this way.)
+    std::vector<Inserting> polygons;
     for (const ObjectVolumes& object : volumes) {
         if (!object.triangles.empty()) {
-            add_facing_triangles(object.triangles, apex_, occluders);
+            add_facing_triangles(object.triangles, apex_, polygons);
             continue;
         }
         // A volume's faces go in together, at the distance of the box around it.
         const double distance = distance_to_box(apex_, object.outer.faces);
         for (size_t f = 0; f < object.outer.faces.size(); ++f) {
-            occluders.push_back({distance, object.outer.faces[f], object.outer.planes[f], false});
+            polygons.push_back(
+                {distance, object.outer.faces[f], object.outer.planes[f], Role::occluder});
         }
-    }
-    std::stable_sort(occluders.begin(), occluders.end(),
-                     [](const Occluder& a, const Occluder& b) { return a.distance < b.distance; });
-    nodes_.reserve(nodes_.size() + 8 * occluders.size());
-    for (const Occluder& o : occluders) {
-        insert(o.polygon, o.plane, o.exact ? Role::opaque : Role::occluder);
-    }
-    // Stopper polygons from the inner volumes turn parts of solid leaves into blocker leaves
-    // (Nilsson §5.2.1, figure 5.5), once every occluder is in: an inner face lies behind its
-    // own outer face, so it only ever lands where some occluder already is.
-    std::vector<std::pair<double, const ObjectVolumes*>> by_distance;
-    for (const ObjectVolumes& object : volumes) {
-        if (!object.inner.empty()) {
-            by_distance.emplace_back(distance_to_box(apex_, object.outer.faces), &object);
-        }
-    }
-    std::stable_sort(by_distance.begin(), by_distance.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& [distance, object] : by_distance) {
-        for (const ConvexVolume& inner : object->inner) {
+        for (const ConvexVolume& inner : object.inner) {
             for (size_t f = 0; f < inner.faces.size(); ++f) {
-                insert(inner.faces[f], inner.planes[f], Role::stopper);
+                polygons.push_back({distance, inner.faces[f], inner.planes[f], Role::stopper});
             }
         }
+    }
+    std::stable_sort(polygons.begin(), polygons.end(), [](const Inserting& a, const Inserting& b) {
+        return a.distance < b.distance;
+    });
+    nodes_.reserve(nodes_.size() + 8 * polygons.size());
+    for (const Inserting& o : polygons) {
+        insert(o.polygon, o.plane, o.role);
     }
 }
 

@@ -79,6 +79,9 @@ struct Beam {
 class BeamTree {
 public:
     static constexpr double kRelativeEpsilon = 1e-6;
+    // What an inserted polygon is: an outer volume's face (lit in front, uncertain behind), an
+    // inner volume's face (unlit behind), or an exact triangle, both at once (unlit behind).
+    enum class Role : uint8_t { occluder, stopper, opaque };
 
     // Throws sl::Error when the light is inside (or within ε of) an outer bounding volume.
     BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& volumes);
@@ -171,9 +174,6 @@ private:
     Region leaf_region(const Node& leaf, const dvec3& p) const;
     void set_leaf(int32_t index, const Leaf& leaf);
 
-    // What an inserted polygon is: an outer volume's face (lit in front, uncertain behind), an
-    // inner volume's face (unlit behind), or an exact triangle, both at once (unlit behind).
-    enum class Role : uint8_t { occluder, stopper, opaque };
     struct Inserted {
         Role role;
         Plane plane;
