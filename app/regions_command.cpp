@@ -31,6 +31,7 @@ struct RegionsArguments : CommonOptions {
     int max_planes = -1;  // -1: the scene's setting
     bool no_automatic_inner = false;
     bool no_pieces = false;
+    std::string occluders;  // empty: the scene's setting
     bool verbose = false;
 };
 
@@ -80,7 +81,12 @@ void warn_missing_inner(const Scene& scene, const std::vector<bt::MissingInner>&
 int run_regions(const RegionsArguments& args) {
     int width = 0, height = 0;
     parse_size(args.size, width, height);
-    const Scene scene = load_scene_at(args.scene, args.time);
+    Scene scene = load_scene_at(args.scene, args.time);
+    for (const Occluders choice : kOccluders) {
+        if (args.occluders == to_string(choice)) {
+            scene.bounds.occluders = choice;
+        }
+    }
     const std::vector<dvec3> points =
         args.classify.empty() ? std::vector<dvec3>() : read_points(args.classify);
     methods::RegionsTimings timings;
@@ -97,7 +103,9 @@ int run_regions(const RegionsArguments& args) {
     bt::VolumeLibrary library(
         {.max_outer_planes = max_planes,
          .automatic_inner = scene.bounds.automatic_inner && !args.no_automatic_inner,
-         .pieces = pieces});
+         .pieces = pieces,
+         .occluders = scene.bounds.occluders,
+         .max_triangles = scene.bounds.max_triangles});
     std::vector<bt::MissingInner> missing_inner;
     const std::vector<bt::ObjectVolumes> volumes = library.build(scene, &missing_inner);
     timings.volumes_ms = ms_since(start);
@@ -173,6 +181,12 @@ Command add_regions_command(CLI::App& app) {
                       "Use only explicit inner boxes from the scene file");
     command->add_flag("--no-pieces", args->no_pieces,
                       "One convex hull per object, not convex pieces where the hull is loose");
+    command
+        ->add_option("--occluders", args->occluders,
+                     "What the objects enter the tree as: volumes, triangles or auto (default: "
+                     "the scene's [beamtree] occluders)")
+        ->check(CLI::IsMember({to_string(Occluders::volumes), to_string(Occluders::triangles),
+                               to_string(Occluders::automatic)}));
     command->add_flag("--verbose", args->verbose,
                       "List each object without an automatic inner volume, not only the count");
     return [args] { return run_regions(*args); };

@@ -642,6 +642,25 @@ translate = [3.0, 0.5, 3.0]
     EXPECT_NE(verbose.output.find("object 'second terrain': no automatic inner volume"),
               std::string::npos)
         << verbose.output;
+
+    // --occluders overrides the scene's setting: auto gives both terrains their triangles, and
+    // nothing is left without a volume to warn about.
+    const CommandResult exact = run_shaftlab("regions --occluders auto --scene " + scene +
+                                             " --size 32x18 --out " + (dir / "c").string());
+    ASSERT_EQ(exact.exit_code, 0) << exact.output;
+    EXPECT_EQ(lines_with(exact.output, "warning:"), 0u) << exact.output;
+    std::ifstream exact_file(dir / "c" / "regions.json");
+    const nlohmann::json exact_json = nlohmann::json::parse(exact_file);
+    EXPECT_EQ(exact_json["occluders"], "auto");
+    EXPECT_EQ(exact_json["objects_as_triangles"].size(), 2u) << exact_json.dump(2);
+    EXPECT_GT(exact_json["tree"]["exact_triangles"].get<int>(), 0);
+    const CommandResult bad = run_shaftlab("regions --occluders exact --scene " + scene +
+                                           " --size 32x18 --out " + (dir / "d").string());
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.output.find("--occluders: exact not in {volumes,triangles,auto}"),
+              std::string::npos)
+        << bad.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "d"));
 }
 
 // `regions --classify` prints one region per point: lit in the open cone under the light, unlit
