@@ -68,10 +68,11 @@ void require_light_outside(const std::vector<ObjectVolumes>& volumes, const dvec
 // order, but a farther polygon then mostly lands in leaves a nearer one already closed, and is
 // dropped there without splitting them.
 struct Inserting {
-    double distance;  // an exact triangle's closest point; a volume's faces: its box
-    Polygon polygon;
-    Plane plane;
+    double distance;         // an exact triangle's closest point; a volume's faces: its box
+    const Polygon* polygon;  // the caller's, not copied
+    Plane plane;             // facing the light
     BeamTree::Role role;
+    bool reversed = false;  // a triangle wound the other way about `plane`: turned when inserted
 };
 
 // The point of triangle abc closest to p (Ericson, Real-Time Collision Detection §5.1.5).
@@ -132,12 +133,9 @@ void add_facing_triangles(const std::vector<Polygon>& triangles, const dvec3& li
             continue;
         }
         const double nearest = distance_to_polygon(light, triangle);
-        if (plane.distance(light) < 0.0) {
-            out.push_back(
-                {nearest, Polygon({v[0], v[2], v[1]}), plane.flipped(), BeamTree::Role::opaque});
-        } else {
-            out.push_back({nearest, triangle, plane, BeamTree::Role::opaque});
-        }
+        const bool reversed = plane.distance(light) < 0.0;
+        out.push_back({nearest, &triangle, reversed ? plane.flipped() : plane,
+                       BeamTree::Role::opaque, reversed});
     }
 }
 
@@ -192,20 +190,25 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         const double distance = distance_to_box(apex_, object.outer.faces);
         for (size_t f = 0; f < object.outer.faces.size(); ++f) {
             polygons.push_back(
-                {distance, object.outer.faces[f], object.outer.planes[f], Role::occluder});
+                {distance, &object.outer.faces[f], object.outer.planes[f], Role::occluder});
         }
         for (const ConvexVolume& inner : object.inner) {
             for (size_t f = 0; f < inner.faces.size(); ++f) {
-                polygons.push_back({distance, inner.faces[f], inner.planes[f], Role::stopper});
+                polygons.push_back({distance, &inner.faces[f], inner.planes[f], Role::stopper});
             }
         }
     }
     std::stable_sort(polygons.begin(), polygons.end(), [](const Inserting& a, const Inserting& b) {
         return a.distance < b.distance;
     });
-    nodes_.reserve(nodes_.size() + 8 * polygons.size());
+    nodes_.reserve(nodes_.size() + 16 * polygons.size());
     for (const Inserting& o : polygons) {
-        insert(o.polygon, o.plane, o.role);
+        if (o.reversed) {
+            const std::vector<dvec3>& v = o.polygon->vertices;
+            insert(Polygon({v[0], v[2], v[1]}), o.plane, o.role);
+        } else {
+            insert(*o.polygon, o.plane, o.role);
+        }
     }
 }
 

@@ -73,7 +73,7 @@ def main(source, target, regions=None):
     slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
 
     out = ["# Beam tree: speed", "",
-           f"Google Benchmark, one core (`taskset -c 0`), median of 3 repetitions; "
+           f"Google Benchmark, one core (`taskset -c 0`), median of 5 repetitions; "
            f"{ctx.get('host_name', '?')}, {ctx.get('num_cpus', '?')} CPUs at "
            f"{ctx.get('mhz_per_cpu', '?')} MHz. Scenes `multiple:N` with hulls reduced to 16 planes "
            "and automatic inner boxes; bounding volumes are computed before timing (cached per "

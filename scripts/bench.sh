@@ -6,7 +6,7 @@ set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 source "$repo/scripts/setup.sh"
 json="$repo/results/beamtree.json"
-taskset -c 0 "$build_dir/beamtree_bench" --benchmark_repetitions=3 \
+taskset -c 0 "$build_dir/beamtree_bench" --benchmark_repetitions=5 \
     --benchmark_report_aggregates_only=true --benchmark_out="$json.tmp" --benchmark_out_format=json
 mv "$json.tmp" "$json"
 # The whole `regions` command on the big scenes (all cores), for its own targets.
@@ -14,7 +14,7 @@ scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 for scene in ibl-spheres multiple:4000; do
     start=$EPOCHREALTIME
-    summary=$("$build_dir/shaftlab" regions --scene "$scene" --out "$scratch/out")
+    summary=$("$build_dir/shaftlab" regions --scene "$scene" --out "$scratch/out" | tr "\n" " ")
     end=$EPOCHREALTIME
     echo "$scene|$(awk "BEGIN { print $end - $start }")|$summary" >>"$scratch/regions.txt"
     rm -rf "$scratch/out"
