@@ -167,11 +167,12 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         node.kind = Kind::split;
         node.plane = influence_[size_t(i)];
         nodes_.push_back(node);
+        parents_.push_back(i - 1);
     }
     for (int i = 0; i < 4; ++i) {
-        const int32_t out = add_leaf({Kind::out, {}, -1});
+        const int32_t out = add_leaf({Kind::out, {}, -1}, i);
         at(i).front = out;
-        at(i).back = i < 3 ? i + 1 : add_leaf({Kind::open, {}, -1});
+        at(i).back = i < 3 ? i + 1 : add_leaf({Kind::open, {}, -1}, i);
     }
 
     require_light_outside(volumes, apex_, epsilon_);
@@ -202,6 +203,7 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         return a.distance < b.distance;
     });
     nodes_.reserve(nodes_.size() + 16 * polygons.size());
+    parents_.reserve(nodes_.capacity());
     for (const Inserting& o : polygons) {
         if (o.reversed) {
             const std::vector<dvec3>& v = o.polygon->vertices;
@@ -218,12 +220,25 @@ void BeamTree::set_leaf(int32_t index, const Leaf& leaf) {
     node.plane = leaf.occluder;
     node.front = -1;
     node.back = leaf.stopper;
+    node.reach = leaf.kind == Kind::blocker ? leaf.reach : kUnbounded;
 }
 
-int32_t BeamTree::add_leaf(const Leaf& leaf) {
+int32_t BeamTree::add_leaf(const Leaf& leaf, int32_t parent) {
     nodes_.emplace_back();
+    parents_.push_back(parent);
     set_leaf(int32_t(nodes_.size() - 1), leaf);
     return int32_t(nodes_.size() - 1);
+}
+
+void BeamTree::lower_reach_above(int32_t index) {
+    for (int32_t p = parents_[size_t(index)]; p >= 0; p = parents_[size_t(p)]) {
+        Node& node = at(p);
+        const float reach = std::max(at(node.front).reach, at(node.back).reach);
+        if (reach == node.reach) {
+            return;  // unchanged here, so above too
+        }
+        node.reach = reach;
+    }
 }
 
 void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
@@ -240,7 +255,7 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
     ++(role == Role::occluder  ? outer_polygons_
        : role == Role::stopper ? stopper_polygons_
                                : exact_triangles_);
-    Inserted inserted{role, plane, -1};
+    Inserted inserted{role, plane, -1, distance_to_polygon(apex_, clipped)};
     if (stops) {
         inserted.stopper = int32_t(stoppers_.size());
         stoppers_.push_back(plane);
@@ -253,18 +268,24 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
     while (!stack.empty()) {
         std::pair<int32_t, Polygon> next = std::move(stack.back());
         stack.pop_back();
-        const int32_t leaf = descend(next.first, next.second, stack);
+        const int32_t leaf = descend(next.first, inserted.nearest, next.second, stack);
         if (leaf >= 0) {
             insert_at_leaf(leaf, next.second, inserted, stack);
         }
     }
 }
 
-int32_t BeamTree::descend(int32_t index, Polygon& fragment,
+int32_t BeamTree::descend(int32_t index, double nearest, Polygon& fragment,
                           std::vector<std::pair<int32_t, Polygon>>& stack) const {
     // Descend while the fragment lies on one side: no copies on the way down.
-    while (at(index).kind == Kind::split) {
+    for (;;) {
         const Node& node = at(index);
+        if (nearest > double(node.reach)) {
+            return -1;  // behind every stopper below: hidden wherever it would land
+        }
+        if (node.kind != Kind::split) {
+            return index;
+        }
         Polygon front, back;
         const Side where = split_straddling(fragment, node.plane, epsilon_, true, front, back);
         if (where == Side::coplanar) {
@@ -284,7 +305,6 @@ int32_t BeamTree::descend(int32_t index, Polygon& fragment,
         fragment = std::move(front);
         index = node.front;
     }
-    return index;
 }
 
 void BeamTree::insert_at_leaf(int32_t index, const Polygon& fragment, const Inserted& inserted,
@@ -296,7 +316,7 @@ void BeamTree::insert_at_leaf(int32_t index, const Polygon& fragment, const Inse
     if (node.kind == Kind::split || node.kind == Kind::out) {
         return;
     }
-    const Leaf here{node.kind, node.plane, node.kind == Kind::blocker ? node.back : -1};
+    const Leaf here{node.kind, node.plane, node.kind == Kind::blocker ? node.back : -1, node.reach};
     switch (inserted.role) {
         case Role::occluder:
             switch (node.kind) {
@@ -308,7 +328,7 @@ void BeamTree::insert_at_leaf(int32_t index, const Polygon& fragment, const Inse
                     // Fix-up: the part nearer to L than the current occluder takes over; a
                     // blocker keeps its stopper, which lies behind both.
                     attach_nearer(index, fragment, node.plane,
-                                  {node.kind, inserted.plane, here.stopper}, here);
+                                  {node.kind, inserted.plane, here.stopper, here.reach}, here);
                     break;
                 default:
                     break;
@@ -317,11 +337,13 @@ void BeamTree::insert_at_leaf(int32_t index, const Polygon& fragment, const Inse
         case Role::stopper:
             switch (node.kind) {
                 case Kind::solid:
-                    attach(index, fragment, {Kind::blocker, node.plane, inserted.stopper}, here);
+                    attach(index, fragment,
+                           {Kind::blocker, node.plane, inserted.stopper, here.reach, true}, here);
                     break;
                 case Kind::blocker:  // keep the nearest stopper, as for occluders
                     attach_nearer(index, fragment, stopper_of(node),
-                                  {Kind::blocker, node.plane, inserted.stopper}, here);
+                                  {Kind::blocker, node.plane, inserted.stopper, here.reach, true},
+                                  here);
                     break;
                 default:
                     break;  // an inner face where no occluder is: outside its own outer volume
@@ -330,7 +352,7 @@ void BeamTree::insert_at_leaf(int32_t index, const Polygon& fragment, const Inse
         case Role::opaque: {
             // Occluder and stopper at once: where it is nearer than the leaf's occluder it is
             // both (unlit right behind it); behind the occluder it is the nearer stopper.
-            const Leaf opaque{Kind::blocker, inserted.plane, inserted.stopper};
+            const Leaf opaque{Kind::blocker, inserted.plane, inserted.stopper, here.reach, true};
             if (node.kind == Kind::open) {
                 attach(index, fragment, opaque, here);
                 break;
@@ -356,7 +378,7 @@ void BeamTree::insert_at_leaf(int32_t index, const Polygon& fragment, const Inse
                 case Side::coplanar:
                     break;
             }
-            const Leaf stopped{Kind::blocker, node.plane, inserted.stopper};
+            const Leaf stopped{Kind::blocker, node.plane, inserted.stopper, here.reach, true};
             if (node.kind == Kind::solid) {
                 attach(index, fragment, stopped, here);
             } else {
@@ -493,8 +515,8 @@ void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside
     // beam; the last back is the fragment's beam.
     int32_t current = index;
     for (const Plane& plane : edges) {
-        const int32_t front = add_leaf(outside);
-        const int32_t back = add_leaf(outside);
+        const int32_t front = add_leaf(outside, current);
+        const int32_t back = add_leaf(outside, current);
         Node& node = at(current);
         node.kind = Kind::split;
         node.plane = plane;
@@ -502,7 +524,27 @@ void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside
         node.back = back;
         current = back;
     }
-    set_leaf(current, inside);
+    Leaf beam = inside;
+    if (beam.stopped_here) {
+        // Every ray of the beam crosses the fragment, no farther than its farthest corner.
+        double farthest = 0.0;
+        for (const dvec3& v : fragment.vertices) {
+            farthest = std::max(farthest, glm::length(v - apex_));
+        }
+        float up = float(farthest);
+        if (double(up) < farthest) {
+            up = std::nextafter(up, kUnbounded);
+        }
+        beam.reach = std::min(beam.reach, up);
+    }
+    set_leaf(current, beam);
+    // The chain's reach, from the beam up; above it, as far as it falls.
+    while (current != index) {
+        current = parents_[size_t(current)];
+        Node& node = at(current);
+        node.reach = std::max(at(node.front).reach, at(node.back).reach);
+    }
+    lower_reach_above(index);
 }
 
 Region BeamTree::classify(const dvec3& p, double* margin) const {

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -134,17 +135,29 @@ public:
 
 private:
     enum class Kind : uint8_t { split, out, open, solid, blocker };
+    static constexpr float kUnbounded = std::numeric_limits<float>::infinity();
     // 48 bytes: the descent is bound by memory traffic, so leaves reuse the split fields.
     struct Node {
         Plane plane;         // split: the splitting plane through L; solid, blocker: occluder
         int32_t front = -1;  // split: children
         int32_t back = -1;   // split: children; blocker: index into stoppers_
         Kind kind = Kind::open;
+        // The reach of the node's cone: beyond this distance from L every point of it is
+        // unlit behind a stopper, so a polygon farther away changes nothing below the node and
+        // is dropped without descending. A blocker leaf's is the farthest corner of the
+        // fragment that made its stopper (the stopper crosses each ray of the leaf nearer than
+        // that); a split's, the larger of its children's; open and solid leaves are unbounded.
+        // Rounded up to float (it fits in the padding).
+        float reach = kUnbounded;
     };
     struct Leaf {
         Kind kind;
         Plane occluder;
         int32_t stopper = -1;  // index into stoppers_
+        float reach = kUnbounded;
+        // The stopper is the fragment being attached: its reach is at most that fragment's
+        // farthest corner (a nearer stopper leaves the old reach valid, so the smaller holds).
+        bool stopped_here = false;
     };
     // The node at `index`, checked in debug builds (the descent is the hot path).
     const Node& at(int32_t index) const {
@@ -178,11 +191,12 @@ private:
         Role role;
         Plane plane;
         int32_t stopper = -1;  // stopper, opaque: its index into stoppers_
+        double nearest = 0.0;  // the polygon's distance from L: no fragment of it is nearer
     };
     void insert(const Polygon& polygon, const Plane& plane, Role role);
     // Takes `fragment` down from node `index` to its leaf, pushing the far parts of straddled
     // splits onto `stack`; -1 where nothing of it is left to attach.
-    int32_t descend(int32_t index, Polygon& fragment,
+    int32_t descend(int32_t index, double nearest, Polygon& fragment,
                     std::vector<std::pair<int32_t, Polygon>>& stack) const;
     // What a fragment does to the leaf it reached; a part that must go down the subtree the
     // leaf has become is pushed onto `stack`.
@@ -196,12 +210,15 @@ private:
     // Attaches the part of the fragment nearer to L than `current` (Nilsson ch. 8's fix-up).
     void attach_nearer(int32_t node, const Polygon& fragment, const Plane& current,
                        const Leaf& inside, const Leaf& outside);
-    int32_t add_leaf(const Leaf& leaf);
+    int32_t add_leaf(const Leaf& leaf, int32_t parent);
+    // After the reach of node `index` fell, its ancestors' (each the larger of its children's).
+    void lower_reach_above(int32_t index);
 
     dvec3 apex_;
     double epsilon_;
     std::vector<Plane> influence_;
     std::vector<Node> nodes_;
+    std::vector<int32_t> parents_;  // per node, -1 at the root: for lower_reach_above()
     std::vector<Plane> stoppers_;
     size_t outer_polygons_ = 0;
     size_t stopper_polygons_ = 0;
