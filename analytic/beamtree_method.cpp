@@ -26,6 +26,14 @@ public:
             "fragments: the boundary's faces fanned one by one (same integral in all three)");
         route_ = declare_choice("route", region_route_choices(), RegionRoute::automatic,
                                 region_route_description());
+        layout_ = declare_choice(
+            "tree_layout", {"depth_first", "build"}, bt::GpuTreeLayout::depth_first,
+            "walk route: the order of the tree's nodes on the GPU; depth_first: preorder, a "
+            "descent's next node next in memory; build: as the tree grew (results/walk.md)");
+        walk_stack_ = declare_integer(
+            "walk_stack", 24, 1, 256,
+            "walk route: entries of the walk's short stack (beamtree/shaders/walk.glsl); a walk "
+            "that drops entries restarts at the root from where it stands (results/walk.md)");
     }
     std::string accepts() const override { return AnalyticRegionPass::accepts(); }
     void prepare(const Scene& scene) override {
@@ -37,7 +45,8 @@ public:
                                                  const SceneChange& change) const override {
         AnalyticRegionPass::require_closed_form(scene, name());
         if (walks(*route_, scene, software_)) {
-            return region_frame_work(scene, change, {.gpu_tree = true}, built_, true);
+            return region_frame_work(scene, change, {.gpu_tree = true, .layout = *layout_}, built_,
+                                     true);
         }
         const Surfaces surfaces = *surfaces_;
         return region_frame_work(
@@ -64,7 +73,7 @@ public:
     }
     void render(const frame::VolumeInputs& inputs) override {
         if (walk_) {
-            lists_.walk(inputs, tree_, false, 0);
+            lists_.walk(inputs, tree_, false, 0, *walk_stack_);
             pass_.draw_walk(inputs, tree_);
         } else {
             pass_.draw(inputs);
@@ -82,6 +91,8 @@ public:
 private:
     frame::Param<Surfaces> surfaces_;
     frame::Param<RegionRoute> route_;
+    frame::Param<bt::GpuTreeLayout> layout_;
+    frame::Param<int> walk_stack_;
     AnalyticRegionPass pass_;
     GpuTreeBuffers tree_;  // the walk route's tree
     RegionLists lists_;    // and the lit intervals it finds

@@ -1,9 +1,14 @@
 #include "analytic/region_lists.h"
 
 #include <algorithm>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "analytic/shaders/analytic_interface.h"
 #include "beamtree/shaders/region_lists_interface.h"
+#include "core/check.h"
 #include "gl/functions.h"
 #include "gl/shaders.h"
 
@@ -82,11 +87,20 @@ void RegionLists::build(const frame::VolumeInputs& inputs, bool mark_stencil) {
 }
 
 void RegionLists::walk(const frame::VolumeInputs& inputs, const GpuTreeBuffers& tree,
-                       bool mark_stencil, GLuint mark_bits) {
-    if (!walk_program_) {
+                       bool mark_stencil, GLuint mark_bits, int stack_entries) {
+    SL_CHECK(stack_entries >= 0);
+    if (!walk_program_ || stack_entries != walk_stack_) {
+        std::vector<std::string> defines;
+        if (stack_entries > 0) {
+            defines.push_back(fmt::format("SL_WALK_STACK {}", stack_entries));
+        }
         walk_program_ =
             gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                                {GL_FRAGMENT_SHADER, "analytic/shaders/region_lists_walk.frag"}});
+                                {GL_FRAGMENT_SHADER, "analytic/shaders/region_lists_walk.frag"}},
+                               defines);
+        walk_stack_ = stack_entries;
+    }
+    if (!empty_vertex_array_) {
         empty_vertex_array_ = gl::create_vertex_array();
     }
     begin_build(inputs, mark_stencil);

@@ -36,8 +36,10 @@ public:
     // The same lists by the walk route: a full-screen pass walks `tree` along every eye ray up to
     // its surface (analytic/shaders/region_lists_walk.frag). With `mark_stencil`, both bits are
     // set where the ray crosses a surface of `mark_bits` (the bits the reader will test).
+    // `stack_entries`: the walk's short stack (SL_WALK_STACK of beamtree/shaders/walk.glsl; 0,
+    // its default).
     void walk(const frame::VolumeInputs& inputs, const GpuTreeBuffers& tree, bool mark_stencil,
-              GLuint mark_bits);
+              GLuint mark_bits, int stack_entries = 0);
 
     // A stencil for the marks, `width` × `height`, attached to `framebuffer`.
     static gl::Texture attach_marks(GLuint framebuffer, int width, int height);
@@ -64,6 +66,7 @@ private:
     RegionFaces meshes_[2];  // lit, uncertain
     gl::Program program_;
     gl::Program walk_program_;
+    int walk_stack_ = 0;  // walk_program_'s stack_entries
     gl::VertexArray empty_vertex_array_;
     gl::Buffer region_counts_, crossings_;
     int width_ = 0, height_ = 0;

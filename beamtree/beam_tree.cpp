@@ -866,7 +866,7 @@ void BeamTree::split_cells(int32_t index, Polyhedron cell, double epsilon, int d
     }
 }
 
-GpuTree BeamTree::gpu_tree() const {
+GpuTree BeamTree::gpu_tree(GpuTreeLayout layout) const {
     static_assert(int(Kind::split) == 0 && int(Kind::out) == 1 && int(Kind::open) == 2 &&
                   int(Kind::solid) == 3 && int(Kind::blocker) == 4);
     auto relative = [&](const Plane& plane) {
@@ -875,17 +875,47 @@ GpuTree BeamTree::gpu_tree() const {
     // The GPU links are 32-bit: a tree past that is a bug in the build, not in the scene.
     SL_CHECK(nodes_.size() < size_t(std::numeric_limits<int32_t>::max()));
     SL_CHECK(stoppers_.size() + 2 < size_t(std::numeric_limits<int32_t>::max()));
+    // order[k]: the node placed at k; place[i]: where node i goes.
+    std::vector<int32_t> order;
+    order.reserve(nodes_.size());
+    if (layout == GpuTreeLayout::build) {
+        for (size_t i = 0; i < nodes_.size(); ++i) {
+            order.push_back(int32_t(i));
+        }
+    } else {
+        std::vector<int32_t> stack = {0};
+        while (!stack.empty()) {
+            const int32_t index = stack.back();
+            stack.pop_back();
+            order.push_back(index);
+            const Node& node = at(index);
+            if (node.kind == Kind::split) {
+                stack.push_back(node.front);
+                stack.push_back(node.back);  // popped first: the next node in memory
+            }
+        }
+    }
+    std::vector<int32_t> place(nodes_.size(), -1);
+    for (size_t k = 0; k < order.size(); ++k) {
+        place[size_t(order[k])] = int32_t(k);
+    }
+    // walk.glsl reads the pyramid's sides as nodes 0-3 and the root below them at 3's back.
+    for (int32_t i = 0; i < 4; ++i) {
+        SL_CHECK(place[size_t(i)] == i);
+    }
     GpuTree gpu;
     gpu.planes = {relative(influence_[4]), relative(influence_[5])};
     for (const Plane& stopper : stoppers_) {
         gpu.planes.push_back(relative(stopper));
     }
-    gpu.nodes.reserve(nodes_.size());
-    for (const Node& node : nodes_) {
+    gpu.nodes.reserve(order.size());
+    for (const int32_t index : order) {
+        const Node& node = at(index);
         GpuTreeNode g;
         g.plane = relative(node.plane);
         const bool split = node.kind == Kind::split;
-        g.link = glm::ivec4(split ? node.front : -1, split ? node.back : -1, int(node.kind),
+        g.link = glm::ivec4(split ? place[size_t(node.front)] : -1,
+                            split ? place[size_t(node.back)] : -1, int(node.kind),
                             node.kind == Kind::blocker ? node.back + 2 : -1);
         gpu.nodes.push_back(g);
     }

@@ -53,9 +53,15 @@ struct GpuTreeNode {
     glm::vec4 plane;  // xyz normal, w offset: distance = dot(xyz, q) + w
     glm::ivec4 link;  // x front child, y back child, z kind (classify.glsl's KIND_*), w stopper
 };
+// The order of the GPU tree's nodes (docs/design.md §14). build: as the tree grew (a split leaf's
+// children appended at the end, so a deep descent jumps across the buffer); depth_first:
+// preorder, back child first (the side behind a split's occluder, where a descent spends its
+// steps), so that a descent's next node is often the next one in memory and every subtree is one
+// contiguous run. Both hold the same tree: nodes 0-3 stay the influence pyramid's sides.
+enum class GpuTreeLayout { depth_first, build };
 struct GpuTree {
-    std::vector<GpuTreeNode> nodes;
-    std::vector<glm::vec4> planes;  // 0 near range, 1 far range, then the stoppers (link.w)
+    std::vector<GpuTreeNode> nodes;  // 0-3 the influence pyramid's sides, each back the next
+    std::vector<glm::vec4> planes;   // 0 near range, 1 far range, then the stoppers (link.w)
 };
 
 struct BeamTreeStats {
@@ -130,8 +136,8 @@ public:
     const dvec3& apex() const { return apex_; }
     BeamTreeStats stats() const;
     // The nodes and planes for the GPU's classify (kinds: 0 split, 1 out, 2 open, 3 solid,
-    // 4 blocker).
-    GpuTree gpu_tree() const;
+    // 4 blocker), in the order `layout` says (GpuTreeLayout).
+    GpuTree gpu_tree(GpuTreeLayout layout = GpuTreeLayout::depth_first) const;
 
 private:
     enum class Kind : uint8_t { split, out, open, solid, blocker };

@@ -56,7 +56,7 @@ FrameRegions build_frame_regions(const Scene& scene, const RegionRequest& reques
         }
     }
     if (request.gpu_tree) {
-        out.gpu = tree->gpu_tree();
+        out.gpu = tree->gpu_tree(request.layout);
         lap(out.ms.gpu_tree);
     }
     out.tree = std::move(tree);

@@ -23,7 +23,8 @@ struct RegionRequest {
     bool uncertain = false;  // the uncertain region's boundary mesh
     bool cells = false;      // lit: every lit cell's faces (the per-cell mesh), not the boundary
     bool gpu_tree = false;   // the tree as the GPU's classify reads it
-    bool pieces = false;     // keep the region pieces (FrameRegions::regions: PLY, statistics)
+    GpuTreeLayout layout = GpuTreeLayout::depth_first;  // and the order of its nodes
+    bool pieces = false;  // keep the region pieces (FrameRegions::regions: PLY, statistics)
     // The boundary meshes' triangles: maximal polygons, or each face fanned (for comparison).
     BoundaryShape shape = BoundaryShape::maximal;
 };

@@ -12,8 +12,10 @@
 #
 #   scripts/gpu_bench.sh run [--limit SECONDS] [EXPERIMENT ...]
 #       There: unpacks gpu-package.tar.xz into a temporary folder, records the GL renderer
-#       (`shaftlab gl-info` through EGL), and runs each experiment (default: equal_error, every
-#       method against the cheapest without regions, epipolar included, then animated: every
+#       (`shaftlab gl-info` through EGL), and runs each experiment (default: walk, the GPU walk
+#       of beam trees of 5·10^3 to 7·10^5 nodes, the game level among them, by node layout and
+#       stack size; then equal_error, every method against the cheapest without regions,
+#       epipolar and the level included; then animated: every
 #       method along the canonical animations, the region methods on both routes from the beam
 #       tree to the GPU, walk and mesh, docs/design.md §14) with
 #       `shaftlab bench`, each under `timeout` so the whole call ends within --limit seconds
@@ -28,7 +30,7 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 package=${SHAFTLAB_GPU_PACKAGE:-$repo/gpu-package.tar.xz}
 
 usage() {
-    sed -n '2,25p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2
+    sed -n '2,27p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2
     exit 2
 }
 
@@ -79,7 +81,7 @@ run() {
         *) experiments+=("$1"); shift ;;
         esac
     done
-    ((${#experiments[@]})) || experiments=(equal_error animated)
+    ((${#experiments[@]})) || experiments=(walk equal_error animated)
     [ -f "$package" ] || { echo "gpu_bench: no $package (run 'scripts/gpu_bench.sh package' first)" >&2; exit 2; }
     local start=$SECONDS
     root=$(mktemp -d)  # global: the EXIT trap runs after this function has returned

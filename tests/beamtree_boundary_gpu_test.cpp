@@ -266,6 +266,7 @@ struct WalkCase {
     std::string name;
     Scene scene;
     std::vector<std::string> defines;
+    bt::GpuTreeLayout layout = bt::GpuTreeLayout::depth_first;
 };
 
 // Random segments between points of the influence volume and a little around it, with float
@@ -299,7 +300,7 @@ WalkSegments random_segments(std::mt19937& rng, const SpotLight& light, size_t c
 std::vector<float> walk_on_gpu(const WalkCase& c, const bt::BeamTree& tree,
                                const WalkSegments& segments, int width, int height) {
     analytic::GpuTreeBuffers buffers;  // what the methods upload, at classify.glsl's bindings
-    buffers.upload(tree.gpu_tree());
+    buffers.upload(tree.gpu_tree(c.layout));
     buffers.bind();
     const gl::Texture origin_texture = gl::create_texture_2d(GL_RGBA32F, width, height, GL_NEAREST);
     const gl::Texture direction_texture =
@@ -371,6 +372,7 @@ TEST_F(BoundaryOnTheGpu, WalkFindsTheTreesIntervalsAlongRandomLines) {
     const Scene deep = load_scene("multiple:256", SceneSearchPaths::defaults());
     cases.push_back({"multiple:256", deep, {}});
     cases.push_back({"multiple:256, stack 2", deep, {"SL_WALK_STACK 2"}});
+    cases.push_back({"multiple:256, build layout", deep, {}, bt::GpuTreeLayout::build});
     for (int seed = 600; seed < 620; ++seed) {
         cases.push_back({fmt::format("seed {}", seed), random_scene(seed, library).scene, {}});
     }

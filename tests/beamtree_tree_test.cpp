@@ -463,6 +463,94 @@ TEST(BeamTree, TraceTilesTheSegmentAndMatchesClassify) {
     EXPECT_GT(crossed, 8000u) << "segments should cross several regions";
 }
 
+// classify.glsl's descent on the CPU, over the GPU's nodes: the near and far ranges, the descent
+// from node 0 (front when the distance is >= 0), the leaf's region.
+bt::Region classify_gpu_tree(const bt::GpuTree& gpu, const dvec3& q) {
+    auto distance = [&](const glm::vec4& plane) {
+        return double(plane.x) * q.x + double(plane.y) * q.y + double(plane.z) * q.z +
+               double(plane.w);
+    };
+    if (!(distance(gpu.planes[0]) < 0.0) || !(distance(gpu.planes[1]) < 0.0)) {
+        return bt::Region::unlit;
+    }
+    size_t index = 0, steps = 0;
+    while (gpu.nodes.at(index).link.z == 0) {
+        const bt::GpuTreeNode& node = gpu.nodes[index];
+        index = size_t(distance(node.plane) >= 0.0 ? node.link.x : node.link.y);
+        EXPECT_LT(++steps, gpu.nodes.size()) << "a cycle";
+    }
+    const bt::GpuTreeNode& leaf = gpu.nodes[index];
+    switch (leaf.link.z) {
+        case 2:
+            return bt::Region::lit;
+        case 3:
+            return distance(leaf.plane) > 0.0 ? bt::Region::lit : bt::Region::uncertain;
+        case 4:
+            if (distance(leaf.plane) > 0.0) {
+                return bt::Region::lit;
+            }
+            return distance(gpu.planes.at(size_t(leaf.link.w))) > 0.0 ? bt::Region::uncertain
+                                                                      : bt::Region::unlit;
+        default:
+            return bt::Region::unlit;
+    }
+}
+
+// Both layouts of the GPU tree (bt::GpuTreeLayout) hold the tree classify() walks: at random
+// points of the game level's beam (exact triangles, a deep tree) and of random scenes, each
+// layout's descent answers what classify() answers. depth_first is a preorder, back child first:
+// every split's back child is the next node, the pyramid's sides stay nodes 0-3, and no node is
+// left out or repeated.
+TEST(BeamTree, BothGpuLayoutsHoldTheTreeClassifyWalks) {
+    std::vector<Scene> scenes = {load_canonical("arena")};
+    scenes.back().bounds.occluders = Occluders::triangles;
+    bt::VolumeLibrary random_library;
+    for (int seed = 420; seed < 425; ++seed) {
+        scenes.push_back(random_scene(seed, random_library).scene);
+    }
+    std::mt19937 rng(47);
+    size_t compared = 0, adjacent = 0, splits = 0;
+    for (const Scene& scene : scenes) {
+        bt::VolumeLibrary library(scene.bounds);
+        const bt::BeamTree tree(scene.light, library.build(scene, nullptr));
+        const bt::GpuTree build = tree.gpu_tree(bt::GpuTreeLayout::build);
+        const bt::GpuTree depth = tree.gpu_tree(bt::GpuTreeLayout::depth_first);
+        ASSERT_EQ(build.planes.size(), depth.planes.size());
+        ASSERT_LE(depth.nodes.size(), build.nodes.size());
+        std::vector<int> parents(depth.nodes.size(), 0);
+        for (size_t i = 0; i < depth.nodes.size(); ++i) {
+            const glm::ivec4 link = depth.nodes[i].link;
+            if (link.z != 0) {
+                continue;
+            }
+            ++splits;
+            adjacent += size_t(link.y) == i + 1;
+            ++parents.at(size_t(link.x));
+            ++parents.at(size_t(link.y));
+        }
+        EXPECT_EQ(adjacent, splits) << "every back child follows its split";
+        EXPECT_EQ(std::count(parents.begin(), parents.end(), 1), std::ptrdiff_t(parents.size() - 1))
+            << "every node but the root has one parent";
+        for (int i = 0; i < 3; ++i) {
+            EXPECT_EQ(depth.nodes[size_t(i)].link.y, i + 1) << "the pyramid's sides";
+        }
+        for (int i = 0; i < 20000; ++i) {
+            const dvec3 p = random_point(rng, scene.light);
+            double margin = 0.0;
+            const bt::Region expected = tree.classify(p, &margin);
+            if (margin <= 10.0 * tree.epsilon()) {
+                continue;
+            }
+            const dvec3 q = p - tree.apex();
+            EXPECT_EQ(classify_gpu_tree(build, q), expected) << "build layout";
+            EXPECT_EQ(classify_gpu_tree(depth, q), expected) << "depth_first layout";
+            ++compared;
+        }
+    }
+    EXPECT_GT(compared, 90000u);
+    EXPECT_GT(splits, 5000u) << "the level's tree is deep";
+}
+
 // The mesh of a region's faces as extracted, each fanned from its first corner.
 bt::RegionMesh corner_fans(const bt::Regions& regions, bt::Region region) {
     bt::RegionMesh mesh;
