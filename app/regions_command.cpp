@@ -105,11 +105,20 @@ int run_regions(const RegionsArguments& args) {
          .automatic_inner = scene.bounds.automatic_inner && !args.no_automatic_inner,
          .pieces = pieces,
          .occluders = scene.bounds.occluders,
-         .max_triangles = scene.bounds.max_triangles});
+         .max_triangles = scene.bounds.max_triangles,
+         .min_inner_fill = scene.bounds.min_inner_fill});
     std::vector<bt::MissingInner> missing_inner;
     const std::vector<bt::ObjectVolumes> volumes = library.build(scene, &missing_inner);
     timings.volumes_ms = ms_since(start);
     warn_missing_inner(scene, missing_inner, args.verbose);
+    if (args.verbose) {
+        for (const bt::ObjectVolumes& v : volumes) {
+            if (!v.triangles.empty()) {
+                std::fprintf(stderr, "shaftlab: object '%s': %zu triangles as occluders: %s\n",
+                             v.name.c_str(), v.triangles.size(), v.why_triangles.c_str());
+            }
+        }
+    }
     start = Clock::now();
     const bt::BeamTree tree(scene.light, volumes);
     timings.build_ms = ms_since(start);
@@ -188,7 +197,8 @@ Command add_regions_command(CLI::App& app) {
         ->check(CLI::IsMember({to_string(Occluders::volumes), to_string(Occluders::triangles),
                                to_string(Occluders::automatic)}));
     command->add_flag("--verbose", args->verbose,
-                      "List each object without an automatic inner volume, not only the count");
+                      "List each object without an automatic inner volume, not only the count, "
+                      "and each object that entered the tree as triangles, with why");
     return [args] { return run_regions(*args); };
 }
 

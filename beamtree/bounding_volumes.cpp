@@ -554,6 +554,30 @@ bool lacks_inner(const Object& object, const LocalVolumes& local) {
     return object.inner_boxes.empty() && !local.self_inner && !local.no_inner.empty();
 }
 
+// The share of an object's outer volumes (its hull, or its pieces' hulls) that its automatic
+// inner volumes fill: 1 where nothing between them is uncertain (a box in its own hull, a flat
+// mesh that is its own inner volume). Inner volumes may overlap, which can only raise it.
+double inner_fill(const LocalVolumes& local) {
+    if (local.self_inner) {
+        return 1.0;
+    }
+    double outer = 0.0, inner = 0.0;
+    if (local.pieces.empty()) {
+        outer = local.outer.volume();
+        for (const ConvexVolume& v : local.automatic_inner) {
+            inner += v.volume();
+        }
+    } else {
+        for (const LocalPiece& piece : local.pieces) {
+            outer += piece.outer.volume();
+            for (const ConvexVolume& v : piece.inner) {
+                inner += v.volume();
+            }
+        }
+    }
+    return outer > 0.0 ? std::min(1.0, inner / outer) : 1.0;
+}
+
 }  // namespace
 
 ExactOccluders exact_occluders(const std::vector<ObjectVolumes>& volumes) {
@@ -658,36 +682,55 @@ void VolumeLibrary::append_volumes(const Object& object, int index,
     }
 }
 
-std::vector<bool> VolumeLibrary::exact_objects(const Scene& scene) {
+std::vector<std::string> VolumeLibrary::exact_objects(const Scene& scene) {
     const BoundsSettings& b = scene.bounds;
-    std::vector<bool> exact(scene.objects.size(), false);
+    std::vector<std::string> exact(scene.objects.size());
     if (b.occluders == Occluders::volumes) {
         return exact;
     }
-    // auto: the objects without an inner volume, smallest first, within the triangle budget.
-    std::vector<std::pair<size_t, size_t>> candidates;  // (triangles, object)
+    // auto: first the objects without an inner volume (all behind their hulls is uncertain),
+    // then the loose ones (inner volumes filling less than min_inner_fill of the outer ones:
+    // explicit inner boxes are the author's word and stay), each group smallest first, within
+    // the triangle budget.
+    struct Candidate {
+        int group;  // 0 no inner volume, 1 loose
+        size_t triangles, object;
+        std::string why;
+    };
+    std::vector<Candidate> candidates;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const Object& object = scene.objects[i];
         if (!scene.casts_shadow(object)) {
             continue;
         }
         if (b.occluders == Occluders::triangles) {
-            exact[i] = true;
+            exact[i] = "occluders = triangles";
             continue;
         }
-        if (lacks_inner(object, *entry(object.mesh).volumes)) {
-            candidates.emplace_back(object.mesh->triangles.size(), i);
+        const LocalVolumes& local = *entry(object.mesh).volumes;
+        const size_t triangles = object.mesh->triangles.size();
+        if (lacks_inner(object, local)) {
+            candidates.push_back(
+                {0, triangles, i, fmt::format("no inner volume ({})", local.no_inner)});
+        } else if (const double fill = inner_fill(local);
+                   object.inner_boxes.empty() && fill < b.min_inner_fill) {
+            candidates.push_back(
+                {1, triangles, i,
+                 fmt::format("loose: inner volumes fill {:.0f} % of its {} (min_inner_fill {:g})",
+                             100.0 * fill, local.pieces.empty() ? "hull" : "pieces",
+                             b.min_inner_fill)});
         }
     }
-    std::stable_sort(candidates.begin(), candidates.end(),
-                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::stable_sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) {
+        return std::tie(x.group, x.triangles) < std::tie(y.group, y.triangles);
+    });
     size_t total = 0;
-    for (const auto& [triangles, i] : candidates) {
-        if (total + triangles > size_t(b.max_triangles)) {
-            break;
+    for (Candidate& c : candidates) {
+        if (total + c.triangles > size_t(b.max_triangles)) {
+            continue;  // a smaller one may still fit
         }
-        total += triangles;
-        exact[i] = true;
+        total += c.triangles;
+        exact[c.object] = std::move(c.why);
     }
     return exact;
 }
@@ -714,15 +757,16 @@ std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
     if (scene.bounds.occluders != Occluders::triangles) {
         compute_missing(scene);  // every object as its triangles needs no volume
     }
-    const std::vector<bool> exact = exact_objects(scene);
+    std::vector<std::string> exact = exact_objects(scene);
     std::vector<ObjectVolumes> result;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const Object& object = scene.objects[i];
         if (!scene.casts_shadow(object)) {
             continue;  // glass: the light passes it
         }
-        if (exact[i]) {
+        if (!exact[i].empty()) {
             result.push_back(triangles_of(object, int(i)));
+            result.back().why_triangles = std::move(exact[i]);
             continue;  // exact: it needs no inner volume
         }
         append_volumes(object, int(i), result);

@@ -36,6 +36,9 @@ struct ObjectVolumes {
     // volume): the object's triangles in world space, each unlit behind it. Then `outer` and
     // `inner` are empty.
     std::vector<Polygon> triangles;
+    // Why they are triangles: "occluders = triangles", "no inner volume (...)" or "loose: inner
+    // volumes fill N % of its hull" (auto).
+    std::string why_triangles;
 };
 
 // How many objects entered the tree as exact triangles, and those triangles.
@@ -133,8 +136,9 @@ private:
     void append_volumes(const Object& object, int index, std::vector<ObjectVolumes>& result);
     // Scene object `index` as its triangles (exact occluders).
     ObjectVolumes triangles_of(const Object& object, int index);
-    // Which objects enter the tree as triangles under the scene's [beamtree] occluders.
-    std::vector<bool> exact_objects(const Scene& scene);
+    // Which objects enter the tree as triangles under the scene's [beamtree] occluders, and why
+    // (ObjectVolumes::why_triangles; empty: its volumes).
+    std::vector<std::string> exact_objects(const Scene& scene);
 
     BoundsSettings options_;
     bool caching_ = true;

@@ -87,7 +87,8 @@ Row regions_summary_json(const RegionsSummaryInputs& in) {
     Row as_triangles = Row::array();
     for (const bt::ObjectVolumes& v : in.volumes) {
         if (!v.triangles.empty()) {
-            as_triangles.push_back({{"object", v.name}, {"triangles", v.triangles.size()}});
+            as_triangles.push_back(
+                {{"object", v.name}, {"triangles", v.triangles.size()}, {"why", v.why_triangles}});
         }
     }
     size_t inner_volumes = 0, outer_faces = 0;

@@ -167,11 +167,13 @@ struct BoundsSettings {
     bool pieces = false;
     // What each object enters the beam tree as: its bounding volumes (hulls or pieces, and inner
     // volumes); its triangles, each an exact occluder (unlit behind it, whatever the mesh's
-    // winding or closedness); or, automatically, triangles for the objects without an inner
-    // volume (smallest first, while the scene's total stays within max_triangles) and volumes
-    // for the rest.
+    // winding or closedness); or, automatically, triangles for the objects whose volumes are
+    // loose (first those without an inner volume, then those whose inner volumes fill less than
+    // min_inner_fill of their outer volumes; smallest first within each, while the scene's total
+    // stays within max_triangles) and volumes for the rest.
     Occluders occluders = Occluders::volumes;
     int max_triangles = 50000;
+    double min_inner_fill = 0.5;
 };
 
 // Image-based lighting from an HDR environment (ibl/, Moschos §3.3); off when `file` is empty.

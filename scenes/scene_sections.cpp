@@ -285,6 +285,7 @@ BoundsSettings read_bounds(TableReader r) {
     }
     b.occluders = *chosen;
     b.max_triangles = r.integer_in("max_triangles", b.max_triangles, 0, 10000000);
+    b.min_inner_fill = r.number_in("min_inner_fill", b.min_inner_fill, 0.0, 1.0);
     r.finish();
     return b;
 }

@@ -210,6 +210,7 @@ TEST(BeamTree, ALightInsideARoomIsTakenWithTriangles) {
 TEST(BeamTree, AutomaticOccludersTakeTrianglesWithinTheBudget) {
     Scene scene = load_canonical("house");
     scene.bounds.occluders = Occluders::automatic;
+    scene.bounds.min_inner_fill = 0.0;  // the objects without an inner volume alone
     bt::VolumeLibrary library({.pieces = true});
     std::vector<bt::MissingInner> missing;
     size_t exact = 0, triangles = 0;
@@ -230,6 +231,49 @@ TEST(BeamTree, AutomaticOccludersTakeTrianglesWithinTheBudget) {
     EXPECT_LE(within, triangles - 1);
     EXPECT_EQ(kept + missing.size(), 29u) << "the largest goes back to its volumes";
     EXPECT_GE(missing.size(), 1u);
+}
+
+// auto's second group: a closed object whose inner volumes fill less than min_inner_fill of its
+// hull is loose and takes its triangles after the objects without an inner volume; a box (its
+// inner box fills its hull) keeps its volumes; with min_inner_fill 0 only the open box is
+// triangles. The budget keeps the open box first, and what went to triangles says why.
+TEST(BeamTree, AutomaticOccludersTakeLooseObjectsAfterThoseWithoutInnerVolumes) {
+    Scene scene = load_canonical("toplight");
+    MeshBuilder builder;
+    builder.box(glm::dmat4(1.0), dvec3(-0.5), dvec3(0.5), 1u);  // its -x side open
+    const auto open_box = std::make_shared<const Mesh>(builder.mesh);
+    scene.objects = {
+        make_object("box", shapes().box, glm::translate(glm::mat4(1.0f), {-1.0f, 0.5f, 0.0f})),
+        make_object("sphere", shapes().sphere, glm::translate(glm::mat4(1.0f), {1.0f, 0.5f, 0.0f})),
+        make_object("open box", open_box, glm::translate(glm::mat4(1.0f), {0.0f, 1.5f, 0.0f}))};
+    scene.bounds.occluders = Occluders::automatic;
+    scene.bounds.min_inner_fill = 0.0;
+    auto as_triangles = [&] {
+        bt::VolumeLibrary library(scene.bounds);
+        std::map<std::string, std::string> why;
+        for (const bt::ObjectVolumes& v : library.build(scene, nullptr)) {
+            EXPECT_EQ(v.triangles.empty(), v.why_triangles.empty()) << v.name;
+            if (!v.triangles.empty()) {
+                why[v.name] = v.why_triangles;
+            }
+        }
+        return why;
+    };
+    std::map<std::string, std::string> why = as_triangles();
+    ASSERT_EQ(why.size(), 1u) << "min_inner_fill 0: only the open box";
+    EXPECT_NE(why["open box"].find("no inner volume"), std::string::npos) << why["open box"];
+
+    scene.bounds.min_inner_fill = 0.6;
+    why = as_triangles();
+    ASSERT_EQ(why.size(), 2u)
+        << "the sphere's inner box fills little of its hull; the box's fills it";
+    EXPECT_EQ(why.count("box"), 0u);
+    EXPECT_NE(why["sphere"].find("loose: inner volumes fill"), std::string::npos) << why["sphere"];
+
+    scene.bounds.max_triangles = int(open_box->triangles.size());
+    why = as_triangles();
+    ASSERT_EQ(why.size(), 1u) << "within the budget, the object without an inner volume first";
+    EXPECT_EQ(why.count("open box"), 1u);
 }
 
 // The configuration behind tests/data/terrain-pieces, built on purpose: a thin triangular
@@ -307,31 +351,41 @@ TEST(BeamTree, PointsBehindATerrainCutIntoPiecesAreNotLit) {
 // pieces with inner boxes verified against their welded meshes, glass casting no shadow): on
 // 4 x 10^4 points around the light's cone, lit points see the light past every mesh that casts
 // shadows and unlit points do not (Embree), and the tree agrees with ray casts through its
-// volumes.
+// volumes and triangles: with volumes alone (pieces) and as the scene sets it (auto: the open and
+// loose objects as triangles).
 TEST(BeamTree, IsSoundOnTheHouse) {
-    const Scene scene = load_canonical("house");
-    bt::VolumeLibrary library({.pieces = true});
-    const std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
-    const bt::BeamTree tree(scene.light, volumes);
-    Oracles oracles;
-    add_volumes(volumes, scene, oracles);
-    std::mt19937 rng(37);
-    size_t counts[3] = {0, 0, 0};
-    int failures = 0;
-    for_each_decided_point(
-        tree, oracles, scene.light, rng, 40000, [&](const dvec3& p, const PointCheck& check) {
-            const bt::Region region = check.region, expected = check.expected;
-            const bool sound = check.sound;
-            ++counts[size_t(region)];
-            if ((region != expected || !sound) && ++failures <= 10) {
-                ADD_FAILURE() << "point (" << p.x << ", " << p.y << ", " << p.z << "): tree "
-                              << bt::to_string(region) << ", ray cast " << bt::to_string(expected)
-                              << (sound ? "" : ", unsound against the meshes");
-            }
-        });
-    EXPECT_EQ(failures, 0);
-    for (const size_t count : counts) {
-        EXPECT_GT(count, 300u) << "every region type must be exercised";
+    for (const Occluders occluders : {Occluders::volumes, Occluders::automatic}) {
+        Scene scene = load_canonical("house");
+        scene.bounds.occluders = occluders;
+        bt::VolumeLibrary library({.pieces = true});
+        const std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
+        const bt::BeamTree tree(scene.light, volumes);
+        Oracles oracles;
+        add_volumes(volumes, scene, oracles);
+        std::mt19937 rng(37);
+        size_t counts[3] = {0, 0, 0};
+        int failures = 0;
+        for_each_decided_point(
+            tree, oracles, scene.light, rng, 40000, [&](const dvec3& p, const PointCheck& check) {
+                const bt::Region region = check.region, expected = check.expected;
+                const bool sound = check.sound;
+                ++counts[size_t(region)];
+                if ((region != expected || !sound) && ++failures <= 10) {
+                    ADD_FAILURE() << to_string(occluders) << ": point (" << p.x << ", " << p.y
+                                  << ", " << p.z << "): tree " << bt::to_string(region)
+                                  << ", ray cast " << bt::to_string(expected)
+                                  << (sound ? "" : ", unsound against the meshes");
+                }
+            });
+        EXPECT_EQ(failures, 0) << to_string(occluders);
+        EXPECT_GT(counts[size_t(bt::Region::lit)], 300u) << to_string(occluders);
+        EXPECT_GT(counts[size_t(bt::Region::unlit)], 300u) << to_string(occluders);
+        if (occluders == Occluders::volumes) {
+            EXPECT_GT(counts[size_t(bt::Region::uncertain)], 300u) << "every region exercised";
+        } else {
+            EXPECT_LT(counts[size_t(bt::Region::uncertain)], counts[0] / 10)
+                << "auto leaves little uncertain";
+        }
     }
 }
 

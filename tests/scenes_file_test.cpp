@@ -178,6 +178,7 @@ std::vector<BadInput> bad_inputs() {
         {s + "[beamtree]\noccluders = \"mesh\"\n",
          "[beamtree] occluders: unknown value 'mesh' (volumes, triangles, auto)"},
         {s + "[beamtree]\nmax_triangles = -1\n", "[beamtree] max_triangles: "},
+        {s + "[beamtree]\nmin_inner_fill = 1.5\n", "[beamtree] min_inner_fill: must be in [0, 1]"},
         {s + "[beamtree]\nmax_outer_planes = 24\npieces = true\n",
          "[beamtree] pieces: convex pieces need full hulls, but max_outer_planes = 24"},
         {replace(s, "cone_angle = 30.0", "cone_angle = 95.0"), "[light] cone_angle: must be in"},

@@ -46,7 +46,9 @@ void Viewer::ui_regions() {
     }
     help_marker(
         "volumes: bounding volumes (uncertain between outer and inner); triangles: every "
-        "object's triangles, exact; auto: triangles for the objects without an inner volume");
+        "object's triangles, exact; auto: triangles for the objects without an inner volume, "
+        "then for those whose inner volumes fill less than min_inner_fill of their hulls, "
+        "within max_triangles");
     ImGui::Text("exact occluders: %zu objects, %zu triangles", exact_.objects, exact_.triangles);
 }
 
