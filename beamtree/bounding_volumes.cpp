@@ -583,8 +583,11 @@ double inner_fill(const LocalVolumes& local) {
 ExactOccluders exact_occluders(const std::vector<ObjectVolumes>& volumes) {
     ExactOccluders out;
     for (const ObjectVolumes& v : volumes) {
-        out.objects += v.triangles.empty() ? 0 : 1;
-        out.triangles += v.triangles.size();
+        if (!v.triangles.empty()) {
+            ++out.objects;
+            out.triangles += v.triangles.size();
+            out.list.push_back({v.name, v.triangles.size(), v.why_triangles});
+        }
     }
     return out;
 }

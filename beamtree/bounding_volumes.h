@@ -44,6 +44,12 @@ struct ObjectVolumes {
 // How many objects entered the tree as exact triangles, and those triangles.
 struct ExactOccluders {
     size_t objects = 0, triangles = 0;
+    struct Object {
+        std::string name;
+        size_t triangles = 0;
+        std::string why;  // ObjectVolumes::why_triangles
+    };
+    std::vector<Object> list;  // each object that went in as triangles, in scene order
 };
 ExactOccluders exact_occluders(const std::vector<ObjectVolumes>& volumes);
 

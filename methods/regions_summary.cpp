@@ -85,11 +85,8 @@ Row regions_summary_json(const RegionsSummaryInputs& in) {
         missing.push_back({{"object", m.object}, {"reason", m.reason}});
     }
     Row as_triangles = Row::array();
-    for (const bt::ObjectVolumes& v : in.volumes) {
-        if (!v.triangles.empty()) {
-            as_triangles.push_back(
-                {{"object", v.name}, {"triangles", v.triangles.size()}, {"why", v.why_triangles}});
-        }
+    for (const bt::ExactOccluders::Object& o : bt::exact_occluders(in.volumes).list) {
+        as_triangles.push_back({{"object", o.name}, {"triangles", o.triangles}, {"why", o.why}});
     }
     size_t inner_volumes = 0, outer_faces = 0;
     for (const bt::ObjectVolumes& v : in.volumes) {

@@ -50,6 +50,12 @@ void Viewer::ui_regions() {
         "then for those whose inner volumes fill less than min_inner_fill of their hulls, "
         "within max_triangles");
     ImGui::Text("exact occluders: %zu objects, %zu triangles", exact_.objects, exact_.triangles);
+    if (!exact_.list.empty() && ImGui::TreeNode("exact_objects", "which, and why")) {
+        for (const bt::ExactOccluders::Object& o : exact_.list) {
+            ImGui::BulletText("%s: %zu triangles; %s", o.name.c_str(), o.triangles, o.why.c_str());
+        }
+        ImGui::TreePop();
+    }
 }
 
 void Viewer::ui_light_view() {
