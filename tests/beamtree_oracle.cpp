@@ -124,6 +124,9 @@ int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds) {
         const size_t count = counts[size_t(region)];
         if (region == bt::Region::uncertain && options.occluders == Occluders::triangles) {
             EXPECT_EQ(count, 0u) << "exact occluders leave no decided point uncertain";
+        } else if (region == bt::Region::uncertain && options.occluders == Occluders::automatic &&
+                   options.min_inner_fill > 0.0) {
+            continue;  // the loose objects' triangles too: a few scenes may have none uncertain
         } else {
             EXPECT_GT(count, checked * 100u) << "every region type must be exercised";
         }
