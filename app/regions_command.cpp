@@ -112,11 +112,9 @@ int run_regions(const RegionsArguments& args) {
     timings.volumes_ms = ms_since(start);
     warn_missing_inner(scene, missing_inner, args.verbose);
     if (args.verbose) {
-        for (const bt::ObjectVolumes& v : volumes) {
-            if (!v.triangles.empty()) {
-                std::fprintf(stderr, "shaftlab: object '%s': %zu triangles as occluders: %s\n",
-                             v.name.c_str(), v.triangles.size(), v.why_triangles.c_str());
-            }
+        for (const bt::ExactOccluders::Object& o : bt::exact_occluders(volumes).list) {
+            std::fprintf(stderr, "shaftlab: object '%s': %zu triangles as occluders: %s\n",
+                         o.name.c_str(), o.triangles, o.why.c_str());
         }
     }
     start = Clock::now();

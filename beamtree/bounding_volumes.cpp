@@ -439,6 +439,30 @@ std::filesystem::path verified_box_file(uint64_t mesh_key, uint64_t box_key) {
     return cache_directory() / "volumes" / fmt::format("{:016x}-box-{:016x}.ok", mesh_key, box_key);
 }
 
+// The share of an object's outer volumes (its hull, or its pieces' hulls) that its automatic
+// inner volumes fill: 1 where nothing between them is uncertain (a box in its own hull, a flat
+// mesh that is its own inner volume). Inner volumes may overlap, which can only raise it.
+double inner_fill(const LocalVolumes& local) {
+    if (local.self_inner) {
+        return 1.0;
+    }
+    double outer = 0.0, inner = 0.0;
+    if (local.pieces.empty()) {
+        outer = local.outer.volume();
+        for (const ConvexVolume& v : local.automatic_inner) {
+            inner += v.volume();
+        }
+    } else {
+        for (const LocalPiece& piece : local.pieces) {
+            outer += piece.outer.volume();
+            for (const ConvexVolume& v : piece.inner) {
+                inner += v.volume();
+            }
+        }
+    }
+    return outer > 0.0 ? std::min(1.0, inner / outer) : 1.0;
+}
+
 }  // namespace
 
 uint64_t volumes_key(const Mesh& mesh, const BoundsSettings& options) {
@@ -504,7 +528,8 @@ const VolumeLibrary::Entry& VolumeLibrary::entry(const std::shared_ptr<const Mes
     }
     const std::lock_guard lock(mutex_);
     std::erase_if(cache_, [](const auto& item) { return item.second.mesh.expired(); });
-    auto [it, inserted] = cache_.emplace(mesh.get(), Entry{mesh, volumes, key});
+    auto [it, inserted] =
+        cache_.emplace(mesh.get(), Entry{mesh, volumes, key, inner_fill(*volumes)});
     if (inserted) {
         (computed ? stats_.computed : from_disk ? stats_.disk : stats_.memory) += 1;
     }
@@ -554,37 +579,12 @@ bool lacks_inner(const Object& object, const LocalVolumes& local) {
     return object.inner_boxes.empty() && !local.self_inner && !local.no_inner.empty();
 }
 
-// The share of an object's outer volumes (its hull, or its pieces' hulls) that its automatic
-// inner volumes fill: 1 where nothing between them is uncertain (a box in its own hull, a flat
-// mesh that is its own inner volume). Inner volumes may overlap, which can only raise it.
-double inner_fill(const LocalVolumes& local) {
-    if (local.self_inner) {
-        return 1.0;
-    }
-    double outer = 0.0, inner = 0.0;
-    if (local.pieces.empty()) {
-        outer = local.outer.volume();
-        for (const ConvexVolume& v : local.automatic_inner) {
-            inner += v.volume();
-        }
-    } else {
-        for (const LocalPiece& piece : local.pieces) {
-            outer += piece.outer.volume();
-            for (const ConvexVolume& v : piece.inner) {
-                inner += v.volume();
-            }
-        }
-    }
-    return outer > 0.0 ? std::min(1.0, inner / outer) : 1.0;
-}
-
 }  // namespace
 
 ExactOccluders exact_occluders(const std::vector<ObjectVolumes>& volumes) {
     ExactOccluders out;
     for (const ObjectVolumes& v : volumes) {
         if (!v.triangles.empty()) {
-            ++out.objects;
             out.triangles += v.triangles.size();
             out.list.push_back({v.name, v.triangles.size(), v.why_triangles});
         }
@@ -710,12 +710,13 @@ std::vector<std::string> VolumeLibrary::exact_objects(const Scene& scene) {
             exact[i] = "occluders = triangles";
             continue;
         }
-        const LocalVolumes& local = *entry(object.mesh).volumes;
+        const Entry& e = entry(object.mesh);
+        const LocalVolumes& local = *e.volumes;
         const size_t triangles = object.mesh->triangles.size();
         if (lacks_inner(object, local)) {
             candidates.push_back(
                 {0, triangles, i, fmt::format("no inner volume ({})", local.no_inner)});
-        } else if (const double fill = inner_fill(local);
+        } else if (const double fill = e.inner_fill;
                    object.inner_boxes.empty() && fill < b.min_inner_fill) {
             candidates.push_back(
                 {1, triangles, i,

@@ -43,7 +43,7 @@ struct ObjectVolumes {
 
 // How many objects entered the tree as exact triangles, and those triangles.
 struct ExactOccluders {
-    size_t objects = 0, triangles = 0;
+    size_t triangles = 0;  // of every object in `list`
     struct Object {
         std::string name;
         size_t triangles = 0;
@@ -132,6 +132,7 @@ private:
         std::weak_ptr<const Mesh> mesh;  // expired: the address may belong to another mesh
         std::shared_ptr<const LocalVolumes> volumes;
         uint64_t key = 0;
+        double inner_fill = 1.0;  // the share of the outer volumes the inner ones fill, once
     };
     LocalVolumes compute(const Mesh& mesh) const;
     const Entry& entry(const std::shared_ptr<const Mesh>& mesh);

@@ -143,7 +143,7 @@ std::string regions_summary_text(const RegionsSummaryInputs& in, double write_ms
         pieces += fmt::format("{}{} x {}", pieces.empty() ? "" : ", ", objects, count);
     }
     const bt::ExactOccluders exact = bt::exact_occluders(in.volumes);
-    const size_t exact_objects = exact.objects, exact_triangles = exact.triangles;
+    const size_t exact_objects = exact.list.size(), exact_triangles = exact.triangles;
     const int casting =
         std::accumulate(by_pieces.begin(), by_pieces.end(), int(exact_objects),
                         [](int sum, const auto& entry) { return sum + entry.second; });

@@ -49,7 +49,8 @@ void Viewer::ui_regions() {
         "object's triangles, exact; auto: triangles for the objects without an inner volume, "
         "then for those whose inner volumes fill less than min_inner_fill of their hulls, "
         "within max_triangles");
-    ImGui::Text("exact occluders: %zu objects, %zu triangles", exact_.objects, exact_.triangles);
+    ImGui::Text("exact occluders: %zu objects, %zu triangles", exact_.list.size(),
+                exact_.triangles);
     if (!exact_.list.empty() && ImGui::TreeNode("exact_objects", "which, and why")) {
         for (const bt::ExactOccluders::Object& o : exact_.list) {
             ImGui::BulletText("%s: %zu triangles; %s", o.name.c_str(), o.triangles, o.why.c_str());
