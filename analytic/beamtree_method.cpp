@@ -6,6 +6,7 @@
 #include "beamtree/beam_tree.h"
 #include "beamtree/boundary.h"
 #include "beamtree/regions.h"
+#include "beamtree/shaders/classify_interface.h"
 #include "frame/method_registry.h"
 #include "gl/platform.h"
 
@@ -31,7 +32,7 @@ public:
             "walk route: the order of the tree's nodes on the GPU; depth_first: preorder, a "
             "descent's next node next in memory; build: as the tree grew (results/walk.md)");
         walk_stack_ = declare_integer(
-            "walk_stack", 24, 1, 256,
+            "walk_stack", SL_WALK_STACK_DEFAULT, 1, 256,
             "walk route: entries of the walk's short stack (beamtree/shaders/walk.glsl); a walk "
             "that drops entries restarts at the root from where it stands (results/walk.md)");
     }

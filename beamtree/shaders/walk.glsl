@@ -15,7 +15,7 @@
 // piece. A leaf's occluder and stopper cut its piece into at most three parts, each classified
 // at its middle as classify() would (classify.glsl's leaf_region).
 #ifndef SL_WALK_STACK
-#define SL_WALK_STACK 24
+#define SL_WALK_STACK SL_WALK_STACK_DEFAULT
 #endif
 // Node visits before a walk gives up (a corrupt tree must not hang the GPU): the rest of the
 // segment is reported as uncertain, which the hybrids march and beamtree leaves dark.
