@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -38,13 +39,38 @@ Closest closest_approach(const EyeRay& ray, const dvec3& light) {
 
 }  // namespace
 
+namespace {
+
+// e(z) of a light at `position` shining `intensity` towards p, whatever its cone and range.
+dvec3 unbounded_density(const EyeRay& ray, double z, const dvec3& position, const dvec3& intensity,
+                        const Medium& medium) {
+    const dvec3 p = ray.origin + z * ray.direction;
+    const dvec3 from_light = p - position;
+    const double r = glm::length(from_light);
+    if (!(r > 0.0)) {
+        return dvec3(0.0);
+    }
+    // The scattering angle between the light's travel (L to p) and the way to the eye (-V).
+    const double cos_alpha = -glm::dot(from_light / r, ray.direction);
+    const double p_alpha = phase(medium.phase, medium.g, cos_alpha);
+    const dvec3 sigma_s(medium.sigma_s);
+    if (medium.model == MediumModel::simplified) {
+        // Nilsson eq. 2.12-2.15: T = 1 and I_p = I(Ω) / (a1 r² + a0).
+        return sigma_s * p_alpha * intensity / (double(medium.a1) * r * r + double(medium.a0));
+    }
+    // Nilsson eq. 2.6-2.8: T(z) σs p I(Ω) T(r) / r².
+    const dvec3 sigma_t(medium.sigma_t());
+    return glm::exp(-sigma_t * (z + r)) * sigma_s * p_alpha * intensity / (r * r);
+}
+
+}  // namespace
+
 dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light,
                          const Medium& medium) {
     const dvec3 p = ray.origin + z * ray.direction;
     const dvec3 from_light = p - dvec3(light.position);
-    const double r = glm::length(from_light);
     const double axial = glm::dot(from_light, axis(light));
-    if (!(r > 0.0) || axial < light.near || axial > light.far) {
+    if (axial < light.near || axial > light.far) {
         return dvec3(0.0);
     }
     // The cone factor in double precision (SpotLight::cone_factor's float would leave noise
@@ -53,18 +79,15 @@ dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light,
     if (cone == 0.0) {
         return dvec3(0.0);
     }
-    // The scattering angle between the light's travel (L to p) and the way to the eye (-V).
-    const double cos_alpha = -glm::dot(from_light / r, ray.direction);
-    const double p_alpha = phase(medium.phase, medium.g, cos_alpha);
-    const dvec3 sigma_s(medium.sigma_s), intensity(light.intensity);
-    if (medium.model == MediumModel::simplified) {
-        // Nilsson eq. 2.12-2.15: T = 1 and I_p = I(Ω) / (a1 r² + a0).
-        return sigma_s * p_alpha * intensity * cone /
-               (double(medium.a1) * r * r + double(medium.a0));
+    return cone * unbounded_density(ray, z, dvec3(light.position), dvec3(light.intensity), medium);
+}
+
+dvec3 scattering_density(const EyeRay& ray, double z, const PointLight& light,
+                         const Medium& medium) {
+    if (!light.in_range(ray.origin + z * ray.direction)) {
+        return dvec3(0.0);
     }
-    // Nilsson eq. 2.6-2.8: T(z) σs p I(Ω) T(r) / r².
-    const dvec3 sigma_t(medium.sigma_t());
-    return glm::exp(-sigma_t * (z + r)) * sigma_s * p_alpha * intensity * cone / (r * r);
+    return unbounded_density(ray, z, dvec3(light.position), dvec3(light.intensity), medium);
 }
 
 double simplified_cos_alpha(double kappa, double beta) {
@@ -74,7 +97,85 @@ double simplified_cos_alpha(double kappa, double beta) {
 }
 
 Interval light_interval(const EyeRay& ray, const SpotLight& light, double t_max) {
+    if (light.shape == SpotShape::pyramid) {
+        return pyramid_interval(ray, light, t_max);
+    }
     return cone_interval(ray, light, glm::radians(double(light.cone_half_angle_degrees)), t_max);
+}
+
+namespace {
+
+// Clips [lo, hi] to where a + b·t >= 0; false when nothing is left.
+bool clip_linear(double a, double b, double& lo, double& hi) {
+    if (b == 0.0) {
+        return a >= 0.0 && hi > lo;
+    }
+    const double root = -a / b;
+    if (b > 0.0) {
+        lo = std::max(lo, root);
+    } else {
+        hi = std::min(hi, root);
+    }
+    return hi > lo;
+}
+
+}  // namespace
+
+Interval pyramid_interval(const EyeRay& ray, const SpotLight& light, double t_max) {
+    // Six half-spaces, each linear in t: near <= dot(q, a) <= far, and ±dot(q, s) <= tan θ
+    // dot(q, a) for the sides s = r, u, with q = w + tV (the frame of SpotLight::cone_factor).
+    const dvec3 a = axis(light);
+    const dvec3 up(light.up());
+    const dvec3 u = glm::normalize(up - glm::dot(up, a) * a);
+    const dvec3 r = glm::cross(a, u);
+    const double slope = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
+    const dvec3 w = ray.origin - dvec3(light.position);
+    const dvec3& v = ray.direction;
+    double lo = 0.0, hi = t_max;
+    const double wa = glm::dot(w, a), va = glm::dot(v, a);
+    bool inside =
+        clip_linear(wa - light.near, va, lo, hi) && clip_linear(light.far - wa, -va, lo, hi);
+    for (const dvec3& side : {r, -r, u, -u}) {
+        inside = inside && clip_linear(slope * wa - glm::dot(w, side),
+                                       slope * va - glm::dot(v, side), lo, hi);
+    }
+    return inside ? Interval{lo, hi} : Interval{};
+}
+
+int point_light_intervals(const EyeRay& ray, const PointLight& light, double t_max,
+                          Interval out[2]) {
+    // Inside the far cube: three slabs; outside the near cube: the complement of three slabs,
+    // which cuts the far cube's interval into at most two.
+    const dvec3 w = ray.origin - dvec3(light.position);
+    const dvec3& v = ray.direction;
+    auto slabs = [&](double half, double lo, double hi) -> Interval {
+        for (int k = 0; k < 3; ++k) {
+            if (!clip_linear(half - w[k], -v[k], lo, hi) ||
+                !clip_linear(half + w[k], v[k], lo, hi)) {
+                return {};
+            }
+        }
+        return {lo, hi};
+    };
+    const Interval outer = slabs(light.far, 0.0, t_max);
+    if (outer.empty()) {
+        return 0;
+    }
+    // The near cube's interval over the whole line, so that its ends are where the ray crosses it.
+    const Interval inner =
+        slabs(light.near, -std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
+    if (inner.empty()) {
+        out[0] = outer;
+        return 1;
+    }
+    int count = 0;
+    for (const Interval part : {Interval{outer.begin, std::min(outer.end, inner.begin)},
+                                Interval{std::max(outer.begin, inner.end), outer.end}}) {
+        if (!part.empty()) {
+            out[count++] = part;
+        }
+    }
+    return count;
 }
 
 Interval cone_interval(const EyeRay& ray, const SpotLight& light, double half_angle, double t_max) {
@@ -146,19 +247,17 @@ namespace {
 
 // The hard-edge closed forms per channel, or quadrature of e(z) where none holds. [z0, z1] lies
 // inside the cone interval already.
-dvec3 hard_edge_integral(const EyeRay& ray, double z0, double z1, const SpotLight& light,
-                         const Medium& medium) {
-    const Closest closest = closest_approach(ray, dvec3(light.position));
+dvec3 hard_edge_integral(const EyeRay& ray, double z0, double z1, const dvec3& position,
+                         const dvec3& light_intensity, const Medium& medium) {
+    const Closest closest = closest_approach(ray, position);
     const double h = closest.h, z_s = closest.z_s, grazing = closest.grazing;
     const bool isotropic = medium.phase == PhaseFunction::isotropic;
     const double a0 = medium.a0, a1 = medium.a1;
     auto p = [&](double cos_alpha) { return phase(medium.phase, medium.g, cos_alpha); };
-    SpotLight hard = light;  // for the quadrature fallback: [z0, z1] is inside the cone
-    hard.falloff_degrees = 0.0f;
     dvec3 result(0.0);
     for (int c = 0; c < 3; ++c) {
         const double sigma_s = medium.sigma_s[c];
-        const double intensity = light.intensity[c];
+        const double intensity = light_intensity[c];
         if (sigma_s == 0.0 || intensity == 0.0) {
             continue;
         }
@@ -220,8 +319,11 @@ dvec3 hard_edge_integral(const EyeRay& ray, double z0, double z1, const SpotLigh
             continue;
         }
         // No closed form: adaptive quadrature of e(z) itself.
-        result[c] = integrate([&](double z) { return scattering_density(ray, z, hard, medium)[c]; },
-                              z0, z1, 1e-12);
+        result[c] = integrate(
+            [&](double z) {
+                return unbounded_density(ray, z, position, light_intensity, medium)[c];
+            },
+            z0, z1, 1e-12);
     }
     return result;
 }
@@ -265,12 +367,27 @@ dvec3 in_scattering_hard_edge(const EyeRay& ray, double z0, double z1, const Spo
     if (!(z1 > z0)) {
         return dvec3(0.0);
     }
-    return hard_edge_integral(ray, z0, z1, light, medium);
+    return hard_edge_integral(ray, z0, z1, dvec3(light.position), dvec3(light.intensity), medium);
+}
+
+dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const PointLight& light,
+                    const Medium& medium) {
+    Interval parts[2];
+    const int count = point_light_intervals(ray, light, std::max(z0, z1), parts);
+    dvec3 sum(0.0);
+    for (int i = 0; i < count; ++i) {
+        const double a = std::max(z0, parts[i].begin), b = std::min(z1, parts[i].end);
+        if (b > a) {
+            sum += hard_edge_integral(ray, a, b, dvec3(light.position), dvec3(light.intensity),
+                                      medium);
+        }
+    }
+    return sum;
 }
 
 dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& light,
                     const Medium& medium) {
-    if (light.falloff_degrees <= 0.0f) {
+    if (!light.smooth_edge()) {
         return in_scattering_hard_edge(ray, z0, z1, light, medium);
     }
     // The shell by quadrature of e(z), cut where the cone factor has its kinks (the inner and
@@ -302,7 +419,7 @@ dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& li
 
 dvec3 in_scattering_pieces(const EyeRay& ray, double z0, double z1, const SpotLight& light,
                            const Medium& medium, int pieces) {
-    if (light.falloff_degrees <= 0.0f) {
+    if (!light.smooth_edge()) {
         return in_scattering_hard_edge(ray, z0, z1, light, medium);
     }
     return smooth_edge_integral(ray, z0, z1, light, medium, [&](Interval shell, Closest closest) {
@@ -324,7 +441,8 @@ dvec3 in_scattering_pieces(const EyeRay& ray, double z0, double z1, const SpotLi
             const double weight =
                 light.cone_factor(ray.origin + z_at(0.5 * (ta + tb)) * ray.direction);
             if (weight > 0.0)
-                sum += weight * hard_edge_integral(ray, lo, hi, light, medium);
+                sum += weight * hard_edge_integral(ray, lo, hi, dvec3(light.position),
+                                                   dvec3(light.intensity), medium);
         }
         return sum;
     });

@@ -58,10 +58,19 @@ double simplified_cos_alpha(double kappa, double beta);
 
 // e(z) per channel at distance z along the ray, light cone factor and range included.
 dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light, const Medium& medium);
+// The same for a point light (no cone; its range is the shell between its cubes).
+dvec3 scattering_density(const EyeRay& ray, double z, const PointLight& light,
+                         const Medium& medium);
 
 // The points of the ray within [0, t_max] inside the light's exact (convex) cone and between its
 // near and far range along the axis: one interval, possibly empty.
 Interval light_interval(const EyeRay& ray, const SpotLight& light, double t_max);
+// light_interval of a pyramid (SpotShape::pyramid): inside its four sides and the range.
+Interval pyramid_interval(const EyeRay& ray, const SpotLight& light, double t_max);
+// The parts of the ray within [0, t_max] between a point light's near and far cubes (at most
+// two, in order); returns how many.
+int point_light_intervals(const EyeRay& ray, const PointLight& light, double t_max,
+                          Interval out[2]);
 // The same for a cone of another half-angle (radians) about the light's axis.
 Interval cone_interval(const EyeRay& ray, const SpotLight& light, double half_angle, double t_max);
 
@@ -73,6 +82,11 @@ constexpr int kFalloffPieces = 16;
 
 // ∫ e(z) dz over [z0, z1] ∩ light_interval, the whole of it taken as visible.
 dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const SpotLight& light,
+                    const Medium& medium);
+
+// ∫ e(z) dz of a point light over [z0, z1] within its range, the whole of it taken as visible:
+// the spot light's closed forms without the cone (point_light_intervals cut the ray).
+dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const PointLight& light,
                     const Medium& medium);
 
 // The closed forms above for a hard cone edge (the scene's falloff ignored), over [z0, z1] ∩

@@ -13,6 +13,24 @@
 
 namespace sl::app {
 
+namespace {
+
+// The scene's lights by type: "spot cone 30 deg" for one, "lights: 2 spot, 1 point" for several.
+std::string describe_lights(const Scene& scene) {
+    if (scene.lights.empty()) {
+        return fmt::format("spot {} {:.0f} deg",
+                           scene.light.shape == SpotShape::pyramid ? "pyramid" : "cone",
+                           scene.light.cone_half_angle_degrees);
+    }
+    size_t spots = 0, points = 0;
+    for (const LightSource& light : scene.lights) {
+        ++(std::holds_alternative<SpotLight>(light) ? spots : points);
+    }
+    return fmt::format("lights: {} spot, {} point", spots, points);
+}
+
+}  // namespace
+
 Command add_scenes_command(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "scenes",
@@ -46,12 +64,9 @@ Command add_scenes_command(CLI::App& app) {
                     ? fmt::format("  animated {:g}-{:g} s at {:g} fps", scene.animation->start,
                                   scene.animation->end, scene.animation->fps)
                     : "";
-            fmt::print(
-                "{:<16} {:>3} objects {:>8} triangles  light cone {:.0f} deg  medium {}{}  "
-                "{}\n",
-                name, scene.objects.size(), scene.triangle_count(),
-                scene.light.cone_half_angle_degrees, to_string(scene.medium.model), motion,
-                scene.source.string());
+            fmt::print("{:<16} {:>3} objects {:>8} triangles  {}  medium {}{}  {}\n", name,
+                       scene.objects.size(), scene.triangle_count(), describe_lights(scene),
+                       to_string(scene.medium.model), motion, scene.source.string());
         }
         if (!*names_only) {
             fmt::print("multiple:N  generated: N objects under one spot light\n");

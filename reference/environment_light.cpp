@@ -14,6 +14,7 @@ namespace sl::reference {
 Scene environment_only_scene(const Scene& scene) {
     Scene only = scene;
     only.light.intensity = glm::vec3(0.0f);
+    only.lights.clear();  // every light off: `light` alone, dark
     only.medium.sigma_s = glm::vec3(0.0f);
     only.medium.sigma_a = glm::vec3(0.0f);
     only.ambient = glm::vec3(0.0f);

@@ -197,6 +197,11 @@ Animation read_animation(const toml::table& table, const std::string& origin, co
         }
     };
     double light_previous = 0.0, camera_previous = 0.0;
+    if (!scene.lights.empty() && r.has("light")) {
+        r.error("light",
+                "[[animation.light]] moves the scene's one light ([light]); this scene "
+                "has [[lights]], which take no animation keys yet");
+    }
     each_key("light", [&](TomlTableReader& k, size_t i) {
         const double t = keys.time(k, light_previous, i == 0);
         read_light_key(k, t, a);
@@ -343,8 +348,9 @@ SceneChange scene_change(const Scene& before, const Scene& after) {
     change.camera = before.camera != after.camera;
     change.light_geometry = l0.position != l1.position || l0.target != l1.target ||
                             l0.cone_half_angle_degrees != l1.cone_half_angle_degrees ||
-                            l0.near != l1.near || l0.far != l1.far;
-    change.light = l0 != l1;
+                            l0.near != l1.near || l0.far != l1.far || l0.shape != l1.shape ||
+                            before.lights != after.lights;
+    change.light = l0 != l1 || before.lights != after.lights;
     change.medium = before.medium != after.medium;
     const size_t n = std::min(before.objects.size(), after.objects.size());
     for (size_t i = 0; i < n; ++i) {

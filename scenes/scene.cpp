@@ -8,6 +8,9 @@
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/check.h"
+#include "core/error.h"
+
 namespace sl {
 
 glm::mat4 Placement::matrix() const {
@@ -62,6 +65,19 @@ namespace {
 template <typename T>
 T cone_factor_in(const SpotLight& light, const glm::vec<3, T>& p) {
     using V = glm::vec<3, T>;
+    if (light.shape == SpotShape::pyramid) {
+        // Inside the four sides: |x| and |y| in the light's frame at most tan θ times the depth.
+        const V d = glm::normalize(V(light.direction()));  // as analytic::pyramid_interval's
+        const V u = glm::normalize(V(light.up()) - glm::dot(V(light.up()), d) * d);
+        const V r = glm::cross(d, u);
+        const V q = p - V(light.position);
+        const T depth = glm::dot(q, d);
+        const T reach = T(std::tan(glm::radians(double(light.cone_half_angle_degrees)))) * depth;
+        return depth > T(0) && std::abs(glm::dot(q, r)) <= reach &&
+                       std::abs(glm::dot(q, u)) <= reach
+                   ? T(1)
+                   : T(0);
+    }
     const T cos_angle = glm::dot(glm::normalize(p - V(light.position)), V(light.direction()));
     const T angle = glm::degrees(std::acos(std::clamp(cos_angle, T(-1), T(1))));
     const T cone = T(light.cone_half_angle_degrees), falloff = T(light.falloff_degrees);
@@ -106,6 +122,92 @@ bool distinct_in_float(glm::vec3 from, glm::vec3 to) {
     const glm::dvec3 a(from), b(to);
     const double scale = std::max({1.0, glm::length(a), glm::length(b)});
     return glm::length(b - a) > 1e-5 * scale;
+}
+
+std::array<SpotLight, 6> PointLight::faces() const {
+    // The target one step along the axis changes one coordinate alone, so that the direction is
+    // the axis to the last bit wherever the light is.
+    const float step = std::max(1.0f, 2.0f * glm::length(position));
+    const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    std::array<SpotLight, 6> faces;
+    for (size_t i = 0; i < 6; ++i) {
+        SpotLight& face = faces[i];
+        face.position = position;
+        face.target = position + step * axes[i];
+        face.cone_half_angle_degrees = 45.0f;
+        face.near = near;
+        face.far = far;
+        face.intensity = intensity;
+        face.falloff_degrees = 0.0f;
+        face.shape = SpotShape::pyramid;
+    }
+    return faces;
+}
+
+bool PointLight::in_range(const glm::dvec3& p) const {
+    const glm::dvec3 q = glm::abs(p - glm::dvec3(position));
+    const double extent = std::max({q.x, q.y, q.z});
+    return extent >= double(near) && extent <= double(far);
+}
+
+const char* light_type(const LightSource& light) {
+    return std::holds_alternative<SpotLight>(light) ? "spot" : "point";
+}
+
+std::vector<LightSource> Scene::light_sources() const {
+    if (lights.empty()) {
+        return {light};
+    }
+    return lights;
+}
+
+namespace {
+
+// Spot lights as they are, point lights as their six faces, in order.
+std::vector<SpotLight> spots_of(const std::vector<LightSource>& sources) {
+    std::vector<SpotLight> spots;
+    for (const LightSource& source : sources) {
+        if (const auto* spot = std::get_if<SpotLight>(&source)) {
+            spots.push_back(*spot);
+        } else {
+            const std::array<SpotLight, 6> faces = std::get<PointLight>(source).faces();
+            spots.insert(spots.end(), faces.begin(), faces.end());
+        }
+    }
+    return spots;
+}
+
+}  // namespace
+
+std::vector<SpotLight> Scene::spot_lights() const {
+    if (lights.empty()) {
+        return {light};
+    }
+    std::vector<SpotLight> spots = spots_of(lights);
+    SL_CHECK(!spots.empty() && spots.front() == light);  // as set_lights() left them
+    return spots;
+}
+
+Scene Scene::for_light(size_t index) const {
+    const std::vector<SpotLight> spots = spot_lights();
+    SL_CHECK_INDEX(index, spots.size());
+    Scene view = *this;
+    view.light = spots[index];
+    view.lights.clear();
+    return view;
+}
+
+void Scene::set_lights(std::vector<LightSource> sources) {
+    if (sources.empty()) {
+        fail("a scene needs at least one light");
+    }
+    if (sources.size() == 1 && std::holds_alternative<SpotLight>(sources.front())) {
+        light = std::get<SpotLight>(sources.front());
+        lights.clear();
+        return;
+    }
+    light = spots_of(sources).front();
+    lights = std::move(sources);
 }
 
 size_t Scene::triangle_count() const {

@@ -3,10 +3,12 @@
 // and a homogeneous participating medium (docs/design.md §1). Plain data plus the derived
 // quantities (matrices, cone factor) that the GPU and CPU paths must agree on.
 
+#include <array>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <glm/ext/matrix_double4x4.hpp>
@@ -97,6 +99,11 @@ private:
     int height_;
 };
 
+// The emission of a spot light: a cone (Nilsson eq. 2.9) or the square pyramid circumscribing it
+// (Moschos §3.2.1: "either conical or pyramidal"), whose sides are the influence pyramid's: six
+// pyramids of half-angle 45° tile a point light's cube (PointLight::faces).
+enum class SpotShape { cone, pyramid };
+
 struct SpotLight {
     glm::vec3 position{0.0f, 5.0f, 0.0f};
     glm::vec3 target{0.0f};
@@ -105,21 +112,47 @@ struct SpotLight {
     float far = 20.0f;  // the backplate: nothing is lit beyond it
     glm::vec3 intensity{1.0f};
     float falloff_degrees = 0.0f;  // 0: hard edge (Nilsson eq. 2.9); else smooth over this width
+    SpotShape shape = SpotShape::cone;  // a pyramid has a hard edge (falloff 0)
 
     bool operator==(const SpotLight&) const = default;
+    // A cone with a falloff width (a pyramid's edge is always hard).
+    bool smooth_edge() const { return shape == SpotShape::cone && falloff_degrees > 0.0f; }
     glm::vec3 direction() const;
     // An up vector not parallel to the axis, fixed so that the shadow map never flips.
     glm::vec3 up() const;
     glm::mat4 view() const;
     // The square frustum circumscribing the cone (the influence pyramid), near to far.
     glm::mat4 projection() const;
-    // I(Ω) / I of eq. 2.9 for the direction from the light to p, with the optional falloff; in
-    // double precision for quadrature (float would leave noise it cannot converge on).
+    // I(Ω) / I of eq. 2.9 for the direction from the light to p, with the optional falloff (a
+    // pyramid: 1 inside its four sides, 0 outside); in double precision for quadrature (float
+    // would leave noise it cannot converge on).
     float cone_factor(glm::vec3 p) const;
     double cone_factor(const glm::dvec3& p) const;
     // True when p lies inside the influence pyramid between near and far.
     bool in_influence_volume(glm::vec3 p) const;
 };
+
+// A point light (docs/scenes.md): it shines every way, and scatters between two cubes centred on
+// it, of half-sizes `near` and `far` (a cube map's frusta, so that its six pyramidal faces tile
+// that shell exactly).
+struct PointLight {
+    glm::vec3 position{0.0f, 5.0f, 0.0f};
+    float near = 0.1f;
+    float far = 20.0f;
+    glm::vec3 intensity{1.0f};  // W/sr, as a spot light's
+
+    bool operator==(const PointLight&) const = default;
+    // The six spot lights of half-angle 45° and shape pyramid, along +x, -x, +y, -y, +z, -z (a cube
+    // map's faces), that sum to this light: each face's up vector (SpotLight::up) is axis-aligned,
+    // so neighbouring faces share their sides.
+    std::array<SpotLight, 6> faces() const;
+    // True when p lies between the two cubes.
+    bool in_range(const glm::dvec3& p) const;
+};
+
+// One light as a scene file declares it ([light], or one [[lights]] entry).
+using LightSource = std::variant<SpotLight, PointLight>;
+const char* light_type(const LightSource& light);  // "spot", "point"
 
 enum class PhaseFunction {
     isotropic,
@@ -222,7 +255,12 @@ struct Scene {
     std::string name;
     std::filesystem::path source;  // the file it was read from, empty for generated scenes
     Camera camera;
+    // The light every part that takes one light reads: the scene's one spot light, or, with
+    // several lights, the first of spot_lights().
     SpotLight light;
+    // Several lights ([[lights]] in scene files; docs/design.md §18), as declared: empty when the
+    // scene's one light is `light`. Otherwise `light` is spot_lights()[0].
+    std::vector<LightSource> lights;
     Medium medium;
     // Constant incident radiance from every direction: a surface reflects albedo * ambient.
     glm::vec3 ambient{0.0f};
@@ -234,6 +272,18 @@ struct Scene {
     // Keyframed tracks ([animation] in scene files); null for a still scene. The scene's own
     // values are what the tracks leave alone.
     std::shared_ptr<const Animation> animation;
+
+    // Every light as the methods take it, spot lights as they are and point lights as their six
+    // faces: {light} for a scene of one light. I_s is the sum of each one's.
+    std::vector<SpotLight> spot_lights() const;
+    // The lights as declared: {light} for a scene of one light.
+    std::vector<LightSource> light_sources() const;
+    // This scene lit by spot_lights()[index] alone (what each light's tree, shadow map and method
+    // instance see).
+    Scene for_light(size_t index) const;
+    // Sets `lights` and `light` together; one spot light alone is kept as `light` with `lights`
+    // empty. Throws sl::Error when `sources` is empty.
+    void set_lights(std::vector<LightSource> sources);
 
     size_t triangle_count() const;
     bool has_translucent_objects() const;

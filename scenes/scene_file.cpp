@@ -95,6 +95,52 @@ void read_models(TableReader& top, const std::string& origin, const fs::path& ba
     }
 }
 
+// The scene's lights: [light] (one spot light), or [[lights]] (any number of spot and point
+// lights), not both.
+void read_lights(TableReader& top, const std::string& origin, Scene& scene) {
+    const toml::array* lights = top.array("lights");
+    const toml::table* light = top.table("light");
+    if (lights && light) {
+        fail(
+            "{}:{}: [light] and [[lights]] both given: write one spot light as [light], or every "
+            "light as a [[lights]] entry",
+            origin, light->source().begin.line);
+    }
+    if (!lights) {
+        if (!light) {
+            fail(
+                "{}: missing the light: a [light] table (one spot light) or [[lights]] entries "
+                "(type = \"spot\" or \"point\")",
+                origin);
+        }
+        scene.light = read_light(TableReader(*light, origin, "[light]"));
+        return;
+    }
+    if (lights->empty()) {
+        fail("{}: [[lights]] is empty: a scene needs at least one light", origin);
+    }
+    std::vector<LightSource> sources;
+    for (size_t i = 0; i < lights->size(); ++i) {
+        const toml::table* table = (*lights)[i].as_table();
+        if (!table) {
+            fail("{}: lights must be an array of tables ([[lights]])", origin);
+        }
+        TableReader r(*table, origin, fmt::format("[[lights]] #{}", i + 1));
+        const std::string type = r.string("type", "");
+        if (type == "spot") {
+            sources.emplace_back(read_light(std::move(r)));
+        } else if (type == "point") {
+            sources.emplace_back(read_point_light(std::move(r)));
+        } else {
+            r.error("type", type.empty() ? "missing: expected \"spot\" or \"point\""
+                                         : fmt::format("unknown light type {}: expected \"spot\" "
+                                                       "or \"point\"",
+                                                       quote(type)));
+        }
+    }
+    scene.set_lights(std::move(sources));
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& origin, const fs::path& base_dir,
@@ -121,7 +167,7 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
         return table ? *table : empty_table();
     };
     scene.camera = read_camera(TableReader(required("camera"), origin, "[camera]"));
-    scene.light = read_light(TableReader(required("light"), origin, "[light]"));
+    read_lights(top, origin, scene);
     scene.medium = read_medium(TableReader(optional("medium"), origin, "[medium]"));
     if (const toml::table* environment = top.table("environment")) {
         scene.environment =

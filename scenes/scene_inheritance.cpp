@@ -117,6 +117,15 @@ toml::table resolve_base(toml::table root, const std::string& origin, const fs::
             environment->insert_or_assign("file", fs::absolute(base.dir / *file).string());
         }
     }
+    // The lights are one thing written two ways: a scene's own [[lights]] replaces its base's
+    // [light], and its own [light] its base's [[lights]] (a [light] over a [light] merges key by
+    // key, as every table does).
+    if (root.contains("lights")) {
+        merged.erase("light");
+    }
+    if (root.contains("light")) {
+        merged.erase("lights");
+    }
     scene->erase("base");
     if (toml::table* merged_scene = merged["scene"].as_table()) {
         merged_scene->erase("name");  // the derived scene is named by its own file

@@ -58,11 +58,28 @@ SpotLight read_light(TableReader r) {
     l.far = float(r.number_in("far", l.far, l.near, 1e9, true));
     l.intensity = r.non_negative_vec3("intensity", l.intensity);
     l.falloff_degrees = float(r.number_in("falloff", 0.0, 0.0, l.cone_half_angle_degrees));
+    l.shape = parse_enum(r, "shape", l.shape,
+                         {{"cone", SpotShape::cone}, {"pyramid", SpotShape::pyramid}});
+    if (l.shape == SpotShape::pyramid && l.falloff_degrees > 0.0f) {
+        r.error("falloff",
+                "a pyramid has a hard edge: falloff is for shape = \"cone\" (write falloff = 0, "
+                "or shape = \"cone\")");
+    }
     if (!distinct_in_float(l.position, l.target)) {
         r.error("target",
                 "light target equals its position (or is too near it for float32 to "
                 "give a direction)");
     }
+    r.finish();
+    return l;
+}
+
+PointLight read_point_light(TableReader r) {
+    PointLight l;
+    l.position = r.vec3("position");
+    l.near = float(r.number_in("near", l.near, 0.0, 1e9, true));
+    l.far = float(r.number_in("far", l.far, l.near, 1e9, true));
+    l.intensity = r.non_negative_vec3("intensity", l.intensity);
     r.finish();
     return l;
 }

@@ -45,6 +45,8 @@ Enum parse_enum(TableReader& reader, std::string_view key, Enum fallback,
 
 Camera read_camera(TableReader r);
 SpotLight read_light(TableReader r);
+// A [[lights]] entry of type "point" (its `type` key already read).
+PointLight read_point_light(TableReader r);
 Medium read_medium(TableReader r);
 Environment read_environment(TableReader r, const std::filesystem::path& base_dir,
                              const SceneSearchPaths& paths);

@@ -39,12 +39,29 @@ std::string scene_view_toml(const Scene& scene, const std::string& base, const s
         "exposure = {}\n\n",
         toml_vec3(c.position), toml_vec3(c.target), toml_vec3(c.up), toml_float(c.fov_y_degrees),
         toml_float(c.near), toml_float(c.far), toml_float(c.exposure));
-    text += fmt::format(
-        "[light]\nposition = {}\ntarget = {}\ncone_angle = {}\nnear = {}\nfar = {}\n"
-        "intensity = {}\nfalloff = {}\n\n",
-        toml_vec3(l.position), toml_vec3(l.target), toml_float(l.cone_half_angle_degrees),
-        toml_float(l.near), toml_float(l.far), toml_vec3(l.intensity),
-        toml_float(l.falloff_degrees));
+    auto spot = [&](const SpotLight& light, const char* header) {
+        text += fmt::format(
+            "{}position = {}\ntarget = {}\ncone_angle = {}\nnear = {}\nfar = {}\n"
+            "intensity = {}\nfalloff = {}\nshape = {}\n\n",
+            header, toml_vec3(light.position), toml_vec3(light.target),
+            toml_float(light.cone_half_angle_degrees), toml_float(light.near),
+            toml_float(light.far), toml_vec3(light.intensity), toml_float(light.falloff_degrees),
+            toml_quoted(light.shape == SpotShape::pyramid ? "pyramid" : "cone"));
+    };
+    if (scene.lights.empty()) {
+        spot(l, "[light]\n");
+    }
+    for (const LightSource& source : scene.lights) {
+        if (const auto* s = std::get_if<SpotLight>(&source)) {
+            spot(*s, "[[lights]]\ntype = \"spot\"\n");
+            continue;
+        }
+        const PointLight& p = std::get<PointLight>(source);
+        text += fmt::format(
+            "[[lights]]\ntype = \"point\"\nposition = {}\nnear = {}\nfar = {}\nintensity = "
+            "{}\n\n",
+            toml_vec3(p.position), toml_float(p.near), toml_float(p.far), toml_vec3(p.intensity));
+    }
     text += fmt::format(
         "[medium]\nsigma_s = {}\nsigma_a = {}\nphase = {}\ng = {}\nmodel = {}\na0 = {}\n"
         "a1 = {}\n",

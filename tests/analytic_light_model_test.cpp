@@ -2,6 +2,7 @@
 // the exact-cone clipping matches a brute-force scan, and every closed form of the in-scattering
 // integral matches adaptive quadrature of e(z) to 1e-6 relative.
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -213,6 +214,180 @@ TEST(InScattering, ClosedFormsMatchQuadrature) {
     }
     for (const int count : lit) {
         EXPECT_GE(count, 60) << "every case must be exercised by rays that see the light";
+    }
+}
+
+// The transitions of `inside(z)` along [0, t_max]: a dense scan refined by bisection.
+template <typename Inside>
+std::vector<double> scanned_transitions(const Inside& inside, double t_max) {
+    std::vector<double> result;
+    constexpr int kSteps = 20000;
+    bool previous = inside(0.0);
+    for (int i = 1; i <= kSteps; ++i) {
+        double a = t_max * (i - 1) / kSteps, b = t_max * i / kSteps;
+        const bool current = inside(b);
+        if (current != previous) {
+            for (int k = 0; k < 60; ++k) {
+                const double m = 0.5 * (a + b);
+                (inside(m) == previous ? a : b) = m;
+            }
+            result.push_back(0.5 * (a + b));
+        }
+        previous = current;
+    }
+    return result;
+}
+
+// The intervals where `inside` holds along [0, t_max], from the scan.
+template <typename Inside>
+std::vector<analytic::Interval> scanned_intervals(const Inside& inside, double t_max) {
+    std::vector<double> ends;
+    if (inside(0.0))
+        ends.push_back(0.0);
+    for (const double t : scanned_transitions(inside, t_max))
+        ends.push_back(t);
+    if (ends.size() % 2 == 1)
+        ends.push_back(t_max);
+    std::vector<analytic::Interval> intervals;
+    for (size_t i = 0; i + 1 < ends.size(); i += 2)
+        intervals.push_back({ends[i], ends[i + 1]});
+    return intervals;
+}
+
+SpotLight random_pyramid(std::mt19937& rng) {
+    SpotLight light = random_light(rng);
+    light.shape = SpotShape::pyramid;
+    return light;
+}
+
+PointLight random_point_light(std::mt19937& rng) {
+    PointLight light;
+    light.position = glm::vec3(uniform(rng, -2, 2), uniform(rng, 2, 5), uniform(rng, -2, 2));
+    light.near = float(uniform(rng, 0.05, 1.5));
+    light.far = float(uniform(rng, 3, 12));
+    light.intensity = glm::vec3(uniform(rng, 1, 50), uniform(rng, 1, 50), uniform(rng, 1, 50));
+    return light;
+}
+
+// A pyramid light's interval (its four sides and its range) agrees with a brute-force scan of
+// its cone factor, which tests the sides in the light's own frame.
+TEST(InScattering, PyramidIntervalMatchesBruteForce) {
+    std::mt19937 rng(31);
+    int crossing = 0;
+    for (int i = 0; i < 400; ++i) {
+        const SpotLight light = random_pyramid(rng);
+        const analytic::EyeRay ray = random_ray(rng, light, i % 5);
+        const dvec3 a = glm::normalize(dvec3(light.direction()));
+        auto inside = [&](double z) {
+            const dvec3 p = ray.origin + z * ray.direction;
+            const double axial = glm::dot(p - dvec3(light.position), a);
+            return axial >= light.near && axial <= light.far && light.cone_factor(p) > 0.0;
+        };
+        const analytic::Interval interval = analytic::light_interval(ray, light, 30.0);
+        const std::vector<analytic::Interval> expected = scanned_intervals(inside, 30.0);
+        ASSERT_LE(expected.size(), 1u) << "the pyramid is convex: one interval";
+        if (expected.empty()) {
+            EXPECT_TRUE(interval.empty()) << i;
+            continue;
+        }
+        ++crossing;
+        EXPECT_NEAR(interval.begin, expected[0].begin, 1e-7) << i;
+        EXPECT_NEAR(interval.end, expected[0].end, 1e-7) << i;
+    }
+    EXPECT_GE(crossing, 100);
+}
+
+// A point light's intervals (inside its far cube, outside its near cube: at most two) agree with
+// a brute-force scan of PointLight::in_range.
+TEST(InScattering, PointLightIntervalsMatchBruteForce) {
+    std::mt19937 rng(32);
+    int two = 0;
+    for (int i = 0; i < 400; ++i) {
+        const PointLight light = random_point_light(rng);
+        SpotLight aim;
+        aim.position = light.position;
+        aim.target = light.position + glm::vec3(random_unit(rng));
+        const analytic::EyeRay ray = random_ray(rng, aim, i % 5);
+        auto inside = [&](double z) { return light.in_range(ray.origin + z * ray.direction); };
+        analytic::Interval parts[2];
+        const int count = analytic::point_light_intervals(ray, light, 30.0, parts);
+        const std::vector<analytic::Interval> expected = scanned_intervals(inside, 30.0);
+        ASSERT_EQ(size_t(count), expected.size()) << i;
+        for (int k = 0; k < count; ++k) {
+            EXPECT_NEAR(parts[k].begin, expected[size_t(k)].begin, 1e-7) << i;
+            EXPECT_NEAR(parts[k].end, expected[size_t(k)].end, 1e-7) << i;
+        }
+        two += count == 2;
+    }
+    EXPECT_GE(two, 40) << "rays through the near cube must be exercised";
+}
+
+// A point light's integral (the spot light's closed forms without the cone) matches quadrature of
+// its e(z) to 1e-6 relative, in every medium case, on rays through its cubes, through the light
+// and grazing it.
+TEST(InScattering, PointLightClosedFormsMatchQuadrature) {
+    std::mt19937 rng(33);
+    int lit = 0;
+    for (int i = 0; i < 500; ++i) {
+        const PointLight light = random_point_light(rng);
+        const Medium medium = random_medium(rng, i % kCases);
+        SpotLight aim;
+        aim.position = light.position;
+        aim.target = light.position + glm::vec3(random_unit(rng));
+        const analytic::EyeRay ray = random_ray(rng, aim, (i / kCases) % 5);
+        const double z0 = uniform(rng, 0.0, 4.0), z1 = z0 + uniform(rng, 0.5, 25.0);
+        const dvec3 closed = analytic::in_scattering(ray, z0, z1, light, medium);
+        std::vector<double> cuts = {z0};
+        for (const double t : scanned_transitions(
+                 [&](double z) { return light.in_range(ray.origin + z * ray.direction); }, z1)) {
+            if (t > z0)
+                cuts.push_back(t);
+        }
+        cuts.push_back(z1);
+        for (int c = 0; c < 3; ++c) {
+            double oracle = 0.0;
+            for (size_t k = 0; k + 1 < cuts.size(); ++k) {
+                oracle += analytic::integrate(
+                    [&](double z) {
+                        return analytic::scattering_density(ray, z, light, medium)[c];
+                    },
+                    cuts[k], cuts[k + 1], 1e-12);
+            }
+            ASSERT_TRUE(std::isfinite(closed[c]));
+            EXPECT_NEAR(closed[c], oracle, 1e-6 * std::abs(oracle) + 1e-14)
+                << "case " << i % kCases << " channel " << c;
+            lit += c == 0 && oracle > 0.0;
+        }
+    }
+    EXPECT_GE(lit, 200);
+}
+
+// Moschos's pyramidal emission: the six faces of PointLight::faces sum to the point light, in
+// e(z) at every point off their shared sides and in the integral along any ray.
+TEST(InScattering, PointLightIsTheSumOfItsSixPyramids) {
+    std::mt19937 rng(34);
+    for (int i = 0; i < 300; ++i) {
+        const PointLight light = random_point_light(rng);
+        const std::array<SpotLight, 6> faces = light.faces();
+        const Medium medium = random_medium(rng, i % kCases);
+        SpotLight aim;
+        aim.position = light.position;
+        aim.target = light.position + glm::vec3(random_unit(rng));
+        const analytic::EyeRay ray = random_ray(rng, aim, (i / kCases) % 5);
+        const double z0 = uniform(rng, 0.0, 4.0), z1 = z0 + uniform(rng, 0.5, 25.0);
+        dvec3 sum(0.0);
+        int covering = 0;
+        const double z = uniform(rng, z0, z1);
+        for (const SpotLight& face : faces) {
+            sum += analytic::in_scattering(ray, z0, z1, face, medium);
+            covering += analytic::scattering_density(ray, z, face, medium).x > 0.0;
+        }
+        const dvec3 whole = analytic::in_scattering(ray, z0, z1, light, medium);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(sum[c], whole[c], 1e-9 * std::abs(whole[c]) + 1e-15) << i << " " << c;
+        }
+        const bool in_range = light.in_range(ray.origin + z * ray.direction);
+        EXPECT_EQ(covering, in_range ? 1 : 0) << "one face covers each point of the shell";
     }
 }
 

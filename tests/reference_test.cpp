@@ -2,6 +2,7 @@
 // e(z) times ray-cast visibility, finite everywhere (camera inside the beam, light in view),
 // and cached on disk by the command line.
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 
@@ -100,6 +101,65 @@ TEST(Reference, CacheKeyFollowsTheInputs) {
     Scene denser = scene;
     denser.medium.sigma_s *= 2.0f;
     EXPECT_NE(key, reference::reference_key(denser, 64, 36, {}));
+    // A pyramid, a point light and a second light are other images.
+    Scene pyramid = scene;
+    pyramid.light.shape = SpotShape::pyramid;
+    EXPECT_NE(key, reference::reference_key(pyramid, 64, 36, {}));
+    PointLight point;
+    point.position = scene.light.position;
+    Scene lights = scene;
+    lights.set_lights({scene.light, point});
+    EXPECT_NE(key, reference::reference_key(lights, 64, 36, {}));
+    Scene bright = lights;
+    point.intensity *= 2.0f;
+    bright.set_lights({scene.light, point});
+    EXPECT_NE(reference::reference_key(lights, 64, 36, {}),
+              reference::reference_key(bright, 64, 36, {}));
+}
+
+// toplight lit by a point light among its objects (the eye outside its cubes) instead.
+Scene point_lit_toplight() {
+    Scene scene = load_canonical("toplight");
+    PointLight point;
+    point.position = glm::vec3(0.3f, 2.6f, 0.2f);
+    point.near = 0.4f;
+    point.far = 6.0f;
+    point.intensity = glm::vec3(30.0f);
+    scene.set_lights({point});
+    return scene;
+}
+
+// A point light (integrated whole, between its cubes) equals the six pyramidal spot lights that
+// tile its cube (Moschos: "either conical or pyramidal"), shadows included, to the reference's
+// own convergence: the faces' visibility sweeps sample other points along each ray.
+TEST(Reference, APointLightEqualsItsSixPyramidalFaces) {
+    const Scene point = point_lit_toplight();
+    Scene faces = point;
+    const std::array<SpotLight, 6> six = std::get<PointLight>(point.lights[0]).faces();
+    faces.set_lights({six[0], six[1], six[2], six[3], six[4], six[5]});
+    ASSERT_EQ(faces.spot_lights().size(), 6u);
+    const Image whole = reference::ReferenceRenderer(point).render(64, 36, {});
+    const Image sum = reference::ReferenceRenderer(faces).render(64, 36, {});
+    EXPECT_LT(relative_l2(sum, whole), 1e-4);
+    double total = 0.0;
+    for (const float v : whole.rgb)
+        total += v;
+    EXPECT_GT(total, 0.0);
+}
+
+// The reference is linear in the lights: two lights render the sum of each alone.
+TEST(Reference, SeveralLightsAddUp) {
+    const Scene point = point_lit_toplight();
+    const Scene spot = load_canonical("toplight");
+    Scene both = spot;
+    both.set_lights({spot.light, point.lights[0]});
+    const Image a = reference::ReferenceRenderer(spot).render(48, 27, {});
+    const Image b = reference::ReferenceRenderer(point).render(48, 27, {});
+    const Image together = reference::ReferenceRenderer(both).render(48, 27, {});
+    Image sum = a;
+    for (size_t i = 0; i < sum.rgb.size(); ++i)
+        sum.rgb[i] += b.rgb[i];
+    EXPECT_LT(relative_l2(together, sum), 1e-6);
 }
 
 }  // namespace

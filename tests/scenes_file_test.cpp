@@ -1,6 +1,7 @@
 // Scene files: the canonical scenes, the multiple:N generator, and every kind of bad input.
 
 #include <fstream>
+#include <variant>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -92,6 +93,21 @@ cone_angle = 30.0
 [[objects]]
 shape = "box"
 inner = [{ min = [-0.25, -0.25, -0.25], max = [0.25, 0.25, 0.25] }]
+)";
+
+constexpr const char* kLightBlock = R"([light]
+position = [0.0, 5.0, 0.0]
+target = [0.0, 0.0, 0.0]
+cone_angle = 30.0
+)";
+
+constexpr const char* kPointLight = R"(
+[[lights]]
+type = "point"
+position = [0.0, 2.0, 0.0]
+near = 0.2
+far = 8.0
+intensity = [5.0, 5.0, 5.0]
 )";
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {
@@ -216,6 +232,22 @@ std::vector<BadInput> bad_inputs() {
         {replace(s, "[[objects]]", "[objects]"), "objects: expected an array"},
         {"[light]\nposition = [0.0, 5.0, 0.0]\ntarget = [0.0, 0.0, 0.0]\n",
          "missing required table [camera]"},
+        // The lights: [light] or [[lights]], each entry typed, each type's keys alone.
+        {replace(s, "cone_angle = 30.0", "cone_angle = 30.0\nshape = \"cube\""),
+         "[light] shape: unknown value 'cube'"},
+        {replace(s, "cone_angle = 30.0", "cone_angle = 30.0\nshape = \"pyramid\"\nfalloff = 5.0"),
+         "[light] falloff: a pyramid has a hard edge"},
+        {s + kPointLight, "[light] and [[lights]] both given"},
+        {replace(s, "[light]", "[[lights]]"), "[[lights]] #1 type: missing: expected \"spot\" or"},
+        {replace(s, "[light]", "[[lights]]\ntype = \"sun\""),
+         "[[lights]] #1 type: unknown light type 'sun'"},
+        {replace(s, kLightBlock, "") + kPointLight + "cone_angle = 30.0\n",
+         "[[lights]] #1 cone_angle: unknown key"},
+        {replace(s, kLightBlock, "") + kPointLight +
+             "[[lights]]\ntype = \"point\"\nposition = [0.0, 1.0, 0.0]\nfar = -1.0\n",
+         "[[lights]] #2 far: must be in"},
+        {"lights = []\n" + replace(s, kLightBlock, ""), "[[lights]] is empty"},
+        {replace(s, kLightBlock, ""), "missing the light: a [light] table"},
     };
 }
 
@@ -323,6 +355,73 @@ TEST(SceneFile, SavedViewReadsBackExactly) {
     EXPECT_EQ(back.medium.g, scene.medium.g);
     EXPECT_EQ(back.triangle_count(), scene.triangle_count());
     EXPECT_FALSE(back.environment.enabled());
+}
+
+// Several lights ([[lights]]): spot and point lights as declared, the methods' spot lights with
+// each point light as its six pyramids (+x, -x, +y, -y, +z, -z) after the spots, `light` the first
+// of them; a derived scene's [[lights]] replaces its base's [light], and a saved view keeps them.
+TEST(SceneFile, SeveralLightsReadAsDeclaredAndAsSpotLights) {
+    TempDir dir;
+    write_text(dir / "lamps.toml", R"([scene]
+base = "parallel"
+[[lights]]
+type = "point"
+position = [0.5, 2.0, -1.0]
+near = 0.25
+far = 9.0
+intensity = [3.0, 4.0, 5.0]
+[[lights]]
+type = "spot"
+position = [0.0, 5.0, 0.0]
+target = [0.0, 0.0, 0.0]
+cone_angle = 20.0
+shape = "pyramid"
+)");
+    const Scene scene = load_scene((dir / "lamps.toml").string(), SceneSearchPaths::defaults());
+    ASSERT_EQ(scene.lights.size(), 2u);
+    ASSERT_TRUE(std::holds_alternative<PointLight>(scene.lights[0]));
+    const PointLight& point = std::get<PointLight>(scene.lights[0]);
+    EXPECT_EQ(point.far, 9.0f);
+    const std::vector<SpotLight> spots = scene.spot_lights();
+    ASSERT_EQ(spots.size(), 7u);
+    EXPECT_EQ(scene.light, spots[0]);
+    const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (size_t i = 0; i < 6; ++i) {
+        EXPECT_EQ(spots[i].direction(), axes[i]) << i;  // exactly: the target moves one axis
+        EXPECT_EQ(spots[i].shape, SpotShape::pyramid);
+        EXPECT_EQ(spots[i].cone_half_angle_degrees, 45.0f);
+        EXPECT_EQ(spots[i].near, 0.25f);
+        EXPECT_EQ(spots[i].intensity, point.intensity);
+        // Each face's frame is the cube's: its up vector lies along another axis.
+        const glm::vec3 up = spots[i].up();
+        EXPECT_EQ(glm::abs(up.x) + glm::abs(up.y) + glm::abs(up.z), 1.0f) << i;
+    }
+    EXPECT_EQ(spots[6].shape, SpotShape::pyramid);
+    EXPECT_EQ(spots[6].cone_half_angle_degrees, 20.0f);
+    const Scene view = scene.for_light(3);
+    EXPECT_TRUE(view.lights.empty());
+    EXPECT_EQ(view.light, spots[3]);
+    EXPECT_EQ(view.objects.size(), scene.objects.size());
+
+    // One spot light in [[lights]] is the scene's `light`, as [light] would be.
+    Scene one = scene;
+    one.set_lights({spots[6]});
+    EXPECT_TRUE(one.lights.empty());
+    EXPECT_EQ(one.light, spots[6]);
+
+    // Saved and read back: the same lights.
+    write_text(dir / "saved.toml", scene_view_toml(scene, "parallel", "saved"));
+    const Scene back = load_scene((dir / "saved.toml").string(), SceneSearchPaths::defaults());
+    EXPECT_EQ(back.lights, scene.lights);
+    EXPECT_EQ(back.light, scene.light);
+
+    // A derived scene's [light] replaces its base's [[lights]].
+    write_text(dir / "one.toml",
+               "[scene]\nbase = \"lamps.toml\"\n[light]\nposition = [0.0, "
+               "4.0, 0.0]\ntarget = [0.0, 0.0, 0.0]\n");
+    const Scene single = load_scene((dir / "one.toml").string(), SceneSearchPaths::defaults());
+    EXPECT_TRUE(single.lights.empty());
+    EXPECT_EQ(single.light.position, glm::vec3(0.0f, 4.0f, 0.0f));
 }
 
 // A saved view keeps the environment as the viewer left it: a studio light with every setting
