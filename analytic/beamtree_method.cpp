@@ -37,13 +37,13 @@ public:
             "that drops entries restarts at the root from where it stands (results/walk.md)");
     }
     std::string accepts() const override { return AnalyticRegionPass::accepts(); }
-    void prepare(const Scene& scene) override {
+    void prepare_light(const Scene& scene) override {
         software_ = gl::current_renderer_is_software();  // for route = auto
         built_ = false;
-        update(scene, SceneChange::everything(scene));
+        update_light(scene, SceneChange::everything(scene));
     }
-    std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
-                                                 const SceneChange& change) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update_light(const Scene& scene,
+                                                       const SceneChange& change) const override {
         AnalyticRegionPass::require_closed_form(scene, name());
         if (walks(*route_, scene, software_)) {
             return region_frame_work(scene, change, {.gpu_tree = true, .layout = *layout_}, built_,
@@ -58,8 +58,8 @@ public:
                                                       : bt::BoundaryShape::maximal},
             built_);
     }
-    void apply_update(const Scene& scene, const SceneChange&,
-                      std::unique_ptr<frame::FrameWork> work) override {
+    void apply_update_light(const Scene& scene, const SceneChange&,
+                            std::unique_ptr<frame::FrameWork> work) override {
         if (auto* regions = dynamic_cast<RegionFrameWork*>(work.get())) {
             const bt::FrameRegions& r = regions->regions;
             stages_ = r.ms;

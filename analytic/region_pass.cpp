@@ -39,7 +39,7 @@ std::vector<std::string> closed_form_defines(const Scene& scene) {
                      : medium.phase != PhaseFunction::isotropic ? 1
                                                                 : 0;
     std::vector<std::string> defines = {fmt::format("SL_MEDIUM_FORM {}", form)};
-    if (scene.light.falloff_degrees > 0.0f) {
+    if (scene.light.smooth_edge()) {
         defines.push_back("SL_SMOOTH_CONE_EDGE 1");
         defines.push_back(fmt::format("FALLOFF_PIECES {}", kFalloffPieces));
     }

@@ -33,7 +33,28 @@ struct RegionsArguments : CommonOptions {
     bool no_pieces = false;
     std::string occluders;  // empty: the scene's setting
     bool verbose = false;
+    int light = -1;  // -1: the scene's one light
 };
+
+// The scene as light `index` alone sees it (Scene::spot_lights' order): each light has its own
+// tree and regions.
+Scene one_light(const Scene& scene, int index) {
+    const size_t lights = scene.spot_lights().size();
+    if (index >= 0 && size_t(index) >= lights) {
+        fail("--light {}: scene '{}' has {} light{} (0 to {})", index, scene.name, lights,
+             lights == 1 ? "" : "s", lights - 1);
+    }
+    if (lights == 1) {
+        return scene;
+    }
+    if (index < 0) {
+        fail(
+            "scene '{}' has {} lights, each with its own tree: choose one with --light 0 to {} "
+            "(its [[lights]] in order, a point light as six: +x, -x, +y, -y, +z, -z)",
+            scene.name, lights, lights - 1);
+    }
+    return scene.for_light(size_t(index));
+}
 
 std::vector<dvec3> read_points(const std::string& path) {
     std::ifstream in(path);
@@ -81,7 +102,7 @@ void warn_missing_inner(const Scene& scene, const std::vector<bt::MissingInner>&
 int run_regions(const RegionsArguments& args) {
     int width = 0, height = 0;
     parse_size(args.size, width, height);
-    Scene scene = load_scene_at(args.scene, args.time);
+    Scene scene = one_light(load_scene_at(args.scene, args.time), args.light);
     for (const Occluders choice : kOccluders) {
         if (args.occluders == to_string(choice)) {
             scene.bounds.occluders = choice;
@@ -194,6 +215,11 @@ Command add_regions_command(CLI::App& app) {
                      "the scene's [beamtree] occluders)")
         ->check(CLI::IsMember({to_string(Occluders::volumes), to_string(Occluders::triangles),
                                to_string(Occluders::automatic)}));
+    command
+        ->add_option("--light", args->light,
+                     "The light whose tree to build, for a scene of several ([[lights]] in order, "
+                     "a point light as six faces: +x, -x, +y, -y, +z, -z)")
+        ->check(CLI::Range(0, 1 << 20));
     command->add_flag("--verbose", args->verbose,
                       "List each object without an automatic inner volume, not only the count, "
                       "and each object that entered the tree as triangles, with why");

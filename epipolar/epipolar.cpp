@@ -80,7 +80,7 @@ public:
                analytic::AnalyticRegionPass::accepts();
     }
 
-    void prepare(const Scene& scene) override {
+    void prepare_light(const Scene& scene) override {
         if (!coordinates_program_) {
             const auto compute = [](const char* path) {
                 return gl::create_program({{GL_COMPUTE_SHADER, path}});
@@ -102,18 +102,18 @@ public:
             const Counters zero;
             counters_ = gl::create_buffer(&zero, sizeof(zero), GL_DYNAMIC_STORAGE_BIT);
         }
-        update(scene, SceneChange::everything(scene));
+        update_light(scene, SceneChange::everything(scene));
     }
 
-    std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
-                                                 const SceneChange&) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update_light(const Scene& scene,
+                                                       const SceneChange&) const override {
         if (*lit_integral_ == LitIntegral::closed_form) {
             analytic::AnalyticRegionPass::require_closed_form(scene, name());
         }
         return nullptr;  // the slice table is made per frame in render(), from the frame's views
     }
-    void apply_update(const Scene& scene, const SceneChange&,
-                      std::unique_ptr<frame::FrameWork>) override {
+    void apply_update_light(const Scene& scene, const SceneChange&,
+                            std::unique_ptr<frame::FrameWork>) override {
         make_march_program(scene);
     }
 

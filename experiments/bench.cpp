@@ -406,7 +406,7 @@ PlayedSequence play_sequence(const Experiment& x, const Cell& cell, int rep,
         frames, [&](int k) { return sequence.state(k); },
         [&](const frame::FrameRecord& record) {
             played.records.push_back(record);
-            collect(played.statistics, method.statistics());
+            collect(played.statistics, method.frame_statistics());
             const int k = record.frame;
             if (reference && k % stride == 0) {
                 frame::Frame frame = renderer.read_back();

@@ -39,7 +39,9 @@ std::vector<std::string> MethodRegistry::names() const {
 std::unique_ptr<VolumeMethod> MethodRegistry::create(const std::string& name) const {
     for (const Entry& entry : entries_) {
         if (entry.name == name) {
-            return entry.create();
+            std::unique_ptr<VolumeMethod> method = entry.create();
+            method->factory_ = entry.create;  // its copies for further lights
+            return method;
         }
     }
     const std::vector<std::string> known = names();

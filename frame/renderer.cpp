@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "frame/shaders/frame_interface.h"
 #include "gl/debug.h"
@@ -74,7 +75,8 @@ gl::shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOp
     u.light_direction = glm::vec4(light.direction(), light.far);
     u.light_intensity = glm::vec4(light.intensity, 0.0f);
     u.light_cone = glm::vec4(glm::radians(light.cone_half_angle_degrees),
-                             glm::radians(light.falloff_degrees), 0.0f, 0.0f);
+                             light.smooth_edge() ? glm::radians(light.falloff_degrees) : 0.0f,
+                             light.shape == SpotShape::pyramid ? 1.0f : 0.0f, 0.0f);
     u.medium_sigma_s = glm::vec4(medium.sigma_s, float(int(medium.phase)));
     u.medium_sigma_t =
         glm::vec4(medium.sigma_t(), medium.model == MediumModel::physical ? 1.0f : 0.0f);
@@ -95,9 +97,13 @@ glm::vec4 shadow_uniform(const ShadowSettings& settings) {
 // The volume pass's sections, one GL_TIME_ELAPSED query each (queries are reused across frames).
 class SceneRenderer::Timeline final : public PassTimeline {
 public:
-    void begin(const std::string& first) {
+    // A new frame: no section open yet.
+    void begin() {
         used_ = 0;
         names_.clear();
+    }
+    void begin(const std::string& first) {
+        begin();
         section(first.c_str());
     }
     void section(const char* name) override {
@@ -151,6 +157,25 @@ public:
     PassTimer& operator=(const PassTimer&) = delete;
 };
 
+// One pass of the frame, once per light: a section of its timeline (summed over the lights) and a
+// debug group.
+class SceneRenderer::GroupTimer {
+public:
+    GroupTimer(Timeline& timeline, const char* name) : timeline_(timeline) {
+        GL.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name);
+        timeline_.section(name);
+    }
+    ~GroupTimer() {
+        timeline_.end();
+        GL.PopDebugGroup();
+    }
+    GroupTimer(const GroupTimer&) = delete;
+    GroupTimer& operator=(const GroupTimer&) = delete;
+
+private:
+    Timeline& timeline_;
+};
+
 SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     : scene_(scene), options_(options) {
     if (options.width <= 0 || options.height <= 0 || options.width > 16384 ||
@@ -169,6 +194,12 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     create_programs();
     environment_ = std::make_unique<ibl::EnvironmentTextures>(scene);
     environment_->set_uniforms(uniforms_, scene.environment);
+    if (scene.has_translucent_objects() && !scene.lights.empty()) {
+        fail(
+            "scene '{}': translucent objects (sss) take one light ([light]); this scene has {} "
+            "([[lights]]): give it one spot light, or no translucent material",
+            scene.name, scene.lights.size());
+    }
     if (scene.has_translucent_objects()) {
         subsurface_ = std::make_unique<sss::SubsurfacePass>(scene, options.width, options.height);
     }
@@ -258,6 +289,8 @@ void SceneRenderer::create_timers() {
         timer = gl::create_query(GL_TIME_ELAPSED);
     }
     timeline_ = std::make_unique<Timeline>();
+    shadow_timeline_ = std::make_unique<Timeline>();
+    surface_timeline_ = std::make_unique<Timeline>();
     // llvmpipe reports its first GL_TIME_ELAPSED query of a context from time zero (since boot):
     // spend that first query here, on a clear, so that every frame's timings are real.
     const gl::Query priming = gl::create_query(GL_TIME_ELAPSED);
@@ -358,35 +391,56 @@ void SceneRenderer::draw_object(size_t index, GLuint program, bool with_normals)
 
 FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     const auto start = std::chrono::steady_clock::now();
-    uniforms_ = make_frame_uniforms(scene_, options_);
+    // Several lights (docs/design.md §18): per light, its shadow map, its term on the surfaces
+    // and its I_s, each added to the first light's; the method holds an instance per light.
+    const size_t lights = scene_.lights.empty() ? 1 : scene_.spot_lights().size();
+    const bool whole = method.takes_every_light();
+    // Prepared (or updated) for this scene's lights.
+    SL_CHECK(method.light_count() == (whole ? 1 : lights));
     if (const ShadowSettings wanted = method.shadow_settings(options_.shadow); wanted != shadow_) {
         allocate_shadow(wanted);
     }
-    uniforms_.shadow = shadow_uniform(shadow_);
-    environment_->set_uniforms(uniforms_, scene_.environment);
-    GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, uniform_buffer_.id());
-    GL.NamedBufferSubData(uniform_buffer_.id(), 0, sizeof(uniforms_), &uniforms_);
-    GL.Disable(GL_BLEND);
-    GL.Disable(GL_CULL_FACE);  // open meshes (planes) must cast shadows from both sides
-    {
-        PassTimer timer(timers_[0], "shadow map");
-        draw_shadow_map();
+    if (lights > 1 && !light_scattering_.id()) {
+        create_light_target();
     }
-    {
-        PassTimer timer(timers_[1], "surfaces");
-        draw_surfaces();
+    shadow_timeline_->begin();
+    surface_timeline_->begin();
+    timeline_->begin();
+    for (size_t i = 0; i < lights; ++i) {
+        const Scene light_scene = lights == 1 ? Scene() : scene_.for_light(i);
+        const Scene& view = lights == 1 ? scene_ : light_scene;
+        uniforms_ = make_frame_uniforms(view, options_);
+        uniforms_.shadow = shadow_uniform(shadow_);
+        environment_->set_uniforms(uniforms_, scene_.environment);
+        GL.BindBufferBase(GL_UNIFORM_BUFFER, SL_FRAME_UNIFORMS_BINDING, uniform_buffer_.id());
+        GL.NamedBufferSubData(uniform_buffer_.id(), 0, sizeof(uniforms_), &uniforms_);
+        GL.Disable(GL_BLEND);
+        GL.Disable(GL_CULL_FACE);  // open meshes (planes) must cast shadows from both sides
+        {
+            GroupTimer timer(*shadow_timeline_, "shadow map");
+            draw_shadow_map();
+        }
+        {
+            GroupTimer timer(*surface_timeline_, "surfaces");
+            draw_surfaces(i > 0);
+        }
+        if (subsurface_) {
+            PassTimer timer(timers_[4], "subsurface");
+            subsurface_->render(
+                [this](size_t index, GLuint program) { draw_object(index, program, true); },
+                uniforms_.view_projection, surface_depth_.id(), surface_framebuffer_.id(),
+                frame_index_++);
+            // Its maps took texture units the methods share: give them back the shadow maps.
+            GL.BindTextureUnit(SL_SHADOW_MAP_UNIT, shadow_map_.id());
+            GL.BindTextureUnit(SL_SHADOW_MOMENTS_UNIT, shadow_moments_.id());
+        }
+        if (!whole) {
+            draw_volume(method.for_light(i), view, i > 0);
+        }
     }
-    if (subsurface_) {
-        PassTimer timer(timers_[4], "subsurface");
-        subsurface_->render(
-            [this](size_t index, GLuint program) { draw_object(index, program, true); },
-            uniforms_.view_projection, surface_depth_.id(), surface_framebuffer_.id(),
-            frame_index_++);
-        // Its maps took texture units the methods share: give them back the shadow maps.
-        GL.BindTextureUnit(SL_SHADOW_MAP_UNIT, shadow_map_.id());
-        GL.BindTextureUnit(SL_SHADOW_MOMENTS_UNIT, shadow_moments_.id());
+    if (whole) {
+        draw_volume(method, scene_, false);
     }
-    draw_volume(method);
     {
         PassTimer timer(timers_[3], "composite");
         draw_composite();
@@ -451,17 +505,31 @@ void SceneRenderer::blur_shadow_moments() {
     GL.Enable(GL_DEPTH_TEST);
 }
 
-void SceneRenderer::draw_surfaces() {
+void SceneRenderer::draw_surfaces(bool add_light) {
     GL.BindFramebuffer(GL_FRAMEBUFFER, surface_framebuffer_.id());
     GL.Viewport(0, 0, options_.width, options_.height);
-    const float black[4] = {0, 0, 0, 0};
-    const float far_depth = 1.0f;
-    GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_COLOR, 0, black);
-    GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_DEPTH, 0, &far_depth);
     GL.UseProgram(surface_program_.id());
     GL.BindTextureUnit(SL_SHADOW_MAP_UNIT, shadow_map_.id());
     GL.BindTextureUnit(SL_SHADOW_MOMENTS_UNIT, shadow_moments_.id());
     GL.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    GL.ProgramUniform1i(surface_program_.id(), SL_SURFACE_LIGHT_ONLY, add_light ? 1 : 0);
+    if (add_light) {
+        // A further light: its term on the surfaces the first pass left in the depth buffer,
+        // added (the alpha stays).
+        GL.DepthFunc(GL_LEQUAL);
+        GL.DepthMask(GL_FALSE);
+        GL.Enable(GL_BLEND);
+        GL.BlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+        draw_objects(surface_program_.id(), true);
+        GL.Disable(GL_BLEND);
+        GL.DepthMask(GL_TRUE);
+        GL.DepthFunc(GL_LESS);
+        return;
+    }
+    const float black[4] = {0, 0, 0, 0};
+    const float far_depth = 1.0f;
+    GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_COLOR, 0, black);
+    GL.ClearNamedFramebufferfv(surface_framebuffer_.id(), GL_DEPTH, 0, &far_depth);
     environment_->bind();
     draw_objects(surface_program_.id(), true);
     if (environment_->enabled() && scene_.environment.skybox) {
@@ -469,12 +537,11 @@ void SceneRenderer::draw_surfaces() {
     }
 }
 
-void SceneRenderer::draw_volume(VolumeMethod& method) {
+void SceneRenderer::draw_volume(VolumeMethod& method, const Scene& scene, bool add_light) {
     // Timed by the method's timeline sections (queries of one target cannot nest). The
-    // section's query and the debug group end with the scope, also when the method refuses
-    // its parameters mid-frame (a froxel grid too large for the image).
+    // section's query and the debug group end with the scope, also when the method refuses its
+    // parameters mid-frame (a froxel grid too large for the image).
     GL.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "volume");
-    timeline_->begin(method.name());
     struct VolumePassEnd {
         Timeline& timeline;
         ~VolumePassEnd() {
@@ -482,13 +549,44 @@ void SceneRenderer::draw_volume(VolumeMethod& method) {
             GL.PopDebugGroup();
         }
     } pass_end{*timeline_};
-    GL.BindFramebuffer(GL_FRAMEBUFFER, volume_framebuffer_.id());
+    timeline_->section(method.name().c_str());
+    // A further light draws into its own target, which is then added to the frame's.
+    const GLuint target = add_light ? light_volume_framebuffer_.id() : volume_framebuffer_.id();
+    GL.BindFramebuffer(GL_FRAMEBUFFER, target);
     const float zero[4] = {0, 0, 0, 0};
-    GL.ClearNamedFramebufferfv(volume_framebuffer_.id(), GL_COLOR, 0, zero);
+    GL.ClearNamedFramebufferfv(target, GL_COLOR, 0, zero);
     GL.Disable(GL_DEPTH_TEST);
     GL.DepthMask(GL_FALSE);
-    method.render(VolumeInputs{scene_, uniforms_, surface_depth_.id(), shadow_map_.id(),
+    method.render(VolumeInputs{scene, uniforms_, surface_depth_.id(), shadow_map_.id(),
                                options_.width, options_.height, *timeline_});
+    if (add_light) {
+        timeline_->section("add light");
+        GL.BindFramebuffer(GL_FRAMEBUFFER, volume_framebuffer_.id());
+        GL.Viewport(0, 0, options_.width, options_.height);
+        GL.Disable(GL_DEPTH_TEST);
+        GL.Enable(GL_BLEND);
+        GL.BlendEquation(GL_FUNC_ADD);
+        GL.BlendFunc(GL_ONE, GL_ONE);
+        GL.UseProgram(accumulate_program_.id());
+        GL.BindTextureUnit(SL_ACCUMULATE_SOURCE_UNIT, light_scattering_.id());
+        GL.BindVertexArray(empty_vertex_array_.id());
+        GL.DrawArrays(GL_TRIANGLES, 0, 3);
+        GL.Disable(GL_BLEND);
+    }
+}
+
+void SceneRenderer::create_light_target() {
+    light_scattering_ =
+        gl::create_texture_2d(GL_RGBA32F, options_.width, options_.height, GL_NEAREST);
+    light_scattering_.label("one light's in-scattering");
+    light_volume_framebuffer_ = gl::create_framebuffer();
+    GL.NamedFramebufferTexture(light_volume_framebuffer_.id(), GL_COLOR_ATTACHMENT0,
+                               light_scattering_.id(), 0);
+    require_complete(light_volume_framebuffer_.id(), "one light's in-scattering", options_.width,
+                     options_.height);
+    accumulate_program_ =
+        gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                            {GL_FRAGMENT_SHADER, "frame/shaders/accumulate.frag"}});
 }
 
 void SceneRenderer::draw_composite() {
@@ -505,12 +603,16 @@ void SceneRenderer::draw_composite() {
 
 FrameTimings SceneRenderer::read_timings() const {
     FrameTimings timings;
-    double* pass_ms[] = {&timings.gpu.shadow_ms, &timings.gpu.surface_ms, nullptr,
-                         &timings.gpu.composite_ms};
-    for (int i : {0, 1, 3}) {  // waits for the frame to finish
+    {  // waits for the frame to finish
         GLuint64 ns = 0;
-        GL.GetQueryObjectui64v(timers_[i].id(), GL_QUERY_RESULT, &ns);
-        *pass_ms[i] = double(ns) * 1e-6;
+        GL.GetQueryObjectui64v(timers_[3].id(), GL_QUERY_RESULT, &ns);
+        timings.gpu.composite_ms = double(ns) * 1e-6;
+    }
+    for (const auto& [name, ms] : shadow_timeline_->results()) {
+        timings.gpu.shadow_ms += ms;
+    }
+    for (const auto& [name, ms] : surface_timeline_->results()) {
+        timings.gpu.surface_ms += ms;
     }
     if (subsurface_) {
         GLuint64 ns = 0;

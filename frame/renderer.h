@@ -98,6 +98,7 @@ private:
     };
     class PassTimer;
     class Timeline;
+    class GroupTimer;
 
     // Set-up, in the constructor's order.
     void upload_meshes();
@@ -107,8 +108,10 @@ private:
     // The frame's passes, in draw()'s order.
     void draw_shadow_map();
     void blur_shadow_moments();
-    void draw_surfaces();
-    void draw_volume(VolumeMethod& method);
+    // `add_light`: a further light's term, added to the first's (several lights).
+    void draw_surfaces(bool add_light);
+    void draw_volume(VolumeMethod& method, const Scene& scene, bool add_light);
+    void create_light_target();
     void draw_composite();
     FrameTimings read_timings() const;
 
@@ -146,8 +149,14 @@ private:
     gl::Framebuffer composite_framebuffer_;
     std::unique_ptr<sss::SubsurfacePass> subsurface_;
     uint32_t frame_index_ = 0;
-    gl::Query timers_[5];
-    std::unique_ptr<Timeline> timeline_;
+    gl::Query timers_[5];                        // 3 composite, 4 subsurface
+    std::unique_ptr<Timeline> timeline_;         // the volume pass, by the method's sections
+    std::unique_ptr<Timeline> shadow_timeline_;  // the shadow maps, one section per light
+    std::unique_ptr<Timeline> surface_timeline_;
+    // Several lights: each further light's I_s, before it is added to in_scattering_.
+    gl::Texture light_scattering_;
+    gl::Framebuffer light_volume_framebuffer_;
+    gl::Program accumulate_program_;
 };
 
 // The uniform block for `scene` seen at the given size (exposed for tests and CPU oracles).

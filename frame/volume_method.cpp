@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace sl::frame {
@@ -22,12 +23,19 @@ public:
     // pass alone.
     NoVolume() : VolumeMethod("none") { declare_shadow_parameters(); }
     std::string accepts() const override { return "every scene (it renders no medium)"; }
-    void prepare(const Scene&) override {}
-    std::unique_ptr<FrameWork> cpu_update(const Scene&, const SceneChange&) const override {
+    void prepare_light(const Scene&) override {}
+    std::unique_ptr<FrameWork> cpu_update_light(const Scene&, const SceneChange&) const override {
         return nullptr;
     }
-    void apply_update(const Scene&, const SceneChange&, std::unique_ptr<FrameWork>) override {}
+    void apply_update_light(const Scene&, const SceneChange&, std::unique_ptr<FrameWork>) override {
+    }
     void render(const VolumeInputs&) override {}
+    bool takes_every_light() const override { return true; }  // none of any of them
+};
+
+// What cpu_update() hands to apply_update() for a scene of several lights: each light's own.
+struct LightsWork final : FrameWork {
+    std::vector<std::unique_ptr<FrameWork>> lights;
 };
 
 }  // namespace
@@ -56,6 +64,116 @@ void VolumeMethod::declare_shadow_parameters(ShadowFilter filter) {
 
 void VolumeMethod::declare_shadow_size(std::string description) {
     shadow_size_ = declare_integer("shadow_size", 2048, 16, 16384, std::move(description));
+}
+
+void VolumeMethod::set(const std::string& name, const std::string& text) {
+    parameters_.set(name, text);
+    for (const std::unique_ptr<VolumeMethod>& copy : copies_) {
+        copy->set(name, text);
+    }
+}
+
+VolumeMethod& VolumeMethod::for_light(size_t index) {
+    SL_CHECK_INDEX(index, light_count());
+    return index == 0 ? *this : *copies_[index - 1];
+}
+
+const VolumeMethod& VolumeMethod::for_light(size_t index) const {
+    SL_CHECK_INDEX(index, light_count());
+    return index == 0 ? *this : *copies_[index - 1];
+}
+
+std::unique_ptr<VolumeMethod> VolumeMethod::make_instance() const {
+    if (!factory_) {
+        fail(
+            "method {} was not made by the method registry, so it cannot copy itself for a "
+            "scene of several lights",
+            quote(name_));
+    }
+    return factory_();
+}
+
+void VolumeMethod::prepare(const Scene& scene) {
+    if (takes_every_light()) {
+        copies_.clear();
+        prepare_light(scene);
+        return;
+    }
+    const size_t lights = scene.spot_lights().size();
+    copies_.resize(std::min(copies_.size(), lights - 1));
+    while (copies_.size() + 1 < lights) {
+        std::unique_ptr<VolumeMethod> copy = make_instance();
+        SL_CHECK(copy->name() == name_);
+        for (const Parameter& parameter : parameters()) {
+            copy->set(parameter.name, parameter.text());
+        }
+        copies_.push_back(std::move(copy));
+    }
+    for (size_t i = 0; i < lights; ++i) {
+        for_light(i).prepare_light(lights == 1 ? scene : scene.for_light(i));
+    }
+}
+
+std::unique_ptr<FrameWork> VolumeMethod::cpu_update(const Scene& scene,
+                                                    const SceneChange& change) const {
+    if (takes_every_light()) {
+        return cpu_update_light(scene, change);
+    }
+    const size_t lights = scene.spot_lights().size();
+    if (lights != light_count()) {
+        return nullptr;  // apply_update() prepares again
+    }
+    if (lights == 1) {
+        return cpu_update_light(scene, change);
+    }
+    auto work = std::make_unique<LightsWork>();
+    for (size_t i = 0; i < lights; ++i) {
+        work->lights.push_back(for_light(i).cpu_update_light(scene.for_light(i), change));
+    }
+    return work;
+}
+
+void VolumeMethod::apply_update(const Scene& scene, const SceneChange& change,
+                                std::unique_ptr<FrameWork> work) {
+    if (takes_every_light()) {
+        apply_update_light(scene, change, std::move(work));
+        return;
+    }
+    const size_t lights = scene.spot_lights().size();
+    if (lights != light_count()) {
+        prepare(scene);
+        return;
+    }
+    if (lights == 1) {
+        apply_update_light(scene, change, std::move(work));
+        return;
+    }
+    auto* per_light = dynamic_cast<LightsWork*>(work.get());
+    SL_CHECK(per_light && per_light->lights.size() == lights);
+    for (size_t i = 0; i < lights; ++i) {
+        for_light(i).apply_update_light(scene.for_light(i), change,
+                                        std::move(per_light->lights[i]));
+    }
+}
+
+MethodStatistics VolumeMethod::frame_statistics() const {
+    MethodStatistics sum = statistics();
+    if (copies_.empty()) {
+        return sum;
+    }
+    sum.emplace_back("lights", double(light_count()));
+    for (const std::unique_ptr<VolumeMethod>& copy : copies_) {
+        for (const auto& [name, value] : copy->statistics()) {
+            auto same = std::find_if(sum.begin(), sum.end(),
+                                     [&](const auto& entry) { return entry.first == name; });
+            if (same == sum.end()) {
+                sum.emplace_back(name, value);
+            } else {
+                same->second += value;
+            }
+        }
+    }
+    return sum;
 }
 
 ShadowSettings VolumeMethod::shadow_settings(ShadowSettings frame) const {

@@ -4,6 +4,7 @@
 // The renderer, the harness and the viewer talk to methods only through this interface; methods
 // live in their family's folders and are created by name from the registry (methods/registry.h).
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -80,9 +81,10 @@ public:
     bool has_parameter(const std::string& name) const { return parameters_.has(name); }
     // The parameter as declared, with its current value; throws sl::Error naming the known ones.
     const Parameter& find(const std::string& name) const { return parameters_.find(name); }
-    // Parses and sets one parameter; throws sl::Error naming the method and the parameter when
-    // the name is unknown, the text is not a value of its type, or it is out of range.
-    void set(const std::string& name, const std::string& text) { parameters_.set(name, text); }
+    // Parses and sets one parameter (in every light's copy too); throws sl::Error naming the
+    // method and the parameter when the name is unknown, the text is not a value of its type, or
+    // it is out of range.
+    void set(const std::string& name, const std::string& text);
     // Checks what one parameter's range cannot say (a combination of parameters); throws
     // sl::Error naming the parameters. Called once a method is configured
     // (methods/configured_method.h) and whenever the viewer changes a value, so that bad input
@@ -94,9 +96,23 @@ public:
     virtual std::string accepts() const {
         return "every medium and light (it samples e(z) itself)";
     }
+    // Several lights (docs/design.md §18): I_s sums over the scene's spot lights
+    // (Scene::spot_lights, a point light counting as its six faces), each with its own instance
+    // of the method: this one for the first, and for each further light a copy of it (the same
+    // method with the same parameter values), each prepared and updated with the scene as its
+    // light alone sees it (Scene::for_light). The methods implement the per-light hooks below;
+    // the renderer draws each light's shadow map and calls for_light(i).render() for it.
+    size_t light_count() const { return 1 + copies_.size(); }
+    // True for a method that sums over the lights itself (the reference, `none`): one instance,
+    // prepared with the whole scene, whose render() the renderer calls once, with the whole scene,
+    // after every light's shadow map and surfaces.
+    virtual bool takes_every_light() const { return false; }
+    VolumeMethod& for_light(size_t index);
+    const VolumeMethod& for_light(size_t index) const;
+
     // Called once per scene before the first frame: programs, buffers, and the scene's state as
-    // update(scene, SceneChange::everything(scene)) would make it.
-    virtual void prepare(const Scene& scene) = 0;
+    // update(scene, SceneChange::everything(scene)) would make it, for every light.
+    void prepare(const Scene& scene);
 
     // The per-frame update (docs/design.md §10): `scene` is the frame's scene, `change` what
     // differs from the scene of the last prepare() or update(). In two halves, so that the
@@ -105,11 +121,10 @@ public:
     //   cpu_update    no GL and no state that render() reads (it may run during render());
     //                 returns what apply_update() installs, or null when nothing is needed;
     //   apply_update  on the GL thread between frames: uploads, tables, programs.
-    // Both throw sl::Error as prepare() would.
-    virtual std::unique_ptr<FrameWork> cpu_update(const Scene& scene,
-                                                  const SceneChange& change) const = 0;
-    virtual void apply_update(const Scene& scene, const SceneChange& change,
-                              std::unique_ptr<FrameWork> work) = 0;
+    // Both throw sl::Error as prepare() would. A change in the number of lights prepares again.
+    std::unique_ptr<FrameWork> cpu_update(const Scene& scene, const SceneChange& change) const;
+    void apply_update(const Scene& scene, const SceneChange& change,
+                      std::unique_ptr<FrameWork> work);
     // Both halves in turn (the serial mode).
     void update(const Scene& scene, const SceneChange& change) {
         apply_update(scene, change, cpu_update(scene, change));
@@ -117,8 +132,11 @@ public:
     // Adds I_s (linear RGB, alpha ignored) into the bound framebuffer, which is cleared to zero
     // and has no depth attachment; the viewport covers it.
     virtual void render(const VolumeInputs& inputs) = 0;
-    // Counters of the last frame rendered (empty by default); may wait for the GPU.
+    // Counters of the last frame rendered (empty by default); may wait for the GPU. Of this
+    // light's instance alone; frame_statistics() sums each over the lights (sizes too, such as a
+    // grid's: with several lights it adds `lights`, their number, to divide those by).
     virtual MethodStatistics statistics() const { return {}; }
+    MethodStatistics frame_statistics() const;
     // The method's own textures of the last frame (render targets, lookup tables).
     virtual gl::TextureViews textures() const { return {}; }
     // The shadow map the method asks for: `frame` with the filter and the size replaced by the
@@ -127,6 +145,23 @@ public:
 
 protected:
     explicit VolumeMethod(std::string name) : name_(name), parameters_(std::move(name)) {}
+
+    // The per-light hooks: prepare(), cpu_update() and apply_update() above for a scene of one
+    // light (Scene::lights empty), called once per light.
+    virtual void prepare_light(const Scene& scene) = 0;
+    virtual std::unique_ptr<FrameWork> cpu_update_light(const Scene& scene,
+                                                        const SceneChange& change) const = 0;
+    virtual void apply_update_light(const Scene& scene, const SceneChange& change,
+                                    std::unique_ptr<FrameWork> work) = 0;
+    // Both per-light halves in turn: what a method's prepare_light() calls to bring itself to its
+    // scene (update() would treat that scene, of one light, as all of them).
+    void update_light(const Scene& scene, const SceneChange& change) {
+        apply_update_light(scene, change, cpu_update_light(scene, change));
+    }
+    // A new, unprepared instance of this method with its default parameters: the factory the
+    // registry made it with (frame/method_registry.h); a method made otherwise overrides this to
+    // take several lights.
+    virtual std::unique_ptr<VolumeMethod> make_instance() const;
 
     // Declarations, in the constructor: each returns the handle the method reads the value with.
     Param<int> declare_integer(std::string name, int default_value, int min, int max,
@@ -154,8 +189,11 @@ protected:
     void declare_shadow_size(std::string description);
 
 private:
+    friend class MethodRegistry;  // sets factory_
     std::string name_;
     ParameterSet parameters_;
+    std::function<std::unique_ptr<VolumeMethod>()> factory_;
+    std::vector<std::unique_ptr<VolumeMethod>> copies_;  // lights 1, 2, ...: see light_count()
     Param<ShadowFilter> shadow_filter_;
     Param<int> shadow_size_;
 };

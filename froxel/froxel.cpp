@@ -129,7 +129,7 @@ public:
         declare_shadow_parameters();
     }
 
-    void prepare(const Scene& scene) override {
+    void prepare_light(const Scene& scene) override {
         if (!inject_program_) {
             inject_program_ =
                 gl::create_program({{GL_COMPUTE_SHADER, "froxel/shaders/inject.comp"}});
@@ -143,13 +143,14 @@ public:
         }
         previous_.reset();
         frame_index_ = 0;
-        update(scene, SceneChange::everything(scene));
+        update_light(scene, SceneChange::everything(scene));
     }
-    std::unique_ptr<frame::FrameWork> cpu_update(const Scene&, const SceneChange&) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update_light(const Scene&,
+                                                       const SceneChange&) const override {
         return nullptr;  // the grid is made on the GPU every frame
     }
-    void apply_update(const Scene&, const SceneChange&,
-                      std::unique_ptr<frame::FrameWork>) override {}
+    void apply_update_light(const Scene&, const SceneChange&,
+                            std::unique_ptr<frame::FrameWork>) override {}
 
     void render(const frame::VolumeInputs& inputs) override {
         const FroxelGrid grid = make_grid(inputs.scene, inputs.width, inputs.height, *grid_scale_,

@@ -25,6 +25,7 @@ namespace sl::gl {
     X(PFNGLCULLFACEPROC, CullFace)                                                                 \
     X(PFNGLBLENDFUNCPROC, BlendFunc)                                                               \
     X(PFNGLBLENDFUNCIPROC, BlendFunci)                                                             \
+    X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)                                               \
     X(PFNGLBLENDEQUATIONPROC, BlendEquation)                                                       \
     X(PFNGLBLENDEQUATIONIPROC, BlendEquationi)                                                     \
     X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                                       \

@@ -132,7 +132,7 @@ public:
     }
     std::string accepts() const override { return analytic::AnalyticRegionPass::accepts(); }
 
-    void prepare(const Scene& scene) override {
+    void prepare_light(const Scene& scene) override {
         analytic::AnalyticRegionPass::require_closed_form(scene, name());
         if (!empty_vertex_array_) {
             empty_vertex_array_ = gl::create_vertex_array();
@@ -142,15 +142,15 @@ public:
                 gl::create_program({{GL_VERTEX_SHADER, "lightvolume/shaders/light_volume.vert"},
                                     {GL_FRAGMENT_SHADER, "lightvolume/shaders/wireframe.frag"}});
         }
-        update(scene, SceneChange::everything(scene));
+        update_light(scene, SceneChange::everything(scene));
     }
-    std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
-                                                 const SceneChange&) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update_light(const Scene& scene,
+                                                       const SceneChange&) const override {
         analytic::AnalyticRegionPass::require_closed_form(scene, name());
         return nullptr;  // the volume is made on the GPU from the frame's shadow map
     }
-    void apply_update(const Scene& scene, const SceneChange&,
-                      std::unique_ptr<frame::FrameWork>) override {
+    void apply_update_light(const Scene& scene, const SceneChange&,
+                            std::unique_ptr<frame::FrameWork>) override {
         if (closed_form_.set_scene(scene)) {
             const std::vector<std::string> defines = analytic::closed_form_defines(scene);
             program_ =

@@ -33,7 +33,7 @@ FrameMeasurement measure_frames(frame::SceneRenderer& renderer, frame::VolumeMet
         const frame::FrameTimings timings = renderer.draw(method);
         m.frame_ms.push_back(timings.cpu_ms);
         passes.add(timings.gpu);
-        collect(statistics, method.statistics());
+        collect(statistics, method.frame_statistics());
     }
     m.gpu = passes.medians();
     m.gpu_total_ms = passes.total_median();
@@ -53,7 +53,7 @@ PairedMeasurement measure_paired_frames(frame::SceneRenderer& renderer, frame::V
     auto draw_method = [&] {
         const frame::FrameTimings timings = renderer.draw(method);
         passes.add(timings.gpu);
-        collect(statistics, method.statistics());
+        collect(statistics, method.frame_statistics());
         m.method.frame_ms.push_back(timings.cpu_ms);
     };
     for (int i = 0; i < frames; ++i) {

@@ -1,5 +1,7 @@
 #include "methods/region_statistics.h"
 
+#include <fmt/format.h>
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -110,6 +112,13 @@ void add_eye_rays(const Scene& scene, const bt::BeamTree& tree, int width, int h
 RegionStatistics region_statistics(const Scene& scene, int width, int height) {
     const auto start = std::chrono::steady_clock::now();
     RegionStatistics stats;
+    if (!scene.lights.empty()) {
+        stats.unavailable = fmt::format(
+            "the scene has {} lights ([[lights]]): region statistics are per light (`shaftlab "
+            "regions --light N`)",
+            scene.spot_lights().size());
+        return stats;
+    }
     std::optional<bt::BeamTree> built;
     try {
         built.emplace(bt::build_scene_beam_tree(scene));

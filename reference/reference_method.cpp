@@ -32,13 +32,16 @@ public:
         return "every medium and light (closed forms per visible interval, quadrature for a "
                "smooth cone edge)";
     }
-    void prepare(const Scene&) override {}
+    // The reference sums over the lights as declared (a point light whole, not as six faces).
+    bool takes_every_light() const override { return true; }
+    void prepare_light(const Scene&) override {}
     // Nothing per frame: render() recomputes (or loads) the reference when its key changes.
-    std::unique_ptr<frame::FrameWork> cpu_update(const Scene&, const SceneChange&) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update_light(const Scene&,
+                                                       const SceneChange&) const override {
         return nullptr;
     }
-    void apply_update(const Scene&, const SceneChange&,
-                      std::unique_ptr<frame::FrameWork>) override {}
+    void apply_update_light(const Scene&, const SceneChange&,
+                            std::unique_ptr<frame::FrameWork>) override {}
     void render(const frame::VolumeInputs& inputs) override {
         // Recomputed (or loaded from the cache) whenever anything it depends on changes: the
         // viewer moves the camera and the light between frames.

@@ -76,10 +76,10 @@ public:
                                                  : VolumeMethod::accepts();
     }
 
-    void prepare(const Scene& scene) override {
+    void prepare_light(const Scene& scene) override {
         software_ = gl::current_renderer_is_software();  // for route = auto
         built_ = false;
-        update(scene, SceneChange::everything(scene));
+        update_light(scene, SceneChange::everything(scene));
         if (!march_program_) {
             march_program_ =
                 gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
@@ -92,8 +92,8 @@ public:
         frame_index_ = 0;
     }
 
-    std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
-                                                 const SceneChange& change) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update_light(const Scene& scene,
+                                                       const SceneChange& change) const override {
         if (variant_ != MarchVariant::hybrid3) {
             return nullptr;
         }
@@ -102,8 +102,8 @@ public:
         return analytic::region_frame_work(
             scene, change, {.lit = !walk, .uncertain = !walk, .gpu_tree = true}, built_, walk);
     }
-    void apply_update(const Scene& scene, const SceneChange&,
-                      std::unique_ptr<frame::FrameWork> work) override {
+    void apply_update_light(const Scene& scene, const SceneChange&,
+                            std::unique_ptr<frame::FrameWork> work) override {
         if (auto* regions = dynamic_cast<analytic::RegionFrameWork*>(work.get())) {
             const bt::FrameRegions& r = regions->regions;
             stages_ = r.ms;

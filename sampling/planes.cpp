@@ -87,10 +87,10 @@ public:
                                                   : VolumeMethod::accepts();
     }
 
-    void prepare(const Scene& scene) override {
+    void prepare_light(const Scene& scene) override {
         software_ = gl::current_renderer_is_software();  // for route = auto
         tree_.reset();
-        update(scene, SceneChange::everything(scene));
+        update_light(scene, SceneChange::everything(scene));
         if (!program_) {
             program_ = gl::create_program({{GL_VERTEX_SHADER, "sampling/shaders/planes.vert"},
                                            {GL_FRAGMENT_SHADER, "sampling/shaders/planes.frag"}});
@@ -110,8 +110,8 @@ public:
         }
     }
 
-    std::unique_ptr<frame::FrameWork> cpu_update(const Scene& scene,
-                                                 const SceneChange& change) const override {
+    std::unique_ptr<frame::FrameWork> cpu_update_light(const Scene& scene,
+                                                       const SceneChange& change) const override {
         if (variant_ == PlanesVariant::planes) {
             return nullptr;  // everything it draws is made from the frame's scene in render()
         }
@@ -125,8 +125,8 @@ public:
                                            {.lit = !walk, .uncertain = !walk, .gpu_tree = true},
                                            tree_ != nullptr, walk);
     }
-    void apply_update(const Scene& scene, const SceneChange&,
-                      std::unique_ptr<frame::FrameWork> work) override {
+    void apply_update_light(const Scene& scene, const SceneChange&,
+                            std::unique_ptr<frame::FrameWork> work) override {
         if (auto* regions = dynamic_cast<analytic::RegionFrameWork*>(work.get())) {
             const bt::FrameRegions& r = regions->regions;
             tree_ = r.tree;

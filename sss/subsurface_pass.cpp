@@ -342,9 +342,12 @@ void SubsurfacePass::set_light(GLuint program, const SpotLight& light) const {
                          glm::value_ptr(glm::vec4(light.direction(), half_angle)));
     GL.ProgramUniform4fv(
         program, SL_SSS_LIGHT_INTENSITY, 1,
-        glm::value_ptr(glm::vec4(light.intensity, glm::radians(light.falloff_degrees))));
-    GL.ProgramUniform4fv(program, SL_SSS_LIGHT_RANGE, 1,
-                         glm::value_ptr(glm::vec4(light.near, light.far, 0.0f, 0.0f)));
+        glm::value_ptr(glm::vec4(
+            light.intensity, light.smooth_edge() ? glm::radians(light.falloff_degrees) : 0.0f)));
+    GL.ProgramUniform4fv(
+        program, SL_SSS_LIGHT_RANGE, 1,
+        glm::value_ptr(glm::vec4(light.near, light.far,
+                                 light.shape == SpotShape::pyramid ? 1.0f : 0.0f, 0.0f)));
 }
 
 void SubsurfacePass::set_material(GLuint program, size_t object) const {

@@ -20,12 +20,13 @@ class Recorder final : public frame::VolumeMethod {
 public:
     Recorder(std::string name, std::vector<std::string>& log)
         : VolumeMethod(std::move(name)), log_(log) {}
-    void prepare(const Scene&) override {}
-    std::unique_ptr<frame::FrameWork> cpu_update(const Scene&, const SceneChange&) const override {
+    void prepare_light(const Scene&) override {}
+    std::unique_ptr<frame::FrameWork> cpu_update_light(const Scene&,
+                                                       const SceneChange&) const override {
         return nullptr;
     }
-    void apply_update(const Scene&, const SceneChange&,
-                      std::unique_ptr<frame::FrameWork>) override {}
+    void apply_update_light(const Scene&, const SceneChange&,
+                            std::unique_ptr<frame::FrameWork>) override {}
     void render(const frame::VolumeInputs&) override { log_.push_back(name()); }
 
 private:

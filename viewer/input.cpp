@@ -66,8 +66,9 @@ bool Viewer::handle_mouse() {
     const bool dragged = d != glm::vec2(0.0f);
     constexpr float kTurn = 0.005f;  // radians per pixel
     bool moved = false;
-    if (io.KeyCtrl && (io.MouseDown[0] || io.MouseDown[1])) {
-        // Drag the light's position (left) or target (right) in the camera's view plane.
+    if (io.KeyCtrl && (io.MouseDown[0] || io.MouseDown[1]) && scene_.lights.empty()) {
+        // Drag the light's position (left) or target (right) in the camera's view plane (a scene
+        // of one light: several are the scene file's).
         glm::vec3& point = io.MouseDown[0] ? scene_.light.position : scene_.light.target;
         if (dragged) {
             point += view_plane_drag(point, d);

@@ -5,6 +5,12 @@
 namespace sl::viewer {
 
 void Viewer::ui_light() {
+    if (!scene_.lights.empty()) {
+        // Several lights: each is the scene file's ([[lights]]); the overlays show the first.
+        ImGui::TextDisabled("%zu lights ([[lights]]): set them in the scene file",
+                            scene_.lights.size());
+        return;
+    }
     SpotLight& l = scene_.light;
     bool changed = false;
     changed |= ImGui::DragFloat3("position", &l.position.x, 0.02f);

@@ -207,7 +207,7 @@ void Viewer::draw_frame() {
     volume_history_.push(timings_.gpu.volume_ms);
     composite_history_.push(timings_.gpu.composite_ms);
     if (layer("timings") || scripted()) {
-        statistics_ = method_->statistics();
+        statistics_ = method_->frame_statistics();
     }
 
     GLuint shown = 0;

@@ -149,8 +149,35 @@ vec2 cone_interval(vec3 origin, vec3 direction, float t_max, float half_angle) {
     return vec2(1.0, 0.0);
 }
 
-// The ray's interval inside the light's exact cone and its near/far range (as light_interval).
+// Clips [lo, hi] to where a + b t >= 0 (as in_scattering.cpp's clip_linear).
+vec2 clip_linear(float a, float b, vec2 span) {
+    if (b == 0.0) return a >= 0.0 ? span : vec2(1.0, 0.0);
+    float root = -a / b;
+    return b > 0.0 ? vec2(max(span.x, root), span.y) : vec2(span.x, min(span.y, root));
+}
+
+// The ray's interval inside a pyramid light's four sides and its near/far range (as
+// pyramid_interval): each side is a plane of the shadow map's clip space, w ± x >= 0, w ± y >= 0.
+vec2 pyramid_interval(vec3 origin, vec3 direction, float t_max) {
+    vec3 a = frame.light_direction.xyz;
+    vec3 w = origin - frame.light_position.xyz;
+    float near = frame.light_position.w, far = frame.light_direction.w;
+    float wa = dot(w, a), va = dot(direction, a);
+    vec2 span = clip_linear(wa - near, va, vec2(0.0, t_max));
+    span = clip_linear(far - wa, -va, span);
+    mat4 m = transpose(frame.light_view_projection);  // rows of the light's clip transform
+    vec4 o = vec4(origin, 1.0), d = vec4(direction, 0.0);
+    for (int k = 0; k < 4; ++k) {
+        vec4 plane = m[3] + (k % 2 == 0 ? 1.0 : -1.0) * m[k / 2];
+        span = clip_linear(dot(plane, o), dot(plane, d), span);
+    }
+    return span.y > span.x ? span : vec2(1.0, 0.0);
+}
+
+// The ray's interval inside the light's exact cone (or pyramid) and its near/far range (as
+// light_interval).
 vec2 light_interval(vec3 origin, vec3 direction, float t_max) {
+    if (frame.light_cone.z > 0.5) return pyramid_interval(origin, direction, t_max);
     return cone_interval(origin, direction, t_max, frame.light_cone.x);
 }
 

@@ -1,6 +1,7 @@
 // The interface of the frame's own passes (shadow.vert, surface.vert/frag, shadow_blur.frag,
-// composite.frag), shared by frame/renderer.cpp and the shaders (uniform locations, texture
-// units). The units the renderer keeps bound for every pass are in gl/shaders/frame_uniforms.h.
+// composite.frag, accumulate.frag), shared by frame/renderer.cpp and the shaders (uniform
+// locations, texture units). The units the renderer keeps bound for every pass are in
+// gl/shaders/frame_uniforms.h.
 #ifndef SL_FRAME_INTERFACE_H
 #define SL_FRAME_INTERFACE_H
 
@@ -9,6 +10,7 @@
 #define SL_SURFACE_ROUGHNESS 3  // microfacet alpha
 #define SL_SURFACE_F0 4
 #define SL_SURFACE_TRANSLUCENT 5
+#define SL_SURFACE_LIGHT_ONLY 6  // 1: the frame light's term alone (a further light, added)
 
 // shadow_blur.frag
 #define SL_SHADOW_BLUR_SOURCE_UNIT 0
@@ -18,5 +20,8 @@
 // composite.frag
 #define SL_COMPOSITE_SURFACE_UNIT 0
 #define SL_COMPOSITE_IN_SCATTERING_UNIT 1
+
+// accumulate.frag
+#define SL_ACCUMULATE_SOURCE_UNIT 0
 
 #endif

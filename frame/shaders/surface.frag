@@ -2,6 +2,7 @@
 // Surface pass: I_obj·T(Z) of Nilsson eq. 2.7 for Lambertian surfaces lit by the spot light
 // (cone eq. 2.9, falloff eq. 2.8/2.13, shadow-map visibility) plus a constant ambient term; with
 // an environment, the spot light's microfacet specular and the environment's light (ibl.glsl).
+// With several lights, once per light, each further one adding its own term (light_only).
 #include "frame/shaders/frame_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
@@ -14,6 +15,9 @@ layout(location = SL_SURFACE_F0) uniform vec3 f0;
 // x > 0.5: translucent (sss/subsurface_pass.h adds the scattered light; here only the specular
 // term, always, and the ambient light reflected with the profile's total reflectance in yzw).
 layout(location = SL_SURFACE_TRANSLUCENT) uniform vec4 translucent;
+// 1 for a scene's further lights: this light's term alone, added to the first light's pass (the
+// ambient and environment light come with the first).
+layout(location = SL_SURFACE_LIGHT_ONLY) uniform int light_only;
 
 in vec3 world_position;
 in vec3 world_normal;
@@ -33,7 +37,7 @@ void main() {
     vec3 irradiance = vec3(0.0);
     vec3 v = normalize(to_eye);
     bool is_translucent = translucent.x > 0.5;
-    vec3 radiance = (is_translucent ? translucent.yzw : albedo) * frame.ambient.rgb;
+    vec3 radiance = light_only != 0 ? vec3(0.0) : (is_translucent ? translucent.yzw : albedo) * frame.ambient.rgb;
     if (cos_theta > 0.0 && in_light_range(-to_light)) {
         // Normal offset: move the lookup point off the surface by a few shadow texels, measured
         // at this distance from the light, so that surfaces do not shadow themselves.
@@ -46,7 +50,7 @@ void main() {
             radiance += irradiance / cos_theta * spot_specular(n, v, l, roughness, f0);
         }
     }
-    if (environment_on()) {
+    if (environment_on() && light_only == 0) {
         radiance += environment_radiance(n, v, albedo, roughness, f0);
     }
     surface_radiance = vec4(radiance * transmittance(length(to_eye)), 1.0);

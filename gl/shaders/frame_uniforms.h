@@ -35,7 +35,8 @@ SL_UNIFORM_BLOCK(FrameUniforms, SL_FRAME_UNIFORMS_BINDING) {
     vec4 light_position;         // xyz; w = near range
     vec4 light_direction;        // xyz unit axis; w = far range (the backplate)
     vec4 light_intensity;        // rgb
-    vec4 light_cone;             // x = cone half-angle (rad), y = falloff width (rad, 0 = hard)
+    vec4 light_cone;             // x = cone half-angle (rad), y = falloff width (rad, 0 = hard),
+                                 // z = 1 for a pyramid (SpotShape), 0 for a cone
     vec4 medium_sigma_s;         // rgb; w = phase function (PhaseFunction's order)
     vec4 medium_sigma_t;         // rgb; w = model (0 simplified, 1 physical)
     vec4 medium_attenuation;     // x = a0, y = a1 (simplified model, Nilsson eq. 2.13);

@@ -2,8 +2,13 @@
 // Medium): the GPU and CPU paths must agree.
 const float PI = 3.14159265358979;
 
-// I(Ω)/I: Nilsson eq. 2.9 (hard edge), or a smoothstep over the falloff width inside the edge.
+// I(Ω)/I: Nilsson eq. 2.9 (hard edge), or a smoothstep over the falloff width inside the edge; a
+// pyramid (light_cone.z = 1): 1 inside its four sides, the shadow map's frustum.
 float cone_factor(vec3 from_light) {
+    if (frame.light_cone.z > 0.5) {
+        vec4 clip = frame.light_view_projection * vec4(frame.light_position.xyz + from_light, 1.0);
+        return clip.w > 0.0 && max(abs(clip.x), abs(clip.y)) <= clip.w ? 1.0 : 0.0;
+    }
     float cos_angle = dot(normalize(from_light), frame.light_direction.xyz);
     float angle = acos(clamp(cos_angle, -1.0, 1.0));
     float half_angle = frame.light_cone.x, falloff = frame.light_cone.y;

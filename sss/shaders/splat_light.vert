@@ -50,9 +50,11 @@ void main() {
     if (cos_i <= 0.0 || axial < light_range.x || axial > light_range.y) {
         return;
     }
-    // The cone factor of the light (lighting.glsl's, for this light).
+    // The cone factor of the light (lighting.glsl's, for this light): 1 everywhere for a pyramid
+    // (light_range.z = 1), whose sides are the light map's, which the samples lie within.
     float angle = acos(clamp(axial / r, -1.0, 1.0));
-    float cone = light_intensity.w <= 0.0
+    float cone = light_range.z > 0.5 ? 1.0
+                 : light_intensity.w <= 0.0
                      ? (angle <= light_direction.w ? 1.0 : 0.0)
                      : smoothstep(0.0, 1.0, (light_direction.w - angle) / light_intensity.w);
     vec3 irradiance = light_intensity.rgb * cone * light_falloff(r) * cos_i;  // E(x_s)

@@ -8,7 +8,7 @@ layout(location = SL_SSS_GRID) uniform ivec4 grid;            // N, M, frame see
 layout(location = SL_SSS_LIGHT_POSITION) uniform vec4 light_position;   // xyz, tan of the cone's half angle
 layout(location = SL_SSS_LIGHT_DIRECTION) uniform vec4 light_direction;  // unit axis, cone half angle (radians)
 layout(location = SL_SSS_LIGHT_INTENSITY) uniform vec4 light_intensity;  // rgb, falloff width (radians)
-layout(location = SL_SSS_LIGHT_RANGE) uniform vec4 light_range;      // near, far along the axis
+layout(location = SL_SSS_LIGHT_RANGE) uniform vec4 light_range;      // near, far along the axis; z = 1 for a pyramid
 layout(location = SL_SSS_MATERIAL) uniform vec4 material;         // r_max (units), mm per unit, η, multipole
 layout(location = SL_SSS_SLAB) uniform vec4 slab;  // d_min, d_max (mm), profile layer, weights:
                                           // 0 jacobian, 1 seed, 2 ΔA alone (area pass)
