@@ -57,7 +57,7 @@ PointCheck check_point(const bt::BeamTree& tree, const Oracles& oracles, const d
     return check;
 }
 
-int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds) {
+int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds, bool point_light) {
     bt::VolumeLibrary library(options);
     library.set_caching(false);  // random meshes: nothing to share with the disk
     size_t compared = 0, counts[3] = {0, 0, 0};
@@ -92,7 +92,6 @@ int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds) {
             }
         }
         const std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
-        const bt::BeamTree tree(scene.light, volumes);
         Oracles oracles;
         add_volumes(volumes, scene, oracles);
         std::mt19937 rng(1000 + seed);
@@ -109,13 +108,30 @@ int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds) {
                               << check.margin;
             }
         };
-        for_each_decided_point(tree, oracles, scene.light, rng, 10000, on_point);
-        for_each_decided_point_behind_a_surface(tree, oracles, scene, rng, 10000, on_point);
-        const bt::Regions regions = bt::extract_regions(tree);
-        const double total = regions.volume[0] + regions.volume[1] + regions.volume[2];
-        EXPECT_NEAR(total / regions.influence_volume, 1.0, 1e-6)
-            << "scene " << seed << " (kinds " << random.kinds << "): lit " << regions.volume[0]
-            << " uncertain " << regions.volume[1] << " unlit " << regions.volume[2];
+        // The scene's spot light, or a point light in its place: each of its six faces' trees
+        // (Scene::spot_lights), with the points split among them.
+        Scene lit = scene;
+        if (point_light) {
+            PointLight point;
+            point.position = scene.light.position;
+            point.near = scene.light.near;
+            point.far = scene.light.far;
+            lit.set_lights({point});
+        }
+        const std::vector<SpotLight> lights = lit.spot_lights();
+        const int points = 10000 / int(lights.size());
+        for (const SpotLight& light : lights) {
+            const bt::BeamTree tree(light, volumes);
+            Scene view = scene;
+            view.light = light;
+            for_each_decided_point(tree, oracles, light, rng, points, on_point);
+            for_each_decided_point_behind_a_surface(tree, oracles, view, rng, points, on_point);
+            const bt::Regions regions = bt::extract_regions(tree);
+            const double total = regions.volume[0] + regions.volume[1] + regions.volume[2];
+            EXPECT_NEAR(total / regions.influence_volume, 1.0, 1e-6)
+                << "scene " << seed << " (kinds " << random.kinds << "): lit " << regions.volume[0]
+                << " uncertain " << regions.volume[1] << " unlit " << regions.volume[2];
+        }
     }
     const size_t checked = size_t((seeds + stride - 1) / stride);
     EXPECT_EQ(failures, 0) << "of " << compared << " points";

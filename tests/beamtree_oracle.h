@@ -120,9 +120,11 @@ inline constexpr int kSanitizedSeedStride = 1;
 // lit points see the light past every true mesh and unlit points do not (soundness), and the
 // regions tile the influence volume (conservation); and no convex piece reaches outside its mesh's
 // hull by more than 10^-3 of its size (tightness). With triangles as occluders
-// (options.occluders) no decided point is uncertain. Returns how many scenes had the light inside
-// the hull of a whole object (which only its pieces allow).
-int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds);
+// (options.occluders) no decided point is uncertain. With `point_light`, a point light at the
+// scene's light (its range) instead, each of its six pyramidal faces' trees checked (the points
+// split among them). Returns how many scenes had the light inside the hull of a whole object
+// (which only its pieces allow).
+int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds, bool point_light = false);
 
 // The directed edges of a float triangle mesh that no triangle meets in the opposite direction
 // (zero-length edges left out). The faces of a region's pieces close up, so in a crack-free mesh

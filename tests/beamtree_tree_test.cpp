@@ -34,6 +34,14 @@ TEST(BeamTree, AgreesWithRayCastsIsSoundAndConservesVolumeOnRandomScenes) {
     check_random_scenes(Shapes::canonical, {}, 200);
 }
 
+// The same oracle with a point light in the scene's light's place (docs/design.md §17): each of
+// its six faces' trees (pyramids of half-angle 45°), on the canonical shapes and on what real
+// models hold as exact triangles (objects all around the light, in every face).
+TEST(BeamTree, IsSoundForEachFaceOfAPointLight) {
+    check_random_scenes(Shapes::canonical, {}, 40, true);
+    check_random_scenes(Shapes::real, {.occluders = Occluders::triangles}, 12, true);
+}
+
 // The same oracle on scenes of what real models hold (random_scene's Shapes::real: walls with
 // openings and T-junctions, several boxes in one mesh, open boxes, terrain, tori, inside-out
 // meshes, rooms around the light), with the objects cut into convex pieces; in some scenes the
