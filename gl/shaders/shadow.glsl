@@ -15,10 +15,15 @@ float light_linear_depth(vec3 p) {
 }
 
 // 1 where p sees the light, 0 where it does not, fractions in between for filtered maps; 0
-// outside the influence pyramid.
+// outside the influence pyramid. A pyramid light (light_cone.z = 1) emits up to its sides, where
+// a surface's lookup point, moved off the surface by the normal offset, may leave the map: it
+// reads the map's edge instead (else the seams between a point light's faces stay dark).
 float light_visibility(vec3 p) {
     vec4 clip = frame.light_view_projection * vec4(p, 1.0);
     vec3 coord = 0.5 * clip.xyz / clip.w + 0.5;
+    if (frame.light_cone.z > 0.5) {
+        coord.xy = clamp(coord.xy, vec2(0.0), vec2(1.0));
+    }
     if (clip.w <= 0.0 || any(lessThan(coord, vec3(0.0))) || any(greaterThan(coord, vec3(1.0)))) {
         return 0.0;
     }
