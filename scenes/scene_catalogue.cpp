@@ -53,9 +53,14 @@ std::vector<std::string> real_scene_names() {
     return {"house", "house-sweep", "engine", "engine-orbit", "arena", "arena-sweep"};
 }
 
+std::vector<std::string> light_scene_names() {
+    return {"room", "parallel-lamps"};
+}
+
 std::vector<std::string> named_scene_names() {
     std::vector<std::string> names = canonical_scene_names();
-    for (const auto& group : {animated_scene_names(), effect_scene_names(), real_scene_names()}) {
+    for (const auto& group :
+         {animated_scene_names(), effect_scene_names(), real_scene_names(), light_scene_names()}) {
         names.insert(names.end(), group.begin(), group.end());
     }
     return names;

@@ -83,8 +83,11 @@ std::vector<std::string> effect_scene_names();
 // Real models read through assimp (house: the FZK-Haus IFC; house-sweep: its light moving;
 // engine: a glTF mechanical assembly; engine-orbit: its light circling above it).
 std::vector<std::string> real_scene_names();
-// Every scene that loads by name from scenes/: the canonical, the animated and the effect scenes,
-// in that order (`shaftlab scenes` lists them; the generated families are not among them).
+// Scenes of other lights than one spot (docs/design.md §17; room: a point light in a room;
+// parallel-lamps: a row of four spot lamps over parallel's corridor).
+std::vector<std::string> light_scene_names();
+// Every scene that loads by name from scenes/: the canonical, the animated, the effect, the real
+// and the light scenes, in that order (`shaftlab scenes` lists them; the generated families are not among them).
 std::vector<std::string> named_scene_names();
 // A scene of N objects on a jittered grid under one spot light (docs/design.md §5), as TOML text,
 // deterministic in N. `multiple` is multiple:kMultipleDefaultCount.

@@ -56,9 +56,10 @@ SceneText scene_text(const std::string& name, const fs::path& dir, const SceneSe
     };
     fail(
         "unknown scene {}{} (canonical: {}, multiple:N; random: boxes:SEED; animated: {}; "
-        "effects: {}; real: {}; or a .toml file)",
+        "effects: {}; real: {}; lights: {}; or a .toml file)",
         quote(name), did_you_mean(name, names), listed(canonical_scene_names()),
-        listed(animated_scene_names()), listed(effect_scene_names()), listed(real_scene_names()));
+        listed(animated_scene_names()), listed(effect_scene_names()), listed(real_scene_names()),
+        listed(light_scene_names()));
 }
 
 toml::table parse_toml(const std::string& text, const std::string& origin) {
