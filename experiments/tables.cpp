@@ -71,6 +71,13 @@ std::string regions_table(const std::vector<StoredRow>& rows) {
             continue;
         }
         const Json& v = r.row;
+        if (v.contains("regions_unavailable")) {
+            // No statistics (the light inside a volume, or several lights, each its own tree):
+            // why, instead of zeros.
+            md += fmt::format("| {} | {} | {} |  |  |  |  |  |  |\n", scene_label(r.cell.scene),
+                              r.cell.size(), v.value("regions_unavailable", std::string()));
+            continue;
+        }
         md += fmt::format(
             "| {} | {} | {} | {} | {:.1f}% / {:.1f}% / {:.1f}% | {:.1f}% / {:.1f}% / {:.1f}% | "
             "{:.2f} / {:.2f} | {} | {:.1f} |\n",
