@@ -183,6 +183,9 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     // and 20 % faster to build this way.)
     std::vector<Inserting> polygons;
     for (const ObjectVolumes& object : volumes) {
+        if (outside_influence(object.triangles.empty() ? object.outer.faces : object.triangles)) {
+            continue;
+        }
         if (!object.triangles.empty()) {
             add_facing_triangles(object.triangles, apex_, polygons);
             continue;
@@ -212,6 +215,29 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
             insert(*o.polygon, o.plane, o.role);
         }
     }
+}
+
+bool BeamTree::outside_influence(const std::vector<Polygon>& polygons) const {
+    // Beyond a side of the influence pyramid or its far range, wholly (not the near range: an
+    // object between the light and it still shadows). Such an object casts no shadow inside the
+    // pyramid: the root chain would drop each of its polygons, one descent each. A point light's
+    // faces each see a part of the scene, so each skips most of it here.
+    for (const size_t i : {0, 1, 2, 3, 5}) {
+        const Plane& plane = influence_[i];
+        bool all_outside = true;
+        for (const Polygon& polygon : polygons) {
+            for (const dvec3& v : polygon.vertices) {
+                all_outside &= plane.distance(v) > epsilon_;
+            }
+            if (!all_outside) {
+                break;
+            }
+        }
+        if (all_outside && !polygons.empty()) {
+            return true;
+        }
+    }
+    return false;
 }
 
 void BeamTree::set_leaf(int32_t index, const Leaf& leaf) {

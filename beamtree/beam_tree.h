@@ -200,6 +200,9 @@ private:
         double nearest = 0.0;  // the polygon's distance from L: no fragment of it is nearer
     };
     void insert(const Polygon& polygon, const Plane& plane, Role role);
+    // True when every vertex lies outside one side of the influence pyramid or beyond its far
+    // range: what the polygons bound casts no shadow inside it.
+    bool outside_influence(const std::vector<Polygon>& polygons) const;
     // Takes `fragment` down from node `index` to its leaf, pushing the far parts of straddled
     // splits onto `stack`; -1 where nothing of it is left to attach.
     int32_t descend(int32_t index, double nearest, Polygon& fragment,

@@ -11,6 +11,7 @@
 //   2. The canonical animations, every frame.
 //   3. Scaling over multiple:N.
 //   4. The static half: each mesh's volumes computed, and read back from the disk cache.
+//   5. (`moving_bench lights`) A light move on the light scenes, every spot light and face.
 
 #include <tbb/global_control.h>
 
@@ -20,6 +21,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <fmt/format.h>
@@ -239,6 +241,69 @@ void static_half_table(const std::vector<std::string>& stills, const SceneSearch
     }
 }
 
+// 5. A light move on the light scenes (issue 47): every light circles 0.5 m about its place, and
+//    each of the scene's spot lights (a point light's six faces) gets its tree on the walk route;
+//    per frame, the sum over them.
+void lights_move_table(const SceneSearchPaths& paths) {
+    fmt::print("## A light move on the light scenes, walk route\n\n");
+    fmt::print(
+        "Every light circles 0.5 m about its place over {} frames; per frame, each spot light "
+        "(a point light: its six faces) gets its tree and GPU tree (the walk route: what all "
+        "four region methods need); milliseconds per frame summed over the lights, one core, "
+        "medians over the frames (p95 beside). Issue 47's budget: 4 ms for a point light (six "
+        "faces), 2 ms per spot light.\n\n",
+        kFrames);
+    fmt::print(
+        "| scene | lights | spot lights | volumes | tree | GPU tree | total (median) | p95 | per "
+        "spot light | budget |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    for (const std::string& name : light_scene_names()) {
+        const Scene scene = load_scene(name, paths);
+        std::vector<Scene> states;
+        for (int k = 0; k < kFrames; ++k) {
+            const double a = 2.0 * M_PI * k / kFrames;
+            const glm::vec3 offset =
+                glm::vec3(0.5 * std::cos(a), 0.0, 0.5 * std::sin(a)) - glm::vec3(0.5f, 0.0f, 0.0f);
+            std::vector<LightSource> sources = scene.light_sources();
+            for (LightSource& source : sources) {
+                std::visit([&](auto& light) { light.position += offset; }, source);
+            }
+            Scene moved = scene;
+            moved.set_lights(std::move(sources));
+            states.push_back(std::move(moved));
+        }
+        const size_t spots = scene.spot_lights().size();
+        for (size_t i = 0; i < spots; ++i) {
+            build_frame_regions(scene.for_light(i), kWalk);  // the static half, before timing
+        }
+        std::vector<double> volumes, tree, gpu_tree, totals;
+        for (const Scene& state : states) {
+            RegionStageTimes sum;
+            for (size_t i = 0; i < spots; ++i) {
+                const RegionStageTimes t = build_frame_regions(state.for_light(i), kWalk).ms;
+                sum.volumes += t.volumes;
+                sum.tree += t.tree;
+                sum.gpu_tree += t.gpu_tree;
+                sum.regions += t.regions;
+            }
+            volumes.push_back(sum.volumes);
+            tree.push_back(sum.tree);
+            gpu_tree.push_back(sum.gpu_tree);
+            totals.push_back(sum.total());
+        }
+        const bool point = std::holds_alternative<PointLight>(scene.light_sources().front());
+        const double budget =
+            point ? 4.0 * double(scene.light_sources().size()) : 2.0 * double(spots);
+        const double total = quantile(totals, 0.5);
+        fmt::print(
+            "| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | **{:.2f}** | {:.2f} | {:.2f} | {} |\n",
+            name, scene.light_sources().size(), spots, quantile(volumes, 0.5), quantile(tree, 0.5),
+            quantile(gpu_tree, 0.5), total, quantile(totals, 0.95), total / double(spots),
+            total <= budget ? fmt::format("met ({} ms)", budget)
+                            : fmt::format("{:.1f}x over {} ms", total / budget, budget));
+        std::fflush(stdout);
+    }
+}
+
 // real: the same tables for the real scenes (house, house-sweep; the game level arena,
 // arena-sweep) instead of the canonical ones,
 // without the scaling runs.
@@ -264,6 +329,11 @@ int run(bool real) {
 
 int main(int argc, char** argv) {
     try {
+        if (argc > 1 && std::string(argv[1]) == "lights") {
+            const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+            sl::bt::lights_move_table(sl::SceneSearchPaths::defaults());
+            return 0;
+        }
         return sl::bt::run(argc > 1 && std::string(argv[1]) == "real");
     } catch (const std::exception& e) {
         std::fprintf(stderr, "moving_bench: %s\n", e.what());
