@@ -29,8 +29,8 @@ public:
                                              "metres: bisection of each light/shadow transition");
     }
     std::string accepts() const override {
-        return "every medium and light (closed forms per visible interval, quadrature for a "
-               "smooth cone edge)";
+        return "every medium and light, any number (closed forms per visible interval, a point "
+               "light whole, quadrature for a smooth cone edge)";
     }
     // The reference sums over the lights as declared (a point light whole, not as six faces).
     bool takes_every_light() const override { return true; }

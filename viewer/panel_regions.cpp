@@ -5,6 +5,11 @@
 namespace sl::viewer {
 
 void Viewer::ui_regions() {
+    if (!scene_.lights.empty()) {
+        // Each light has its own tree; the overlay and the figures below are the first's.
+        ImGui::TextDisabled("light 1 of %zu (each has its own tree: `shaftlab regions --light N`)",
+                            scene_.spot_lights().size());
+    }
     ImGui::Checkbox("volumes", &overlay_settings_.volumes);
     ImGui::SameLine();
     ImGui::Checkbox("outlines", &overlay_settings_.outlines);

@@ -7,8 +7,8 @@ namespace sl::viewer {
 void Viewer::ui_light() {
     if (!scene_.lights.empty()) {
         // Several lights: each is the scene file's ([[lights]]); the overlays show the first.
-        ImGui::TextDisabled("%zu lights ([[lights]]): set them in the scene file",
-                            scene_.lights.size());
+        ImGui::TextDisabled("[[lights]]: %zu (%zu spot lights and faces), set in the file",
+                            scene_.lights.size(), scene_.spot_lights().size());
         return;
     }
     SpotLight& l = scene_.light;
