@@ -260,6 +260,15 @@ SpotLight random_pyramid(std::mt19937& rng) {
     return light;
 }
 
+// A ray of random_ray's kind `kind` about a light at `position` with a random axis (a point
+// light's: no axis of its own).
+analytic::EyeRay random_ray_about(std::mt19937& rng, const glm::vec3& position, int kind) {
+    SpotLight aim;
+    aim.position = position;
+    aim.target = position + glm::vec3(random_unit(rng));
+    return random_ray(rng, aim, kind);
+}
+
 PointLight random_point_light(std::mt19937& rng) {
     PointLight light;
     light.position = glm::vec3(uniform(rng, -2, 2), uniform(rng, 2, 5), uniform(rng, -2, 2));
@@ -304,10 +313,7 @@ TEST(InScattering, PointLightIntervalsMatchBruteForce) {
     int two = 0;
     for (int i = 0; i < 400; ++i) {
         const PointLight light = random_point_light(rng);
-        SpotLight aim;
-        aim.position = light.position;
-        aim.target = light.position + glm::vec3(random_unit(rng));
-        const analytic::EyeRay ray = random_ray(rng, aim, i % 5);
+        const analytic::EyeRay ray = random_ray_about(rng, light.position, i % 5);
         auto inside = [&](double z) { return light.in_range(ray.origin + z * ray.direction); };
         analytic::Interval parts[2];
         const int count = analytic::point_light_intervals(ray, light, 30.0, parts);
@@ -331,10 +337,7 @@ TEST(InScattering, PointLightClosedFormsMatchQuadrature) {
     for (int i = 0; i < 500; ++i) {
         const PointLight light = random_point_light(rng);
         const Medium medium = random_medium(rng, i % kCases);
-        SpotLight aim;
-        aim.position = light.position;
-        aim.target = light.position + glm::vec3(random_unit(rng));
-        const analytic::EyeRay ray = random_ray(rng, aim, (i / kCases) % 5);
+        const analytic::EyeRay ray = random_ray_about(rng, light.position, (i / kCases) % 5);
         const double z0 = uniform(rng, 0.0, 4.0), z1 = z0 + uniform(rng, 0.5, 25.0);
         const dvec3 closed = analytic::in_scattering(ray, z0, z1, light, medium);
         std::vector<double> cuts = {z0};
@@ -370,10 +373,7 @@ TEST(InScattering, PointLightIsTheSumOfItsSixPyramids) {
         const PointLight light = random_point_light(rng);
         const std::array<SpotLight, 6> faces = light.faces();
         const Medium medium = random_medium(rng, i % kCases);
-        SpotLight aim;
-        aim.position = light.position;
-        aim.target = light.position + glm::vec3(random_unit(rng));
-        const analytic::EyeRay ray = random_ray(rng, aim, (i / kCases) % 5);
+        const analytic::EyeRay ray = random_ray_about(rng, light.position, (i / kCases) % 5);
         const double z0 = uniform(rng, 0.0, 4.0), z1 = z0 + uniform(rng, 0.5, 25.0);
         dvec3 sum(0.0);
         int covering = 0;
