@@ -150,6 +150,10 @@ struct PointLight {
     bool in_range(const glm::dvec3& p) const;
 };
 
+// The most spot lights a scene file may ask for, a point light counting as its six faces (each
+// is its own shadow map, tree and method instance).
+inline constexpr size_t kMaxSpotLights = 256;
+
 // One light as a scene file declares it ([light], or one [[lights]] entry).
 using LightSource = std::variant<SpotLight, PointLight>;
 const char* light_type(const LightSource& light);  // "spot", "point"

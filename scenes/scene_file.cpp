@@ -138,6 +138,17 @@ void read_lights(TableReader& top, const std::string& origin, Scene& scene) {
                                                        quote(type)));
         }
     }
+    // Each spot light (a point light's six faces) is a shadow map, a tree and a method instance
+    // per frame: a bound that keeps a typo of a scene generator from asking for a million.
+    size_t spots = 0;
+    for (const LightSource& source : sources) {
+        spots += std::holds_alternative<PointLight>(source) ? 6 : 1;
+    }
+    if (spots > kMaxSpotLights) {
+        fail("{}: [[lights]]: {} lights make {} spot lights (a point light counts six faces); at "
+             "most {} are taken",
+             origin, sources.size(), spots, kMaxSpotLights);
+    }
     scene.set_lights(std::move(sources));
 }
 

@@ -248,6 +248,14 @@ std::vector<BadInput> bad_inputs() {
          "[[lights]] #2 far: must be in"},
         {"lights = []\n" + replace(s, kLightBlock, ""), "[[lights]] is empty"},
         {replace(s, kLightBlock, ""), "missing the light: a [light] table"},
+        {[&] {
+             std::string many = replace(s, kLightBlock, "");
+             for (int i = 0; i < 43; ++i)
+                 many += kPointLight;
+             return many;
+         }(),
+         "[[lights]]: 43 lights make 258 spot lights (a point light counts six faces); at most "
+         "256"},
     };
 }
 
