@@ -163,13 +163,14 @@ MethodStatistics VolumeMethod::frame_statistics() const {
     }
     sum.emplace_back("lights", double(light_count()));
     for (const std::unique_ptr<VolumeMethod>& copy : copies_) {
-        for (const auto& [name, value] : copy->statistics()) {
-            auto same = std::find_if(sum.begin(), sum.end(),
-                                     [&](const auto& entry) { return entry.first == name; });
+        for (const std::pair<std::string, double>& counter : copy->statistics()) {
+            auto same = std::find_if(sum.begin(), sum.end(), [&](const auto& entry) {
+                return entry.first == counter.first;
+            });
             if (same == sum.end()) {
-                sum.emplace_back(name, value);
+                sum.push_back(counter);
             } else {
-                same->second += value;
+                same->second += counter.second;
             }
         }
     }
