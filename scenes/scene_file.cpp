@@ -145,9 +145,10 @@ void read_lights(TableReader& top, const std::string& origin, Scene& scene) {
         spots += std::holds_alternative<PointLight>(source) ? 6 : 1;
     }
     if (spots > kMaxSpotLights) {
-        fail("{}: [[lights]]: {} lights make {} spot lights (a point light counts six faces); at "
-             "most {} are taken",
-             origin, sources.size(), spots, kMaxSpotLights);
+        fail(
+            "{}: [[lights]]: {} lights make {} spot lights (a point light counts six faces); at "
+            "most {} are taken",
+            origin, sources.size(), spots, kMaxSpotLights);
     }
     scene.set_lights(std::move(sources));
 }

@@ -87,7 +87,8 @@ std::vector<std::string> real_scene_names();
 // parallel-lamps: a row of four spot lamps over parallel's corridor).
 std::vector<std::string> light_scene_names();
 // Every scene that loads by name from scenes/: the canonical, the animated, the effect, the real
-// and the light scenes, in that order (`shaftlab scenes` lists them; the generated families are not among them).
+// and the light scenes, in that order (`shaftlab scenes` lists them; the generated families are not
+// among them).
 std::vector<std::string> named_scene_names();
 // A scene of N objects on a jittered grid under one spot light (docs/design.md §5), as TOML text,
 // deterministic in N. `multiple` is multiple:kMultipleDefaultCount.
