@@ -285,9 +285,8 @@ void SceneRenderer::create_targets() {
 }
 
 void SceneRenderer::create_timers() {
-    for (gl::Query& timer : timers_) {
-        timer = gl::create_query(GL_TIME_ELAPSED);
-    }
+    composite_timer_ = gl::create_query(GL_TIME_ELAPSED);
+    subsurface_timer_ = gl::create_query(GL_TIME_ELAPSED);
     timeline_ = std::make_unique<Timeline>();
     shadow_timeline_ = std::make_unique<Timeline>();
     surface_timeline_ = std::make_unique<Timeline>();
@@ -425,7 +424,7 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
             draw_surfaces(i > 0);
         }
         if (subsurface_) {
-            PassTimer timer(timers_[4], "subsurface");
+            PassTimer timer(subsurface_timer_, "subsurface");
             subsurface_->render(
                 [this](size_t index, GLuint program) { draw_object(index, program, true); },
                 uniforms_.view_projection, surface_depth_.id(), surface_framebuffer_.id(),
@@ -442,7 +441,7 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
         draw_volume(method, scene_, false);
     }
     {
-        PassTimer timer(timers_[3], "composite");
+        PassTimer timer(composite_timer_, "composite");
         draw_composite();
     }
     GL.DepthMask(GL_TRUE);
@@ -605,7 +604,7 @@ FrameTimings SceneRenderer::read_timings() const {
     FrameTimings timings;
     {  // waits for the frame to finish
         GLuint64 ns = 0;
-        GL.GetQueryObjectui64v(timers_[3].id(), GL_QUERY_RESULT, &ns);
+        GL.GetQueryObjectui64v(composite_timer_.id(), GL_QUERY_RESULT, &ns);
         timings.gpu.composite_ms = double(ns) * 1e-6;
     }
     for (const auto& [name, ms] : shadow_timeline_->results()) {
@@ -616,7 +615,7 @@ FrameTimings SceneRenderer::read_timings() const {
     }
     if (subsurface_) {
         GLuint64 ns = 0;
-        GL.GetQueryObjectui64v(timers_[4].id(), GL_QUERY_RESULT, &ns);
+        GL.GetQueryObjectui64v(subsurface_timer_.id(), GL_QUERY_RESULT, &ns);
         timings.gpu.subsurface_ms = double(ns) * 1e-6;
     }
     timings.gpu.volume_sections = timeline_->results();

@@ -149,7 +149,8 @@ private:
     gl::Framebuffer composite_framebuffer_;
     std::unique_ptr<sss::SubsurfacePass> subsurface_;
     uint32_t frame_index_ = 0;
-    gl::Query timers_[5];                        // 3 composite, 4 subsurface
+    gl::Query composite_timer_;
+    gl::Query subsurface_timer_;
     std::unique_ptr<Timeline> timeline_;         // the volume pass, by the method's sections
     std::unique_ptr<Timeline> shadow_timeline_;  // the shadow maps, one section per light
     std::unique_ptr<Timeline> surface_timeline_;

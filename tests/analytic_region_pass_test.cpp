@@ -527,7 +527,7 @@ TEST_F(GpuMethod, BeamtreeMatchesTheReferenceWithTrianglesAsOccluders) {
         errors[errors.size() / 2], errors.back());
 }
 
-// A point light on the random box scenes (issue 47's target): each scene's spot light replaced by
+// A point light on the random box scenes: each scene's spot light replaced by
 // a point light at its position with its range, so that the six faces' trees see boxes all around
 // the light, and the eye lies inside the light's cubes on the odd seeds (inside the spot's cone
 // there). Nothing is uncertain, so `beamtree` (six instances, one per face) equals the reference

@@ -196,10 +196,9 @@ TEST_F(Render, ToplightFloorMatchesCpuShadingAndVisibility) {
 }
 
 // The same under a point light over the toplight scene's floor, where its faces meet along lines
-// across the floor (|x| or |z| from its foot equal to its height): the light goes on across them (a
-// surface's shadow lookup, moved off the floor by the normal offset, used to leave its face's map
-// there and read as shadowed: dark seams, shadow.glsl), and the floor is lit by each face up to its
-// side.
+// across the floor (|x| or |z| from its foot equal to its height): the light goes on across them,
+// where a surface's shadow lookup, moved off the floor by the normal offset, leaves its face's map
+// and must read the map's edge (shadow.glsl), and the floor is lit by each face up to its side.
 TEST_F(Render, FloorUnderAPointLightHasNoSeamsBetweenItsFaces) {
     Scene scene = load_canonical("toplight");
     PointLight point;

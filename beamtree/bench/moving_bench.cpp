@@ -241,7 +241,7 @@ void static_half_table(const std::vector<std::string>& stills, const SceneSearch
     }
 }
 
-// 5. A light move on the light scenes (issue 47): every light circles 0.5 m about its place, and
+// 5. A light move on the light scenes: every light circles 0.5 m about its place, and
 //    each of the scene's spot lights (a point light's six faces) gets its tree on the walk route;
 //    per frame, the sum over them.
 void lights_move_table(const SceneSearchPaths& paths) {
