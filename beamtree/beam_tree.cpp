@@ -123,20 +123,38 @@ double distance_to_polygon(const dvec3& p, const Polygon& polygon) {
 // occluder and a stopper on the same plane at once, so that behind it the leaf is a blocker
 // whose uncertain layer (between occluder and stopper) is empty: unlit, exactly. Each triangle
 // is placed by its own distance, so that the triangles of neighbouring objects interleave.
-// Degenerate triangles cover nothing and are left out.
+// Degenerate triangles cover nothing and are left out. With `outward_only` (a closed surface
+// wound outward, the light outside it: ObjectVolumes::closed) the triangles facing away from
+// the light are left out too: they block nothing the others do not (closed_surface.h).
 void add_facing_triangles(const std::vector<Polygon>& triangles, const dvec3& light,
-                          std::vector<Inserting>& out) {
+                          bool outward_only, std::vector<Inserting>& out) {
     for (const Polygon& triangle : triangles) {
         const std::vector<dvec3>& v = triangle.vertices;
         Plane plane;
         if (!Plane::through(v[0], v[1], v[2], plane)) {
             continue;
         }
-        const double nearest = distance_to_polygon(light, triangle);
         const bool reversed = plane.distance(light) < 0.0;
+        if (reversed && outward_only) {
+            continue;
+        }
+        const double nearest = distance_to_polygon(light, triangle);
         out.push_back({nearest, &triangle, reversed ? plane.flipped() : plane,
                        BeamTree::Role::opaque, reversed});
     }
+}
+
+// True when p lies within `margin` of the box around the polygons' vertices.
+bool near_bounds(const std::vector<Polygon>& polygons, const dvec3& p, double margin) {
+    dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+    for (const Polygon& polygon : polygons) {
+        for (const dvec3& v : polygon.vertices) {
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
+    }
+    return glm::all(glm::greaterThanEqual(p, lo - margin)) &&
+           glm::all(glm::lessThanEqual(p, hi + margin));
 }
 
 }  // namespace
@@ -187,7 +205,11 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
             continue;
         }
         if (!object.triangles.empty()) {
-            add_facing_triangles(object.triangles, apex_, polygons);
+            // Outside the box the light is outside the solid; inside it (a torus's hole, or
+            // the solid itself) every triangle goes in.
+            const bool outward_only =
+                object.closed && !near_bounds(object.triangles, apex_, epsilon_);
+            add_facing_triangles(object.triangles, apex_, outward_only, polygons);
             continue;
         }
         // A volume's faces go in together, at the distance of the box around it.

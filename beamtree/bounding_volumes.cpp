@@ -739,17 +739,43 @@ std::vector<std::string> VolumeLibrary::exact_objects(const Scene& scene) {
     return exact;
 }
 
+std::shared_ptr<const ClosedSurface> VolumeLibrary::surface_of(
+    const std::shared_ptr<const Mesh>& mesh) {
+    {
+        const std::lock_guard lock(mutex_);
+        if (auto it = surfaces_.find(mesh.get()); it != surfaces_.end()) {
+            if (!it->second.first.expired()) {
+                return it->second.second;
+            }
+            surfaces_.erase(it);
+        }
+    }
+    auto surface = std::make_shared<const ClosedSurface>(closed_surface(*mesh));
+    const std::lock_guard lock(mutex_);
+    surfaces_[mesh.get()] = {mesh, surface};
+    return surface;
+}
+
 ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
     const glm::dmat4 transform(object.transform);
     ObjectVolumes volumes;
     volumes.object = index;
     volumes.name = object.name;
     const Mesh& mesh = *object.mesh;
+    const std::shared_ptr<const ClosedSurface> surface = surface_of(object.mesh);
+    volumes.closed = surface->usable();
+    // A mirroring transform turns every winding.
+    const int8_t mirrored = glm::determinant(glm::dmat3(transform)) < 0.0 ? -1 : 1;
     volumes.triangles.reserve(mesh.triangles.size());
-    for (const glm::uvec3& t : mesh.triangles) {
+    for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+        const glm::uvec3& t = mesh.triangles[f];
         std::vector<dvec3> corners;
+        corners.reserve(3);
         for (int k = 0; k < 3; ++k) {
             corners.emplace_back(transform * glm::dvec4(dvec3(mesh.positions[t[k]]), 1.0));
+        }
+        if (volumes.closed && surface->outward[f] * mirrored < 0) {
+            std::swap(corners[1], corners[2]);  // wound outward in the world
         }
         volumes.triangles.emplace_back(std::move(corners));
     }

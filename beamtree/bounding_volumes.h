@@ -16,6 +16,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "beamtree/closed_surface.h"
 #include "beamtree/convex_volume.h"
 #include "beamtree/geometry.h"
 #include "core/check.h"
@@ -36,6 +37,9 @@ struct ObjectVolumes {
     // volume): the object's triangles in world space, each unlit behind it. Then `outer` and
     // `inner` are empty.
     std::vector<Polygon> triangles;
+    // The triangles make a closed surface wound outward in world space (closed_surface.h): while
+    // the light is outside their bounds, those facing away from it may be left out of the tree.
+    bool closed = false;
     // Why they are triangles: "occluders = triangles", "no inner volume (...)" or "loose: inner
     // volumes fill N % of its hull" (auto).
     std::string why_triangles;
@@ -143,6 +147,7 @@ private:
     void append_volumes(const Object& object, int index, std::vector<ObjectVolumes>& result);
     // Scene object `index` as its triangles (exact occluders).
     ObjectVolumes triangles_of(const Object& object, int index);
+    std::shared_ptr<const ClosedSurface> surface_of(const std::shared_ptr<const Mesh>& mesh);
     // Which objects enter the tree as triangles under the scene's [beamtree] occluders, and why
     // (ObjectVolumes::why_triangles; empty: its volumes).
     std::vector<std::string> exact_objects(const Scene& scene);
@@ -151,6 +156,10 @@ private:
     bool caching_ = true;
     mutable std::mutex mutex_;
     std::map<const Mesh*, Entry> cache_;
+    // Each mesh's closed_surface(), once per mesh (for the objects that go in as triangles).
+    std::map<const Mesh*,
+             std::pair<std::weak_ptr<const Mesh>, std::shared_ptr<const ClosedSurface>>>
+        surfaces_;
     std::set<std::pair<uint64_t, uint64_t>> verified_boxes_;
     VolumeLibraryStats stats_;
 };

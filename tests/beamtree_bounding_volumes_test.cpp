@@ -148,3 +148,93 @@ TEST(BoundingVolumes, InnerBoxesAreInsideTheirMeshes) {
 
 }  // namespace
 }  // namespace sl::test
+
+namespace sl::test {
+namespace {
+
+Mesh joined(const std::vector<Mesh>& parts) {
+    Mesh out;
+    for (const Mesh& part : parts) {
+        const uint32_t base = uint32_t(out.positions.size());
+        out.positions.insert(out.positions.end(), part.positions.begin(), part.positions.end());
+        out.normals.insert(out.normals.end(), part.normals.begin(), part.normals.end());
+        for (const glm::uvec3& t : part.triangles) {
+            out.triangles.push_back(t + base);
+        }
+    }
+    return out;
+}
+
+Mesh moved(Mesh mesh, glm::vec3 offset, float scale = 1.0f, bool inside_out = false) {
+    for (glm::vec3& p : mesh.positions) {
+        p = scale * p + offset;
+    }
+    if (inside_out) {
+        for (glm::uvec3& t : mesh.triangles) {
+            std::swap(t.y, t.z);
+        }
+    }
+    return mesh;
+}
+
+// closed_surface (beamtree/closed_surface.h): which meshes may enter the tree as their outward
+// triangles only, and each triangle's side: closed components oriented by their volumes' signs,
+// inside-out ones and nested shells included; open meshes and ones that cut themselves refused.
+TEST(ClosedSurface, OrientsClosedComponentsAndRefusesOpenOrSelfCuttingMeshes) {
+    const Mesh box = make_box(glm::vec3(1.0f));
+    auto signs = [](const bt::ClosedSurface& s) {
+        return std::pair(std::count(s.outward.begin(), s.outward.end(), 1),
+                         std::count(s.outward.begin(), s.outward.end(), -1));
+    };
+    const bt::ClosedSurface torus = bt::closed_surface(*shapes().torus);
+    ASSERT_TRUE(torus.usable()) << torus.why_not;
+    EXPECT_EQ(signs(torus).second, 0);
+    const bt::ClosedSurface inverted = bt::closed_surface(moved(box, {}, 1.0f, true));
+    ASSERT_TRUE(inverted.usable());
+    EXPECT_EQ(signs(inverted), std::pair(0l, 12l));
+    // Two boxes apart, one inside out: each component its own side.
+    const bt::ClosedSurface apart =
+        bt::closed_surface(joined({box, moved(box, {3, 0, 0}, 1.0f, true)}));
+    ASSERT_TRUE(apart.usable()) << apart.why_not;
+    EXPECT_EQ(signs(apart), std::pair(12l, 12l));
+    // A hollow box: the cavity's shell wound inwards is a component of negative volume.
+    const bt::ClosedSurface hollow = bt::closed_surface(joined({box, moved(box, {}, 0.5f, true)}));
+    ASSERT_TRUE(hollow.usable()) << hollow.why_not;
+    EXPECT_EQ(signs(hollow), std::pair(12l, 12l));
+    EXPECT_EQ(hollow.outward.back(), -1);
+    const bt::ClosedSurface overlapping =
+        bt::closed_surface(joined({box, moved(box, {0.5f, 0.2f, 0.1f})}));
+    EXPECT_FALSE(overlapping.usable());
+    EXPECT_EQ(overlapping.why_not, "it cuts itself");
+    Mesh open = box;
+    open.triangles.pop_back();
+    EXPECT_FALSE(bt::closed_surface(open).usable());
+}
+
+// With [beamtree] occluders = triangles, a closed mesh's triangles come out wound outward in
+// the world, also under a mirroring transform.
+TEST(ClosedSurface, TrianglesComeOutWoundOutwardUnderAMirror) {
+    Scene scene;
+    scene.bounds.occluders = Occluders::triangles;
+    scene.materials.push_back({});
+    Object object;
+    object.name = "box";
+    object.mesh = std::make_shared<const Mesh>(make_box(glm::vec3(1.0f)));
+    for (const float mirror : {1.0f, -1.0f}) {
+        object.transform = glm::scale(glm::mat4(1.0f), glm::vec3(mirror, 1.0f, 1.0f));
+        scene.objects = {object};
+        bt::VolumeLibrary library(scene.bounds);
+        library.set_caching(false);
+        const std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
+        ASSERT_EQ(volumes.size(), 1u);
+        EXPECT_TRUE(volumes[0].closed);
+        for (const bt::Polygon& triangle : volumes[0].triangles) {
+            const std::vector<dvec3>& v = triangle.vertices;
+            const dvec3 normal = glm::cross(v[1] - v[0], v[2] - v[0]);
+            EXPECT_GT(glm::dot(normal, (v[0] + v[1] + v[2]) / 3.0), 0.0) << "mirror " << mirror;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace sl::test
