@@ -73,6 +73,21 @@ dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light,
     if (axial < light.near || axial > light.far) {
         return dvec3(0.0);
     }
+    if (light.parallel()) {
+        if (light.cone_factor(p) == 0.0) {
+            return dvec3(0.0);
+        }
+        // Parallel beams: the scattering angle is the same everywhere, the irradiance E at the
+        // entry plane, T(z) T(s) with s = axial the light's path in the medium (physical), or
+        // E alone (simplified: no attenuation, eq. 2.15, and no falloff with distance).
+        const double cos_alpha = -glm::dot(axis(light), ray.direction);
+        const dvec3 source = dvec3(medium.sigma_s) * phase(medium.phase, medium.g, cos_alpha) *
+                             dvec3(light.intensity);
+        if (medium.model == MediumModel::simplified) {
+            return source;
+        }
+        return glm::exp(-dvec3(medium.sigma_t()) * (z + axial)) * source;
+    }
     // The cone factor in double precision (SpotLight::cone_factor's float would leave noise
     // the quadrature cannot converge on).
     const double cone = light.cone_factor(p);
@@ -128,7 +143,10 @@ Interval pyramid_interval(const EyeRay& ray, const SpotLight& light, double t_ma
     const dvec3 up(light.up());
     const dvec3 u = glm::normalize(up - glm::dot(up, a) * a);
     const dvec3 r = glm::cross(a, u);
-    const double slope = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
+    // Parallel beams: the sides are parallel to the axis, |dot(q, s)| <= the half-width.
+    const double slope =
+        light.parallel() ? 0.0 : std::tan(glm::radians(double(light.cone_half_angle_degrees)));
+    const double width = light.parallel() ? double(light.half_width) : 0.0;
     const dvec3 w = ray.origin - dvec3(light.position);
     const dvec3& v = ray.direction;
     double lo = 0.0, hi = t_max;
@@ -136,7 +154,7 @@ Interval pyramid_interval(const EyeRay& ray, const SpotLight& light, double t_ma
     bool inside =
         clip_linear(wa - light.near, va, lo, hi) && clip_linear(light.far - wa, -va, lo, hi);
     for (const dvec3& side : {r, -r, u, -u}) {
-        inside = inside && clip_linear(slope * wa - glm::dot(w, side),
+        inside = inside && clip_linear(slope * wa + width - glm::dot(w, side),
                                        slope * va - glm::dot(v, side), lo, hi);
     }
     return inside ? Interval{lo, hi} : Interval{};
@@ -359,6 +377,34 @@ dvec3 smooth_edge_integral(const EyeRay& ray, double z0, double z1, const SpotLi
 
 }  // namespace
 
+namespace {
+
+dvec3 parallel_integral(const EyeRay& ray, double z0, double z1, const SpotLight& light,
+                        const Medium& medium) {
+    // e(z) = σs p(cos α) E T(z) T(s(z)) with cos α = -a·V constant and s(z) = a·(O - P) + z a·V
+    // linear: ∫ e dz = σs p E e^(-σt a·(O - P)) ∫ e^(-k z) dz, k = σt (1 + a·V) >= 0, written
+    // with expm1 so that k -> 0 (a ray along the light, or no extinction) keeps its digits.
+    const dvec3 a = axis(light);
+    const double va = glm::dot(a, ray.direction);
+    const double wa = glm::dot(a, ray.origin - dvec3(light.position));
+    const dvec3 source =
+        dvec3(medium.sigma_s) * phase(medium.phase, medium.g, -va) * dvec3(light.intensity);
+    const double length = z1 - z0;
+    if (medium.model == MediumModel::simplified) {
+        return source * length;
+    }
+    dvec3 result;
+    for (int c = 0; c < 3; ++c) {
+        const double sigma_t = double(medium.sigma_t()[c]);
+        const double k = sigma_t * std::max(0.0, 1.0 + va);
+        const double integral = k > 0.0 ? -std::expm1(-k * length) / k : length;
+        result[c] = source[c] * std::exp(-sigma_t * wa - k * z0) * integral;
+    }
+    return result;
+}
+
+}  // namespace
+
 dvec3 in_scattering_hard_edge(const EyeRay& ray, double z0, double z1, const SpotLight& light,
                               const Medium& medium) {
     const Interval lit = light_interval(ray, light, std::max(z0, z1));
@@ -366,6 +412,9 @@ dvec3 in_scattering_hard_edge(const EyeRay& ray, double z0, double z1, const Spo
     z1 = std::min(z1, lit.end);
     if (!(z1 > z0)) {
         return dvec3(0.0);
+    }
+    if (light.parallel()) {
+        return parallel_integral(ray, z0, z1, light, medium);
     }
     return hard_edge_integral(ray, z0, z1, dvec3(light.position), dvec3(light.intensity), medium);
 }

@@ -56,7 +56,8 @@ struct Interval {
 // κ = h / H; in_scattering.cpp derives it): -sin β / sqrt(κ² cos² β + sin² β), 0 at κ = β = 0.
 double simplified_cos_alpha(double kappa, double beta);
 
-// e(z) per channel at distance z along the ray, light cone factor and range included.
+// e(z) per channel at distance z along the ray, light cone factor and range included (for
+// parallel beams: the box, and E T(s) in place of I T(r) / r²).
 dvec3 scattering_density(const EyeRay& ray, double z, const SpotLight& light, const Medium& medium);
 // The same for a point light (no cone; its range is the shell between its cubes).
 dvec3 scattering_density(const EyeRay& ray, double z, const PointLight& light,
@@ -90,7 +91,10 @@ dvec3 in_scattering(const EyeRay& ray, double z0, double z1, const PointLight& l
                     const Medium& medium);
 
 // The closed forms above for a hard cone edge (the scene's falloff ignored), over [z0, z1] ∩
-// light_interval.
+// light_interval. Parallel beams (SpotLight::parallel, a directional light) have their own: the
+// scattering angle is constant and the light's path s in the medium linear in z, so
+//   physical    σs p(cos α) E e^(-σt (a·(O - P))) (e^(-k z0) - e^(-k z1)) / k, k = σt (1 + a·V)
+//   simplified  σs p(cos α) E (z1 - z0).
 dvec3 in_scattering_hard_edge(const EyeRay& ray, double z0, double z1, const SpotLight& light,
                               const Medium& medium);
 

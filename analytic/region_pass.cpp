@@ -30,8 +30,8 @@ void AnalyticRegionPass::require_closed_form(const Scene& scene, const std::stri
 std::string AnalyticRegionPass::accepts() {
     return "both medium models, all seven phase functions (HG and Schlick at any |g| < 1), "
            "absorption, a smooth cone edge (within 1% of the exact, results/analytic_media.md); "
-           "spot lights (cone or pyramid) and point lights, any number; not the simplified model "
-           "with a1 = 0 and an anisotropic phase function";
+           "spot lights (cone or pyramid), point lights and directional lights, any number; not "
+           "the simplified model with a1 = 0 and an anisotropic phase function";
 }
 
 std::vector<std::string> closed_form_defines(const Scene& scene) {

@@ -15,18 +15,24 @@ namespace sl::app {
 
 namespace {
 
-// The scene's lights by type: "spot cone 30 deg" for one, "lights: 2 spot, 1 point" for several.
+// The scene's lights by type: "spot cone 30 deg" for one, "lights: 2 spot, 1 point" for several
+// ("…, 1 directional" with a sun).
 std::string describe_lights(const Scene& scene) {
     if (scene.lights.empty()) {
         return fmt::format("spot {} {:.0f} deg",
                            scene.light.shape == SpotShape::pyramid ? "pyramid" : "cone",
                            scene.light.cone_half_angle_degrees);
     }
-    size_t spots = 0, points = 0;
+    size_t spots = 0, points = 0, suns = 0;
     for (const LightSource& light : scene.lights) {
-        ++(std::holds_alternative<SpotLight>(light) ? spots : points);
+        ++(std::holds_alternative<SpotLight>(light)    ? spots
+           : std::holds_alternative<PointLight>(light) ? points
+                                                       : suns);
     }
-    return fmt::format("lights: {} spot, {} point", spots, points);
+    if (suns == 0) {
+        return fmt::format("lights: {} spot, {} point", spots, points);
+    }
+    return fmt::format("lights: {} spot, {} point, {} directional", spots, points, suns);
 }
 
 }  // namespace

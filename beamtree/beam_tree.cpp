@@ -126,20 +126,22 @@ double distance_to_polygon(const dvec3& p, const Polygon& polygon) {
 // Degenerate triangles cover nothing and are left out. With `outward_only` (a closed surface
 // wound outward, the light outside it: ObjectVolumes::closed) the triangles facing away from
 // the light are left out too: they block nothing the others do not (closed_surface.h).
-void add_facing_triangles(const std::vector<Polygon>& triangles, const dvec3& light,
-                          bool outward_only, std::vector<Inserting>& out) {
+// `side(plane)`: the light's signed distance from a plane (BeamTree::light_side); `nearest(p)`:
+// a polygon's distance from the light (BeamTree::nearest_to_light).
+template <typename Side, typename Nearest>
+void add_facing_triangles(const std::vector<Polygon>& triangles, const Side& side,
+                          const Nearest& nearest, bool outward_only, std::vector<Inserting>& out) {
     for (const Polygon& triangle : triangles) {
         const std::vector<dvec3>& v = triangle.vertices;
         Plane plane;
         if (!Plane::through(v[0], v[1], v[2], plane)) {
             continue;
         }
-        const bool reversed = plane.distance(light) < 0.0;
+        const bool reversed = side(plane) < 0.0;
         if (reversed && outward_only) {
             continue;
         }
-        const double nearest = distance_to_polygon(light, triangle);
-        out.push_back({nearest, &triangle, reversed ? plane.flipped() : plane,
+        out.push_back({nearest(triangle), &triangle, reversed ? plane.flipped() : plane,
                        BeamTree::Role::opaque, reversed});
     }
 }
@@ -167,6 +169,11 @@ std::vector<Plane> influence_planes(const SpotLight& light) {
     const double t = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
     std::vector<Plane> planes;
     for (const dvec3& side : {r, -r, u, -u}) {
+        if (light.parallel()) {
+            // Parallel beams: the box's sides, half_width from the axis.
+            planes.push_back({side, -glm::dot(side, apex) - double(light.half_width)});
+            continue;
+        }
         const dvec3 n = glm::normalize(side - t * d);
         planes.push_back({n, -glm::dot(n, apex)});
     }
@@ -176,7 +183,11 @@ std::vector<Plane> influence_planes(const SpotLight& light) {
 }
 
 BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& volumes)
-    : apex_(light.position), epsilon_(kRelativeEpsilon * double(light.far)) {
+    : apex_(light.position),
+      parallel_(light.parallel()),
+      axis_(glm::normalize(dvec3(light.direction()))),
+      scale_(double(light.far)),
+      epsilon_(kRelativeEpsilon * double(light.far)) {
     influence_ = bt::influence_planes(light);
 
     // Root: a chain through the four side planes, the inside an open leaf.
@@ -193,7 +204,9 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         at(i).back = i < 3 ? i + 1 : add_leaf({Kind::open, {}, -1}, i);
     }
 
-    require_light_outside(volumes, apex_, epsilon_);
+    if (!parallel_) {
+        require_light_outside(volumes, apex_, epsilon_);  // a sun is outside every volume
+    }
     // One pass, nearest first. A volume's inner faces (its stoppers, Nilsson §5.2.1) follow its
     // outer faces at once: what lies behind the volume then finds the leaf's stopper already
     // there and is dropped, instead of splitting the leaf first. (Nilsson inserts every stopper
@@ -208,12 +221,16 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
             // Outside the box the light is outside the solid; inside it (a torus's hole, or
             // the solid itself) every triangle goes in.
             const bool outward_only =
-                object.closed && !near_bounds(object.triangles, apex_, epsilon_);
-            add_facing_triangles(object.triangles, apex_, outward_only, polygons);
+                object.closed && (parallel_ || !near_bounds(object.triangles, apex_, epsilon_));
+            add_facing_triangles(
+                object.triangles, [&](const Plane& plane) { return light_side(plane); },
+                [&](const Polygon& triangle) { return nearest_to_light(triangle); }, outward_only,
+                polygons);
             continue;
         }
         // A volume's faces go in together, at the distance of the box around it.
-        const double distance = distance_to_box(apex_, object.outer.faces);
+        const double distance = parallel_ ? depth_of_box(object.outer.faces)
+                                          : distance_to_box(apex_, object.outer.faces);
         for (size_t f = 0; f < object.outer.faces.size(); ++f) {
             polygons.push_back(
                 {distance, &object.outer.faces[f], object.outer.planes[f], Role::occluder});
@@ -237,6 +254,51 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
             insert(*o.polygon, o.plane, o.role);
         }
     }
+}
+
+double BeamTree::light_side(const Plane& plane) const {
+    // Parallel beams: the sine of the angle between the plane and the beams, times the box's
+    // depth, so that ε compares with it as with a distance.
+    return parallel_ ? -glm::dot(plane.normal, axis_) * scale_ : plane.distance(apex_);
+}
+
+double BeamTree::depth(const dvec3& p) const {
+    return parallel_ ? glm::dot(p - apex_, axis_) : glm::length(p - apex_);
+}
+
+double BeamTree::nearest_to_light(const Polygon& polygon) const {
+    if (!parallel_) {
+        return distance_to_polygon(apex_, polygon);
+    }
+    double nearest = std::numeric_limits<double>::max();  // a linear depth: least at a corner
+    for (const dvec3& v : polygon.vertices) {
+        nearest = std::min(nearest, depth(v));
+    }
+    return nearest;
+}
+
+double BeamTree::depth_of_box(const std::vector<Polygon>& polygons) const {
+    double nearest = std::numeric_limits<double>::max();
+    for (const Polygon& polygon : polygons) {
+        nearest = std::min(nearest, nearest_to_light(polygon));
+    }
+    return nearest;
+}
+
+bool BeamTree::edge_plane(const dvec3& a, const dvec3& b, Plane& plane) const {
+    if (!parallel_) {
+        return Plane::through(apex_, a, b, plane);
+    }
+    // The limit of the plane through L, a and b as L recedes against the beams (L = a - R·axis,
+    // R -> ∞): its normal is (a - L) × (b - L) / R -> (a - b) × axis.
+    const dvec3 n = glm::cross(a - b, axis_);
+    const double length = glm::length(n);
+    if (!(length > 1e-12 * glm::length(a - b))) {
+        return false;
+    }
+    plane.normal = n / length;
+    plane.offset = -glm::dot(plane.normal, a);
+    return true;
 }
 
 bool BeamTree::outside_influence(const std::vector<Polygon>& polygons) const {
@@ -291,7 +353,7 @@ void BeamTree::lower_reach_above(int32_t index) {
 
 void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
     // Only light-facing polygons occlude; edge-on ones (L within ε of their plane) add nothing.
-    if (plane.distance(apex_) <= epsilon_ || !area_exceeds(polygon, epsilon_ * epsilon_)) {
+    if (light_side(plane) <= epsilon_ || !area_exceeds(polygon, epsilon_ * epsilon_)) {
         return;
     }
     // Nothing beyond the far range matters (Nilsson §4.2): clip to the backplate first.
@@ -303,7 +365,7 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
     ++(role == Role::occluder  ? outer_polygons_
        : role == Role::stopper ? stopper_polygons_
                                : exact_triangles_);
-    Inserted inserted{role, plane, -1, distance_to_polygon(apex_, clipped)};
+    Inserted inserted{role, plane, -1, nearest_to_light(clipped)};
     if (stops) {
         inserted.stopper = int32_t(stoppers_.size());
         stoppers_.push_back(plane);
@@ -532,7 +594,7 @@ bool BeamTree::edge_planes(const std::vector<dvec3>& corners, const std::vector<
             continue;
         }
         Plane plane;
-        if (!Plane::through(apex_, a, b, plane)) {
+        if (!edge_plane(a, b, plane)) {
             continue;  // the edge points at the light
         }
         const double side = plane.distance(center);
@@ -577,7 +639,7 @@ void BeamTree::attach(int32_t index, const Polygon& fragment, const Leaf& inside
         // Every ray of the beam crosses the fragment, no farther than its farthest corner.
         double farthest = 0.0;
         for (const dvec3& v : fragment.vertices) {
-            farthest = std::max(farthest, glm::length(v - apex_));
+            farthest = std::max(farthest, depth(v));
         }
         float up = float(farthest);
         if (double(up) < farthest) {

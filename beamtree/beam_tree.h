@@ -133,6 +133,7 @@ public:
     // The influence pyramid: four sides, near range, far range (outward planes).
     const std::vector<Plane>& influence_planes() const { return influence_; }
     double epsilon() const { return epsilon_; }
+    // The light's position; for parallel beams, the point of the axis on the entry plane.
     const dvec3& apex() const { return apex_; }
     BeamTreeStats stats() const;
     // The nodes and planes for the GPU's classify (kinds: 0 split, 1 out, 2 open, 3 solid,
@@ -223,7 +224,26 @@ private:
     // After the reach of node `index` fell, its ancestors' (each the larger of its children's).
     void lower_reach_above(int32_t index);
 
+    // The light's signed distance from a plane (> 0: the plane faces it), in length units; for
+    // parallel beams the sine of their angle with the plane times the influence box's depth.
+    double light_side(const Plane& plane) const;
+    // How far along the light's beams p lies: its distance from L, or for parallel beams its
+    // depth past the entry plane.
+    double depth(const dvec3& p) const;
+    // The least depth() over a convex polygon.
+    double nearest_to_light(const Polygon& polygon) const;
+    // The least depth() over the box around the polygons.
+    double depth_of_box(const std::vector<Polygon>& polygons) const;
+    // The plane through L and the edge a-b (for parallel beams: containing the edge and the
+    // beams' direction); false where the edge points at the light.
+    bool edge_plane(const dvec3& a, const dvec3& b, Plane& plane) const;
+
+    // The light's position (for parallel beams: the axis's point on the entry plane), the
+    // origin of the GPU tree's plane offsets.
     dvec3 apex_;
+    bool parallel_ = false;  // SpotLight::parallel: beams along axis_
+    dvec3 axis_;
+    double scale_ = 1.0;  // the far range: light_side's unit for parallel beams
     double epsilon_;
     std::vector<Plane> influence_;
     std::vector<Node> nodes_;

@@ -75,12 +75,21 @@ public:
     }
 
     std::string accepts() const override {
-        return "every medium and light with lit_integral = samples; with closed_form (the "
-               "default): " +
+        return "not directional lights (refused); every medium and spot or point light with "
+               "lit_integral = samples; with closed_form (the default): " +
                analytic::AnalyticRegionPass::accepts();
     }
 
     void prepare_light(const Scene& scene) override {
+        if (scene.light.parallel()) {
+            // The epipolar lines of a light at infinity (Yusov's case: they meet at the sun's
+            // point on screen, or run parallel when the sun is at 90° to the view) are not built.
+            fail(
+                "epipolar: scene '{}' has a directional light, which epipolar does not take yet "
+                "(its lines meet at the light's point on screen, built for a light at a finite "
+                "position); use march, froxel, lightvolume, planes or the region methods",
+                scene.name);
+        }
         if (!coordinates_program_) {
             const auto compute = [](const char* path) {
                 return gl::create_program({{GL_COMPUTE_SHADER, path}});

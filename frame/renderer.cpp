@@ -76,7 +76,7 @@ gl::shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOp
     u.light_intensity = glm::vec4(light.intensity, 0.0f);
     u.light_cone = glm::vec4(glm::radians(light.cone_half_angle_degrees),
                              light.smooth_edge() ? glm::radians(light.falloff_degrees) : 0.0f,
-                             light.shape == SpotShape::pyramid ? 1.0f : 0.0f, 0.0f);
+                             light.shape == SpotShape::pyramid ? 1.0f : 0.0f, light.half_width);
     u.medium_sigma_s = glm::vec4(medium.sigma_s, float(int(medium.phase)));
     u.medium_sigma_t =
         glm::vec4(medium.sigma_t(), medium.model == MediumModel::physical ? 1.0f : 0.0f);

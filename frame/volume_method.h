@@ -94,8 +94,8 @@ public:
     // The media and lights the method integrates (`shaftlab methods`, docs/methods.md): every one
     // the scene format allows unless it says otherwise; prepare() refuses the others by name.
     virtual std::string accepts() const {
-        return "every medium and light: spot lights (cone or pyramid) and point lights, any "
-               "number (it samples e(z) itself)";
+        return "every medium and light: spot lights (cone or pyramid), point lights and "
+               "directional lights, any number (it samples e(z) itself)";
     }
     // Several lights (docs/design.md §18): I_s sums over the scene's spot lights
     // (Scene::spot_lights, a point light counting as its six faces), each with its own instance

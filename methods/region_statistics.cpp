@@ -112,7 +112,7 @@ void add_eye_rays(const Scene& scene, const bt::BeamTree& tree, int width, int h
 RegionStatistics region_statistics(const Scene& scene, int width, int height) {
     const auto start = std::chrono::steady_clock::now();
     RegionStatistics stats;
-    if (!scene.lights.empty()) {
+    if (scene.spot_lights().size() > 1) {
         stats.unavailable = fmt::format(
             "the scene has {} lights ([[lights]]): region statistics are per light (`shaftlab "
             "regions --light N`)",

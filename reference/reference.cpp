@@ -135,6 +135,16 @@ bool ReferenceRenderer::occluded(const dvec3& from, const dvec3& to) const {
     return ray.tfar == -std::numeric_limits<float>::infinity();
 }
 
+bool ReferenceRenderer::occluded_towards(const dvec3& from, const dvec3& direction) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    // The hair off the point as `occluded` takes it, relative to the scene's size here.
+    RTCRay ray = make_ray(from, direction, 1e-5 * std::max(1.0, glm::length(from)),
+                          std::numeric_limits<float>::infinity());
+    rtcOccluded1(shadow_scene_, &context, &ray);
+    return ray.tfar == -std::numeric_limits<float>::infinity();
+}
+
 namespace {
 
 // ∫ over `span` of the integrand `integral(z0, z1)` where the light at L is visible: visibility
@@ -193,6 +203,21 @@ dvec3 ReferenceRenderer::in_scattering(const analytic::EyeRay& ray, double t_max
                 ray, span, options, [&](const dvec3& p) { return occluded(p, L); },
                 [&](double z0, double z1) {
                     return analytic::in_scattering(ray, z0, z1, *spot, scene_.medium);
+                });
+            continue;
+        }
+        if (const auto* sun = std::get_if<DirectionalLight>(&source)) {
+            // Its beams' box; shadow rays run back along the beams, out of the scene.
+            const SpotLight beam = sun->beam();
+            const analytic::Interval span = analytic::light_interval(ray, beam, t_max);
+            if (span.empty()) {
+                continue;
+            }
+            const dvec3 towards = -glm::normalize(dvec3(beam.direction()));
+            total += lit_part(
+                ray, span, options, [&](const dvec3& p) { return occluded_towards(p, towards); },
+                [&](double z0, double z1) {
+                    return analytic::in_scattering(ray, z0, z1, beam, scene_.medium);
                 });
             continue;
         }
@@ -288,6 +313,15 @@ uint64_t reference_key(const Scene& scene, int width, int height, const Referenc
             }
             if (l->shape != SpotShape::cone) {
                 mix_value(l->shape);  // a cone hashes as before shapes existed: caches stay valid
+            }
+        } else if (const auto* sun = std::get_if<DirectionalLight>(&source)) {
+            mix_value(0x5u);  // a directional light
+            for (const float v :
+                 {sun->direction.x, sun->direction.y, sun->direction.z, sun->irradiance.r,
+                  sun->irradiance.g, sun->irradiance.b, sun->entry.x, sun->entry.y, sun->entry.z,
+                  sun->region.min.x, sun->region.min.y, sun->region.min.z, sun->region.max.x,
+                  sun->region.max.y, sun->region.max.z}) {
+                mix_value(v);
             }
         } else {
             const PointLight& p = std::get<PointLight>(source);

@@ -35,6 +35,9 @@ public:
     // Distance to the first hit on the scene's meshes, or `far` when there is none.
     double first_hit(const analytic::EyeRay& ray, double far) const;
     bool occluded(const analytic::dvec3& from, const analytic::dvec3& to) const;
+    // Whether anything lies on the ray from `from` along the unit `direction` (a directional
+    // light's shadow ray, out of the scene).
+    bool occluded_towards(const analytic::dvec3& from, const analytic::dvec3& direction) const;
     // The first surface the ray hits before `far`: its distance, object (index into
     // Scene::objects) and the mesh's interpolated normal in world space, turned towards the ray's
     // origin like the GPU's two-sided shading.

@@ -18,9 +18,12 @@ using glm::dvec3;
 
 bt::Polyhedron influence_pyramid(const SpotLight& light) {
     const double tangent = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
-    // Every pyramid vertex is within far·sqrt(1 + 2 tan²θ) of L.
-    const double radius = glm::length(dvec3(light.position)) +
-                          double(light.far) * std::sqrt(1.0 + 2.0 * tangent * tangent) + 1.0;
+    // Every pyramid vertex is within far·sqrt(1 + 2 tan²θ) of L; a parallel box's within
+    // far + sqrt(2) half-widths.
+    const double reach = light.parallel()
+                             ? double(light.far) + std::sqrt(2.0) * double(light.half_width)
+                             : double(light.far) * std::sqrt(1.0 + 2.0 * tangent * tangent);
+    const double radius = glm::length(dvec3(light.position)) + reach + 1.0;
     return bt::polyhedron_from_planes(bt::influence_planes(light), radius,
                                       bt::BeamTree::kRelativeEpsilon * double(light.far));
 }

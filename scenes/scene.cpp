@@ -55,6 +55,9 @@ glm::mat4 SpotLight::view() const {
 }
 
 glm::mat4 SpotLight::projection() const {
+    if (parallel()) {
+        return glm::ortho(-half_width, half_width, -half_width, half_width, near, far);
+    }
     // A square frustum of half-angle θ circumscribes the cone of half-angle θ.
     return glm::perspective(2.0f * glm::radians(cone_half_angle_degrees), 1.0f, near, far);
 }
@@ -65,6 +68,18 @@ namespace {
 template <typename T>
 T cone_factor_in(const SpotLight& light, const glm::vec<3, T>& p) {
     using V = glm::vec<3, T>;
+    if (light.parallel()) {
+        // Inside the box's four sides, beyond the entry plane.
+        const V d = glm::normalize(V(light.direction()));
+        const V u = glm::normalize(V(light.up()) - glm::dot(V(light.up()), d) * d);
+        const V r = glm::cross(d, u);
+        const V q = p - V(light.position);
+        const T w = T(light.half_width);
+        return glm::dot(q, d) >= T(0) && std::abs(glm::dot(q, r)) <= w &&
+                       std::abs(glm::dot(q, u)) <= w
+                   ? T(1)
+                   : T(0);
+    }
     if (light.shape == SpotShape::pyramid) {
         // Inside the four sides: |x| and |y| in the light's frame at most tan θ times the depth.
         const V d = glm::normalize(V(light.direction()));  // as analytic::pyramid_interval's
@@ -150,8 +165,42 @@ bool PointLight::in_range(const glm::dvec3& p) const {
     return extent >= double(near) && extent <= double(far);
 }
 
+SpotLight DirectionalLight::beam() const {
+    SpotLight beam;
+    const glm::dvec3 d = glm::normalize(glm::dvec3(direction));
+    // The axis through the region's centre, from the entry plane; up as SpotLight::up picks it.
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(region.min) + glm::dvec3(region.max));
+    const glm::dvec3 position = centre - glm::dot(centre - glm::dvec3(entry), d) * d;
+    beam.position = glm::vec3(position);
+    const float step = std::max(1.0f, 2.0f * glm::length(beam.position));
+    beam.target = beam.position + step * glm::vec3(d);
+    const glm::dvec3 up(beam.up());
+    const glm::dvec3 u = glm::normalize(up - glm::dot(up, d) * d);
+    const glm::dvec3 r = glm::cross(d, u);
+    double width = 0.0, depth = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 corner(i & 1 ? region.max.x : region.min.x,
+                                i & 2 ? region.max.y : region.min.y,
+                                i & 4 ? region.max.z : region.min.z);
+        const glm::dvec3 q = corner - position;
+        width = std::max({width, std::abs(glm::dot(q, r)), std::abs(glm::dot(q, u))});
+        depth = std::max(depth, glm::dot(q, d));
+    }
+    // A hair wider and deeper than the region, so that its corners are inside in float.
+    beam.half_width = float(width * (1.0 + 1e-5) + 1e-6);
+    beam.near = 0.0f;
+    beam.far = float(depth * (1.0 + 1e-5) + 1e-6);
+    beam.cone_half_angle_degrees = 0.0f;
+    beam.intensity = irradiance;
+    beam.shape = SpotShape::pyramid;
+    return beam;
+}
+
 const char* light_type(const LightSource& light) {
-    return std::holds_alternative<SpotLight>(light) ? "spot" : "point";
+    if (std::holds_alternative<SpotLight>(light)) {
+        return "spot";
+    }
+    return std::holds_alternative<PointLight>(light) ? "point" : "directional";
 }
 
 std::vector<LightSource> Scene::light_sources() const {
@@ -163,12 +212,15 @@ std::vector<LightSource> Scene::light_sources() const {
 
 namespace {
 
-// Spot lights as they are, point lights as their six faces, in order.
+// Spot lights as they are, point lights as their six faces, directional lights as their beams,
+// in order.
 std::vector<SpotLight> spots_of(const std::vector<LightSource>& sources) {
     std::vector<SpotLight> spots;
     for (const LightSource& source : sources) {
         if (const auto* spot = std::get_if<SpotLight>(&source)) {
             spots.push_back(*spot);
+        } else if (const auto* sun = std::get_if<DirectionalLight>(&source)) {
+            spots.push_back(sun->beam());
         } else {
             const std::array<SpotLight, 6> faces = std::get<PointLight>(source).faces();
             spots.insert(spots.end(), faces.begin(), faces.end());

@@ -46,6 +46,7 @@ struct Material {
 struct Box {
     glm::vec3 min{0.0f};
     glm::vec3 max{0.0f};
+    bool operator==(const Box&) const = default;
 };
 
 // An object's placement as scene files write it: translate, then rotate about z, y and x (degrees;
@@ -113,15 +114,22 @@ struct SpotLight {
     glm::vec3 intensity{1.0f};
     float falloff_degrees = 0.0f;  // 0: hard edge (Nilsson eq. 2.9); else smooth over this width
     SpotShape shape = SpotShape::cone;  // a pyramid has a hard edge (falloff 0)
+    // > 0: parallel beams (a directional light's box, DirectionalLight::beam): the influence
+    // volume is a square box of this half-width about the axis from `position` (on the entry
+    // plane) on, `intensity` is the irradiance, the shadow map orthographic; the cone angle is
+    // unused (0) and the shape a pyramid (the box's sides are the shadow map's clip square).
+    float half_width = 0.0f;
 
     bool operator==(const SpotLight&) const = default;
+    bool parallel() const { return half_width > 0.0f; }
     // A cone with a falloff width (a pyramid's edge is always hard).
     bool smooth_edge() const { return shape == SpotShape::cone && falloff_degrees > 0.0f; }
     glm::vec3 direction() const;
     // An up vector not parallel to the axis, fixed so that the shadow map never flips.
     glm::vec3 up() const;
     glm::mat4 view() const;
-    // The square frustum circumscribing the cone (the influence pyramid), near to far.
+    // The square frustum circumscribing the cone (the influence pyramid), near to far; for
+    // parallel beams the box, orthographic.
     glm::mat4 projection() const;
     // I(Ω) / I of eq. 2.9 for the direction from the light to p, with the optional falloff (a
     // pyramid: 1 inside its four sides, 0 outside); in double precision for quadrature (float
@@ -150,13 +158,32 @@ struct PointLight {
     bool in_range(const glm::dvec3& p) const;
 };
 
+// A directional light (the sun; docs/scenes.md): parallel beams along `direction` with
+// `irradiance` (W/m² across the beam) where they enter the medium, at the plane through `entry`
+// perpendicular to them; the light's path in the medium at x is dot(x - entry, direction). It
+// scatters inside `region` beyond that plane, and its shadows fall wherever its beams go.
+struct DirectionalLight {
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit: the way the light travels
+    glm::vec3 irradiance{1.0f};
+    glm::vec3 entry{0.0f};
+    // World box where it scatters: by default the scene's objects' bounds and the camera's
+    // position (docs/scenes.md), resolved when the scene is read.
+    Box region{};
+
+    bool operator==(const DirectionalLight&) const = default;
+    // The region's bounding box across the beams as the spot light that every part taking one
+    // light reads: SpotLight::parallel, a square of half-width covering the region about the
+    // axis through its centre, from the entry plane to the region's far side.
+    SpotLight beam() const;
+};
+
 // The most spot lights a scene file may ask for, a point light counting as its six faces (each
 // is its own shadow map, tree and method instance).
 inline constexpr size_t kMaxSpotLights = 256;
 
 // One light as a scene file declares it ([light], or one [[lights]] entry).
-using LightSource = std::variant<SpotLight, PointLight>;
-const char* light_type(const LightSource& light);  // "spot", "point"
+using LightSource = std::variant<SpotLight, PointLight, DirectionalLight>;
+const char* light_type(const LightSource& light);  // "spot", "point", "directional"
 
 enum class PhaseFunction {
     isotropic,
@@ -277,8 +304,9 @@ struct Scene {
     // values are what the tracks leave alone.
     std::shared_ptr<const Animation> animation;
 
-    // Every light as the methods take it, spot lights as they are and point lights as their six
-    // faces: {light} for a scene of one light. I_s is the sum of each one's.
+    // Every light as the methods take it, spot lights as they are, point lights as their six
+    // faces and directional lights as their beams: {light} for a scene of one light. I_s is the sum
+    // of each one's.
     std::vector<SpotLight> spot_lights() const;
     // The lights as declared: {light} for a scene of one light.
     std::vector<LightSource> light_sources() const;

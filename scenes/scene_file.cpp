@@ -95,9 +95,9 @@ void read_models(TableReader& top, const std::string& origin, const fs::path& ba
     }
 }
 
-// The scene's lights: [light] (one spot light), or [[lights]] (any number of spot and point
-// lights), not both.
-void read_lights(TableReader& top, const std::string& origin, Scene& scene) {
+// The scene's lights: [light] (one spot light), or [[lights]] (any number of spot, point and
+// directional lights), not both. Directional lights are resolved once the objects are read.
+std::vector<LightSource> read_lights(TableReader& top, const std::string& origin) {
     const toml::array* lights = top.array("lights");
     const toml::table* light = top.table("light");
     if (lights && light) {
@@ -110,11 +110,10 @@ void read_lights(TableReader& top, const std::string& origin, Scene& scene) {
         if (!light) {
             fail(
                 "{}: missing the light: a [light] table (one spot light) or [[lights]] entries "
-                "(type = \"spot\" or \"point\")",
+                "(type = \"spot\", \"point\" or \"directional\")",
                 origin);
         }
-        scene.light = read_light(TableReader(*light, origin, "[light]"));
-        return;
+        return {read_light(TableReader(*light, origin, "[light]"))};
     }
     if (lights->empty()) {
         fail("{}: [[lights]] is empty: a scene needs at least one light", origin);
@@ -131,11 +130,14 @@ void read_lights(TableReader& top, const std::string& origin, Scene& scene) {
             sources.emplace_back(read_light(std::move(r)));
         } else if (type == "point") {
             sources.emplace_back(read_point_light(std::move(r)));
+        } else if (type == "directional") {
+            sources.emplace_back(read_directional_light(std::move(r)));
         } else {
-            r.error("type", type.empty() ? "missing: expected \"spot\" or \"point\""
-                                         : fmt::format("unknown light type {}: expected \"spot\" "
-                                                       "or \"point\"",
-                                                       quote(type)));
+            r.error("type", type.empty()
+                                ? "missing: expected \"spot\", \"point\" or \"directional\""
+                                : fmt::format("unknown light type {}: expected \"spot\", "
+                                              "\"point\" or \"directional\"",
+                                              quote(type)));
         }
     }
     // Each spot light (a point light's six faces) is a shadow map, a tree and a method instance
@@ -150,7 +152,7 @@ void read_lights(TableReader& top, const std::string& origin, Scene& scene) {
             "most {} are taken",
             origin, sources.size(), spots, kMaxSpotLights);
     }
-    scene.set_lights(std::move(sources));
+    return sources;
 }
 
 }  // namespace
@@ -179,7 +181,7 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
         return table ? *table : empty_table();
     };
     scene.camera = read_camera(TableReader(required("camera"), origin, "[camera]"));
-    read_lights(top, origin, scene);
+    std::vector<LightSource> lights = read_lights(top, origin);
     scene.medium = read_medium(TableReader(optional("medium"), origin, "[medium]"));
     if (const toml::table* environment = top.table("environment")) {
         scene.environment =
@@ -194,6 +196,15 @@ Scene parse_scene(const std::string& text, const std::string& origin, const fs::
     read_materials(top, origin, material_index, scene);
     read_objects(top, origin, base_dir, paths, material_index, scene);
     read_models(top, origin, base_dir, paths, material_index, scene);
+    for (size_t i = 0; i < lights.size(); ++i) {
+        if (auto* sun = std::get_if<DirectionalLight>(&lights[i])) {
+            const toml::array* array = top.array("lights");
+            const int line = array ? int((*array)[i].source().begin.line) : 0;
+            resolve_directional_light(*sun, scene,
+                                      fmt::format("{}:{}: [[lights]] #{}", origin, line, i + 1));
+        }
+    }
+    scene.set_lights(std::move(lights));
     if (const toml::table* animation = top.table("animation")) {
         scene.animation = std::make_shared<Animation>(read_animation(*animation, origin, scene));
     }

@@ -84,6 +84,62 @@ PointLight read_point_light(TableReader r) {
     return l;
 }
 
+DirectionalLight read_directional_light(TableReader r) {
+    DirectionalLight l;
+    const glm::dvec3 direction(r.vec3("direction"));
+    // In double, judged by its direction alone, as the camera's up vector is.
+    if (!(glm::length(direction) > 0.0)) {
+        r.error("direction", "the direction the light travels must not be [0, 0, 0]");
+    }
+    l.direction = glm::vec3(glm::normalize(direction));
+    l.irradiance = r.non_negative_vec3("irradiance", l.irradiance);
+    l.entry = r.has("entry") ? r.vec3("entry") : glm::vec3(std::numeric_limits<float>::quiet_NaN());
+    r.finish();
+    return l;
+}
+
+void resolve_directional_light(DirectionalLight& light, const Scene& scene,
+                               const std::string& where) {
+    Bounds bounds;
+    bounds.extend(scene.camera.position);
+    for (const Object& object : scene.objects) {
+        const Bounds local = object.mesh->bounds();
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 corner(i & 1 ? local.max.x : local.min.x,
+                                   i & 2 ? local.max.y : local.min.y,
+                                   i & 4 ? local.max.z : local.min.z);
+            bounds.extend(glm::vec3(object.transform * glm::vec4(corner, 1.0f)));
+        }
+    }
+    light.region = {bounds.min, bounds.max};
+    const glm::dvec3 d(light.direction);
+    double nearest = std::numeric_limits<double>::max(), farthest = -nearest;
+    glm::dvec3 first{};
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 corner(i & 1 ? bounds.max.x : bounds.min.x,
+                                i & 2 ? bounds.max.y : bounds.min.y,
+                                i & 4 ? bounds.max.z : bounds.min.z);
+        if (glm::dot(corner, d) < nearest) {
+            nearest = glm::dot(corner, d);
+            first = corner;
+        }
+        farthest = std::max(farthest, glm::dot(corner, d));
+    }
+    if (std::isnan(light.entry.x)) {
+        light.entry = glm::vec3(first);  // the plane touching the region on the light's side
+        return;
+    }
+    const double entry = glm::dot(glm::dvec3(light.entry), d);
+    const double size = glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
+    if (!(farthest - entry > 1e-4 * std::max(size, 1.0))) {
+        fail(
+            "{}: key \"entry\": the entry plane lies beyond the whole scene (its objects and the "
+            "camera, {:.3g} m along the light past their far side): give a point on the light's "
+            "side of them, or leave entry out for the plane touching them",
+            where, entry - farthest);
+    }
+}
+
 Medium read_medium(TableReader r) {
     Medium m;
     m.sigma_s = r.non_negative_vec3("sigma_s", m.sigma_s);

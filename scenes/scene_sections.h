@@ -47,6 +47,15 @@ Camera read_camera(TableReader r);
 SpotLight read_light(TableReader r);
 // A [[lights]] entry of type "point" (its `type` key already read).
 PointLight read_point_light(TableReader r);
+// A [[lights]] entry of type "directional": direction (normalised), irradiance and entry; its
+// region (and its entry when not given: then NaN) is resolved once the objects are read
+// (resolve_directional_light).
+DirectionalLight read_directional_light(TableReader r);
+// The region of a directional light read above: the box around the scene's objects and its
+// camera's position; and the entry plane touching it on the light's side where none was given.
+// Throws sl::Error naming `where` when the entry plane leaves no part of the region beyond it.
+void resolve_directional_light(DirectionalLight& light, const Scene& scene,
+                               const std::string& where);
 Medium read_medium(TableReader r);
 Environment read_environment(TableReader r, const std::filesystem::path& base_dir,
                              const SceneSearchPaths& paths);

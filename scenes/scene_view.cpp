@@ -56,6 +56,13 @@ std::string scene_view_toml(const Scene& scene, const std::string& base, const s
             spot(*s, "[[lights]]\ntype = \"spot\"\n");
             continue;
         }
+        if (const auto* sun = std::get_if<DirectionalLight>(&source)) {
+            text += fmt::format(
+                "[[lights]]\ntype = \"directional\"\ndirection = {}\nirradiance = {}\nentry = "
+                "{}\n\n",
+                toml_vec3(sun->direction), toml_vec3(sun->irradiance), toml_vec3(sun->entry));
+            continue;
+        }
         const PointLight& p = std::get<PointLight>(source);
         text += fmt::format(
             "[[lights]]\ntype = \"point\"\nposition = {}\nnear = {}\nfar = {}\nintensity = "

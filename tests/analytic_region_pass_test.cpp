@@ -27,6 +27,7 @@
 #include "reference/reference.h"
 #include "scenes/mesh.h"
 #include "scenes/scene_file.h"
+#include "scenes/scene_sections.h"
 #include "tests/gl_support.h"
 
 namespace sl::test {
@@ -561,6 +562,46 @@ TEST_F(GpuMethod, BeamtreeMatchesTheReferenceWithAPointLightOnRandomBoxScenes) {
         "random boxes under a point light (six faces): beamtree against the reference, rel_rmse "
         "median %.2e, worst %.2e; eye inside the range on %d of %d\n",
         errors[errors.size() / 2], errors.back(), eye_inside, kSeeds);
+}
+
+// A sun (a directional light along each scene's spot axis, over its default region: parallel
+// beams, one tree): beamtree within 1e-3 of the reference apart from silhouette pixels, with the
+// eye inside the light (the default region holds the camera) and, on odd seeds, outside it (the
+// entry plane moved 1 m past the eye).
+TEST_F(GpuMethod, BeamtreeMatchesTheReferenceWithASunOnRandomBoxScenes) {
+    constexpr int kSeeds = 24, kWidth = 128, kHeight = 72;
+    std::vector<double> errors;
+    int eye_outside = 0;
+    for (int seed = 0; seed < kSeeds; ++seed) {
+        const std::string name = fmt::format("boxes:{}", seed);
+        Scene scene = load_scene(name, SceneSearchPaths::defaults());
+        DirectionalLight sun;
+        sun.direction = scene.light.direction();
+        sun.irradiance = scene.light.intensity / 25.0f;
+        sun.entry = glm::vec3(std::numeric_limits<float>::quiet_NaN());
+        resolve_directional_light(sun, scene, name);
+        if (seed % 2 == 1) {
+            sun.entry = scene.camera.position + sun.direction;
+            if (!(sun.beam().far > 1.0f)) {
+                continue;
+            }
+            ++eye_outside;
+        }
+        scene.set_lights({sun});
+        const frame::Frame frame = render(scene, "beamtree", kWidth, kHeight);
+        const Image exact = reference::ReferenceRenderer(scene).render(kWidth, kHeight, {});
+        const std::vector<uint8_t> same =
+            reference::same_surface_pixels(scene, kWidth, kHeight, frame.depth);
+        const ErrorMetrics error = compare_images(frame.in_scattering, exact, &same);
+        EXPECT_LE(error.rel_rmse, 1e-3) << name;
+        errors.push_back(error.rel_rmse);
+    }
+    EXPECT_GE(eye_outside, kSeeds / 4) << "the eye outside the light on some scenes";
+    std::sort(errors.begin(), errors.end());
+    std::printf(
+        "random boxes under a sun: beamtree against the reference, rel_rmse median %.2e, worst "
+        "%.2e; eye outside the light on %d of %zu\n",
+        errors[errors.size() / 2], errors.back(), eye_outside, errors.size());
 }
 
 // The one medium the closed forms leave out is refused by name, with the methods that take it.

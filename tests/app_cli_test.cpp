@@ -251,7 +251,7 @@ TEST(Cli, ScenesListsEverySceneThatLoadsByName) {
               "toplight\nparallel\nmultiple\ntoplight-orbit\nparallel-walk\nmultiple-moving\n"
               "ibl-spheres\nsss-bunny\nsss-dragon\nsss-shaft\n"
               "house\nhouse-sweep\nengine\nengine-orbit\narena\narena-sweep\n"
-              "room\nparallel-lamps\n");
+              "room\nparallel-lamps\nhouse-morning\n");
     const CommandResult listing = run_shaftlab("scenes");
     ASSERT_EQ(listing.exit_code, 0) << listing.output;
     for (const std::string& name : named_scene_names()) {
@@ -260,6 +260,8 @@ TEST(Cli, ScenesListsEverySceneThatLoadsByName) {
     EXPECT_NE(listing.output.find("multiple-moving"), std::string::npos);
     EXPECT_NE(listing.output.find("animated 0-"), std::string::npos) << listing.output;
     EXPECT_NE(listing.output.find("lights: 0 spot, 1 point"), std::string::npos) << listing.output;
+    EXPECT_NE(listing.output.find("lights: 0 spot, 0 point, 1 directional"), std::string::npos)
+        << listing.output;
     EXPECT_NE(listing.output.find("spot cone 30 deg"), std::string::npos) << listing.output;
     EXPECT_EQ(run_shaftlab("scenes --help").exit_code, 0);
     EXPECT_EQ(run_shaftlab("render --help").exit_code, 0);

@@ -1,5 +1,7 @@
 #include "tests/beamtree_oracle.h"
 
+#include "scenes/scene_sections.h"
+
 #include <gtest/gtest.h>
 
 #include <map>
@@ -57,7 +59,15 @@ PointCheck check_point(const bt::BeamTree& tree, const Oracles& oracles, const d
     return check;
 }
 
-int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds, bool point_light) {
+dvec3 light_for(const SpotLight& light, const dvec3& p) {
+    if (!light.parallel()) {
+        return dvec3(light.position);
+    }
+    const double away = 4.0 * (double(light.far) + 2.0 * double(light.half_width));
+    return p - away * glm::normalize(dvec3(light.direction()));
+}
+
+int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds, LightKind kind) {
     bt::VolumeLibrary library(options);
     library.set_caching(false);  // random meshes: nothing to share with the disk
     size_t compared = 0, counts[3] = {0, 0, 0};
@@ -111,12 +121,18 @@ int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds, bool po
         // The scene's spot light, or a point light in its place: each of its six faces' trees
         // (Scene::spot_lights), with the points split among them.
         Scene lit = scene;
-        if (point_light) {
+        if (kind == LightKind::point) {
             PointLight point;
             point.position = scene.light.position;
             point.near = scene.light.near;
             point.far = scene.light.far;
             lit.set_lights({point});
+        } else if (kind == LightKind::directional) {
+            DirectionalLight sun;
+            sun.direction = scene.light.direction();
+            sun.entry = glm::vec3(std::numeric_limits<float>::quiet_NaN());  // the default
+            resolve_directional_light(sun, scene, "random scene");
+            lit.set_lights({sun});
         }
         const std::vector<SpotLight> lights = lit.spot_lights();
         const int points = 10000 / int(lights.size());

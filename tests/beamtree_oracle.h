@@ -39,6 +39,10 @@ struct PointCheck {
 PointCheck check_point(const bt::BeamTree& tree, const Oracles& oracles, const dvec3& light,
                        const dvec3& p);
 
+// Where the ray casts for p start: the light's position, or for parallel beams (a directional
+// light) a point back along p's beam, beyond the scene (four times the box's size away).
+dvec3 light_for(const SpotLight& light, const dvec3& p);
+
 // `count` random points around the light's cone, each checked; `on_point(p, check)` for those
 // decided.
 template <typename OnPoint>
@@ -47,7 +51,7 @@ void for_each_decided_point(const bt::BeamTree& tree, const Oracles& oracles,
                             OnPoint on_point) {
     for (int i = 0; i < count; ++i) {
         const dvec3 p = random_point(rng, light);
-        const PointCheck check = check_point(tree, oracles, dvec3(light.position), p);
+        const PointCheck check = check_point(tree, oracles, light_for(light, p), p);
         if (check.decided) {
             on_point(p, check);
         }
@@ -78,7 +82,6 @@ void for_each_decided_point_behind_a_surface(const bt::BeamTree& tree, const Ora
     if (triangles.empty() || !(cumulative.back() > 0.0)) {
         return;
     }
-    const dvec3 light(scene.light.position);
     for (int i = 0; i < count; ++i) {
         const double pick = uniform(rng, 0.0, cumulative.back());
         const size_t k = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), pick) -
@@ -90,6 +93,7 @@ void for_each_decided_point_behind_a_surface(const bt::BeamTree& tree, const Ora
             r2 = 1.0 - r2;
         }
         const dvec3 surface = w[0] + r1 * (w[1] - w[0]) + r2 * (w[2] - w[0]);
+        const dvec3 light = light_for(scene.light, surface);
         // A triangle edge-on to the light (its plane through L) shadows nothing: the points
         // behind it would lie on its plane, where a ray cast decides by round-off.
         const dvec3 normal = glm::cross(w[1] - w[0], w[2] - w[0]);
@@ -120,11 +124,14 @@ inline constexpr int kSanitizedSeedStride = 1;
 // lit points see the light past every true mesh and unlit points do not (soundness), and the
 // regions tile the influence volume (conservation); and no convex piece reaches outside its mesh's
 // hull by more than 10^-3 of its size (tightness). With triangles as occluders
-// (options.occluders) no decided point is uncertain. With `point_light`, a point light at the
+// (options.occluders) no decided point is uncertain. With LightKind::point, a point light at the
 // scene's light (its range) instead, each of its six pyramidal faces' trees checked (the points
-// split among them). Returns how many scenes had the light inside the hull of a whole object
-// (which only its pieces allow).
-int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds, bool point_light = false);
+// split among them); with LightKind::directional, a sun along the spot's axis whose box covers
+// the scene (its default region and entry plane). Returns how many scenes had the light inside the
+// hull of a whole object (which only its pieces allow).
+enum class LightKind { spot, point, directional };
+int check_random_scenes(Shapes kinds, BoundsSettings options, int seeds,
+                        LightKind light = LightKind::spot);
 
 // The directed edges of a float triangle mesh that no triangle meets in the opposite direction
 // (zero-length edges left out). The faces of a region's pieces close up, so in a crack-free mesh

@@ -38,8 +38,17 @@ TEST(BeamTree, AgreesWithRayCastsIsSoundAndConservesVolumeOnRandomScenes) {
 // its six faces' trees (pyramids of half-angle 45°), on the canonical shapes and on what real
 // models hold as exact triangles (objects all around the light, in every face).
 TEST(BeamTree, IsSoundForEachFaceOfAPointLight) {
-    check_random_scenes(Shapes::canonical, {}, 40, true);
-    check_random_scenes(Shapes::real, {.occluders = Occluders::triangles}, 12, true);
+    check_random_scenes(Shapes::canonical, {}, 40, LightKind::point);
+    check_random_scenes(Shapes::real, {.occluders = Occluders::triangles}, 12, LightKind::point);
+}
+
+// The same oracle with a directional light along the scene's light's axis (parallel beams: every
+// splitting plane contains their direction, docs/design.md §17), its box covering the scene: on
+// the canonical shapes as volumes and on what real models hold as exact triangles.
+TEST(BeamTree, IsSoundForTheParallelBeamsOfADirectionalLight) {
+    check_random_scenes(Shapes::canonical, {}, 40, LightKind::directional);
+    check_random_scenes(Shapes::real, {.occluders = Occluders::triangles}, 12,
+                        LightKind::directional);
 }
 
 // The same oracle on scenes of what real models hold (random_scene's Shapes::real: walls with

@@ -24,6 +24,7 @@
 #include "methods/registry.h"
 #include "reference/reference.h"
 #include "scenes/animation.h"
+#include "scenes/scene_sections.h"
 #include "tests/gl_support.h"
 
 namespace sl::test {
@@ -185,6 +186,51 @@ TEST_P(EveryMethod, APointLightBesideASpotLightMatchesTheReference) {
     const double tolerance =
         GetParam() == "froxel" ? 0.2 : eye_and_light_tolerances().at(GetParam());
     EXPECT_LE(compare_images(frame.in_scattering, exact).rel_rmse, tolerance);
+}
+
+// The boxes under a sun (a directional light, docs/design.md §18): slanting from above, its box
+// the scene's, the camera inside it.
+Scene sunlit_boxes_scene() {
+    Scene scene = boxes_scene(MediumModel::physical);
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.4f, -1.0f, -0.3f));
+    sun.irradiance = glm::vec3(1.5f, 1.4f, 1.2f);
+    sun.entry = glm::vec3(std::numeric_limits<float>::quiet_NaN());
+    resolve_directional_light(sun, scene, "test");
+    scene.set_lights({sun});
+    return scene;
+}
+
+// Every method takes a sun (parallel beams, an orthographic shadow map) within its tolerance of
+// the reference, which casts its shadow rays back along the beams; epipolar refuses it by name.
+TEST_P(EveryMethod, ASunMatchesTheReference) {
+    const Scene scene = sunlit_boxes_scene();
+    ASSERT_TRUE(scene.light.parallel());
+    if (GetParam() == "epipolar") {
+        try {
+            render_method(scene, GetParam(), 96, 54);
+            ADD_FAILURE() << "epipolar took a directional light";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("directional light"), std::string::npos)
+                << e.what();
+        }
+        return;
+    }
+    const frame::Frame frame = render_method(scene, GetParam(), 96, 54);
+    double sum = 0.0;
+    for (const float v : frame.in_scattering.rgb) {
+        ASSERT_TRUE(std::isfinite(v));
+        ASSERT_GE(v, 0.0f);
+        sum += v;
+    }
+    if (GetParam() == "none") {
+        return;
+    }
+    EXPECT_GT(sum, 0.0);
+    const Image exact = reference::ReferenceRenderer(scene).render(96, 54, {});
+    const double error = compare_images(frame.in_scattering, exact).rel_rmse;
+    std::printf("%s with a sun: rel RMSE %.2e\n", GetParam().c_str(), error);
+    EXPECT_LE(error, eye_and_light_tolerances().at(GetParam()));
 }
 
 // Light adds up: the frame of two lights is the sum of the frames of each alone, in I_s and on the

@@ -376,6 +376,16 @@ dvec3 random_point(std::mt19937& rng, const SpotLight& light) {
     const dvec3 d = glm::normalize(dvec3(light.direction()));
     const dvec3 u = glm::normalize(dvec3(light.up()) - glm::dot(dvec3(light.up()), d) * d);
     const dvec3 r = glm::cross(d, u);
+    if (light.parallel()) {  // in the box, up to 5% beyond its sides and far end; or anywhere
+        const double w = double(light.half_width);
+        if (rng() % 8 == 0) {
+            return dvec3(light.position) + (double(light.far) + w) * dvec3(uniform(rng, -1, 1),
+                                                                           uniform(rng, -1, 1),
+                                                                           uniform(rng, -1, 1));
+        }
+        return dvec3(light.position) + uniform(rng, 0.0, 1.05 * light.far) * d +
+               uniform(rng, -1.05, 1.05) * w * r + uniform(rng, -1.05, 1.05) * w * u;
+    }
     const double spread = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
     if (rng() % 8 == 0) {  // anywhere around, mostly outside the influence volume
         return dvec3(light.position) + double(light.far) * dvec3(uniform(rng, -1, 1),

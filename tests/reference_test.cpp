@@ -7,8 +7,10 @@
 #include <cstdlib>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "reference/reference.h"
+#include "scenes/scene_sections.h"
 #include "tests/support.h"
 
 namespace sl::test {
@@ -145,6 +147,60 @@ TEST(Reference, APointLightEqualsItsSixPyramidalFaces) {
     for (const float v : whole.rgb)
         total += v;
     EXPECT_GT(total, 0.0);
+}
+
+// toplight under a sun from above, slightly tilted, over the scene's default box.
+Scene sunlit_toplight() {
+    Scene scene = load_canonical("toplight");
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    sun.irradiance = glm::vec3(2.0f);
+    sun.entry = glm::vec3(std::numeric_limits<float>::quiet_NaN());
+    resolve_directional_light(sun, scene, "test");
+    scene.set_lights({sun});
+    return scene;
+}
+
+// A pyramid spot light D behind a parallel beam's entry plane whose square meets the beam's box
+// there, with the box's range and the intensity that gives its irradiance at the entry plane.
+SpotLight far_spot(const SpotLight& beam, const Medium& medium, double D) {
+    const glm::dvec3 a = glm::normalize(glm::dvec3(beam.direction()));
+    SpotLight spot = beam;
+    spot.half_width = 0.0f;
+    spot.position = glm::vec3(glm::dvec3(beam.position) - D * a);
+    spot.target = glm::vec3(glm::dvec3(beam.position) + D * a);
+    spot.cone_half_angle_degrees = float(glm::degrees(std::atan(double(beam.half_width) / D)));
+    spot.near = float(D);
+    spot.far = float(D + double(beam.far));
+    const double scale = medium.model == MediumModel::physical
+                             ? D * D * std::exp(double(medium.sigma_t().r) * D)
+                             : double(medium.a1) * D * D + double(medium.a0);
+    spot.intensity = glm::vec3(glm::dvec3(beam.intensity) * scale);
+    return spot;
+}
+
+// A sun is the limit of a spot light moved far away against its beams, its intensity scaled to
+// match (issue 47), shadows included: the reference's difference falls as 1/D (halves with
+// each doubling), the shadows' slant and the falloff both being O(1/D).
+TEST(Reference, ASunIsTheLimitOfAFarSpotLight) {
+    const Scene sunlit = sunlit_toplight();
+    const Image sun = reference::ReferenceRenderer(sunlit).render(48, 27, {});
+    double total = 0.0;
+    for (const float v : sun.rgb)
+        total += v;
+    ASSERT_GT(total, 0.0);
+    std::vector<double> differences;
+    for (const double D : {100.0, 200.0, 400.0}) {
+        Scene spot = sunlit;
+        spot.set_lights({far_spot(sunlit.light, sunlit.medium, D)});
+        differences.push_back(
+            relative_l2(reference::ReferenceRenderer(spot).render(48, 27, {}), sun));
+    }
+    EXPECT_LT(differences[0], 0.1);
+    EXPECT_NEAR(differences[0] / differences[1], 2.0, 0.3)
+        << differences[0] << " " << differences[1];
+    EXPECT_NEAR(differences[1] / differences[2], 2.0, 0.3)
+        << differences[1] << " " << differences[2];
 }
 
 // The reference is linear in the lights: two lights render the sum of each alone.

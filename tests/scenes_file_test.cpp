@@ -101,6 +101,11 @@ target = [0.0, 0.0, 0.0]
 cone_angle = 30.0
 )";
 
+constexpr const char* kSun = R"(
+[[lights]]
+type = "directional"
+)";
+
 constexpr const char* kPointLight = R"(
 [[lights]]
 type = "point"
@@ -238,9 +243,21 @@ std::vector<BadInput> bad_inputs() {
         {replace(s, "cone_angle = 30.0", "cone_angle = 30.0\nshape = \"pyramid\"\nfalloff = 5.0"),
          "[light] falloff: a pyramid has a hard edge"},
         {s + kPointLight, "[light] and [[lights]] both given"},
-        {replace(s, "[light]", "[[lights]]"), "[[lights]] #1 type: missing: expected \"spot\" or"},
+        {replace(s, "[light]", "[[lights]]"), "[[lights]] #1 type: missing: expected \"spot\","},
         {replace(s, "[light]", "[[lights]]\ntype = \"sun\""),
          "[[lights]] #1 type: unknown light type 'sun'"},
+        {replace(s, kLightBlock, "") + kSun + "direction = [0.0, 0.0, 0.0]\n",
+         "[[lights]] #1 direction: the direction the light travels must not be [0, 0, 0]"},
+        {replace(s, kLightBlock, "") + kSun +
+             "direction = [0.0, -1.0, 0.0]\nirradiance = [1.0, "
+             "-1.0, 1.0]\n",
+         "[[lights]] #1 irradiance:"},
+        {replace(s, kLightBlock, "") + kSun + "direction = [0.0, -1.0, 0.0]\ncone_angle = 30.0\n",
+         "[[lights]] #1 cone_angle: unknown key"},
+        {replace(s, kLightBlock, "") + kSun +
+             "direction = [0.0, -1.0, 0.0]\nentry = [0.0, "
+             "-50.0, 0.0]\n",
+         "[[lights]] #1: key \"entry\": the entry plane lies beyond the whole scene"},
         {replace(s, kLightBlock, "") + kPointLight + "cone_angle = 30.0\n",
          "[[lights]] #1 cone_angle: unknown key"},
         {replace(s, kLightBlock, "") + kPointLight +
@@ -430,6 +447,72 @@ shape = "pyramid"
     const Scene single = load_scene((dir / "one.toml").string(), SceneSearchPaths::defaults());
     EXPECT_TRUE(single.lights.empty());
     EXPECT_EQ(single.light.position, glm::vec3(0.0f, 4.0f, 0.0f));
+}
+
+// A directional light: its direction normalised, its region the box around the objects and the
+// camera, its entry plane by default the one touching that box on the light's side; as the spot
+// light the methods take, parallel beams whose box holds every object corner and whose range
+// starts at the entry plane. A given entry plane is kept; a saved view keeps the light.
+TEST(SceneFile, ADirectionalLightCoversTheSceneFromItsEntryPlane) {
+    TempDir dir;
+    write_text(dir / "sun.toml", R"([scene]
+base = "parallel"
+[[lights]]
+type = "directional"
+direction = [1.0, -2.0, 0.5]
+irradiance = [3.0, 2.5, 2.0]
+)");
+    const Scene scene = load_scene((dir / "sun.toml").string(), SceneSearchPaths::defaults());
+    ASSERT_EQ(scene.lights.size(), 1u);
+    const auto& sun = std::get<DirectionalLight>(scene.lights[0]);
+    EXPECT_NEAR(glm::length(sun.direction), 1.0f, 1e-6f);
+    const SpotLight beam = sun.beam();
+    EXPECT_TRUE(beam.parallel());
+    EXPECT_EQ(scene.light, beam);
+    EXPECT_EQ(beam.intensity, glm::vec3(3.0f, 2.5f, 2.0f));
+    // Every object's vertices, the camera and the region's corners inside the box, the nearest
+    // corner on its entry plane.
+    const glm::dvec3 d = glm::normalize(glm::dvec3(beam.direction()));
+    double nearest = 1e30;
+    auto check_inside = [&](const glm::vec3& p) {
+        EXPECT_GT(beam.cone_factor(glm::dvec3(p)), 0.0) << p.x << " " << p.y << " " << p.z;
+        const double depth = glm::dot(glm::dvec3(p) - glm::dvec3(beam.position), d);
+        EXPECT_LE(depth, double(beam.far));
+        return depth;
+    };
+    check_inside(scene.camera.position);
+    for (const Object& object : scene.objects) {
+        for (const glm::vec3& v : object.mesh->positions) {
+            check_inside(glm::vec3(object.transform * glm::vec4(v, 1.0f)));
+        }
+    }
+    for (int i = 0; i < 8; ++i) {
+        nearest =
+            std::min(nearest, check_inside(glm::vec3(i & 1 ? sun.region.max.x : sun.region.min.x,
+                                                     i & 2 ? sun.region.max.y : sun.region.min.y,
+                                                     i & 4 ? sun.region.max.z : sun.region.min.z)));
+    }
+    EXPECT_NEAR(nearest, 0.0, 1e-4);
+    const Scene view = scene.for_light(0);
+    EXPECT_EQ(view.light, beam);
+
+    // A given entry plane: the range starts there.
+    write_text(dir / "entry.toml",
+               "[scene]\nbase = \"sun.toml\"\n[[lights]]\ntype = \"directional\"\ndirection = "
+               "[0.0, -1.0, 0.0]\nentry = [0.0, 1.5, 0.0]\n");
+    const Scene entered = load_scene((dir / "entry.toml").string(), SceneSearchPaths::defaults());
+    EXPECT_NEAR(entered.light.position.y, 1.5f, 1e-5f);
+    EXPECT_EQ(entered.light.near, 0.0f);
+
+    // Saved and read back: the same light.
+    write_text(dir / "saved.toml", scene_view_toml(scene, "parallel", "saved"));
+    const Scene back = load_scene((dir / "saved.toml").string(), SceneSearchPaths::defaults());
+    ASSERT_EQ(back.lights.size(), 1u);
+    const auto& read = std::get<DirectionalLight>(back.lights[0]);
+    EXPECT_LT(glm::length(read.direction - sun.direction), 1e-6f);  // normalised again
+    EXPECT_EQ(read.irradiance, sun.irradiance);
+    EXPECT_EQ(read.entry, sun.entry);
+    EXPECT_EQ(read.region, sun.region);
 }
 
 // A saved view keeps the environment as the viewer left it: a studio light with every setting

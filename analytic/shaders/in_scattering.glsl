@@ -266,6 +266,27 @@ vec3 physical_antiderivative(float z, float z_s, float x, float h, float d, bool
     return 2.0 * frame.medium_sigma_s.rgb * frame.light_intensity.rgb * shape;
 }
 
+// G(z) of parallel beams (a directional light; in_scattering.cpp's parallel_integral): the
+// scattering angle is constant and the path s = wa + z va linear, so e = σs p E e^(-σt (z + s)),
+// G(z) = σs p E e^(-σt (z0 + s(z0))) (1 - e^(-k (z - z0))) / k with k = σt (1 + va), anchored at
+// the span's start z0 (where both exponents are smallest, so nothing overflows), and a series
+// where k (z - z0) is small (no cancellation when the ray runs along the beams).
+vec3 parallel_antiderivative(vec3 origin, vec3 direction, vec2 span, float z) {
+    vec3 a = frame.light_direction.xyz;
+    float va = dot(direction, a);
+    vec3 source = frame.medium_sigma_s.rgb * phase_function(-va) * frame.light_intensity.rgb;
+    float length_in = z - span.x;
+    if (frame.medium_sigma_t.w < 0.5) return source * length_in;
+    float s0 = max(dot(origin - frame.light_position.xyz, a) + span.x * va, 0.0);
+    vec3 sigma_t = frame.medium_sigma_t.rgb;
+    vec3 k = sigma_t * max(1.0 + va, 0.0);
+    vec3 x = k * length_in;
+    vec3 series = length_in * (1.0 - x * (0.5 - x / 6.0));
+    vec3 exact = (1.0 - exp(-x)) / max(k, vec3(1e-30));
+    vec3 integral = mix(exact, series, lessThan(x, vec3(1e-3)));
+    return source * exp(-sigma_t * (span.x + s0)) * integral;
+}
+
 // G(z) of the hard edge for the ray (origin, direction), per channel; z is clamped to the cone
 // interval `span` so that G(z1) - G(z0) integrates over [z0, z1] ∩ span only. SL_MEDIUM_FORM
 // (closed_form_defines) compiles the scene's form alone: 0 Nilsson eq. 2.17, 1 the simplified
@@ -274,6 +295,7 @@ vec3 physical_antiderivative(float z, float z_s, float x, float h, float d, bool
 vec3 in_scattering_antiderivative(vec3 origin, vec3 direction, vec2 span, float z) {
     if (!(span.y > span.x)) return vec3(0.0);
     z = clamp(z, span.x, span.y);
+    if (light_parallel()) return parallel_antiderivative(origin, direction, span, z);
     vec3 delta = frame.light_position.xyz - origin;
     float z_s = dot(delta, direction);
     float h = length(delta - z_s * direction);

@@ -31,7 +31,7 @@ void main() {
     }
     vec3 to_light = frame.light_position.xyz - world_position;
     float r = length(to_light);
-    vec3 l = to_light / r;
+    vec3 l = -light_travel(-to_light);
     float cos_theta = dot(n, l);
 
     vec3 irradiance = vec3(0.0);
@@ -40,11 +40,13 @@ void main() {
     vec3 radiance = light_only != 0 ? vec3(0.0) : (is_translucent ? translucent.yzw : albedo) * frame.ambient.rgb;
     if (cos_theta > 0.0 && in_light_range(-to_light)) {
         // Normal offset: move the lookup point off the surface by a few shadow texels, measured
-        // at this distance from the light, so that surfaces do not shadow themselves.
-        float texel_world = 2.0 * r * tan(frame.light_cone.x) * frame.shadow.x;
+        // at this distance from the light (parallel beams: the box's width), so that surfaces
+        // do not shadow themselves.
+        float span = light_parallel() ? 2.0 * frame.light_cone.w : 2.0 * r * tan(frame.light_cone.x);
+        float texel_world = span * frame.shadow.x;
         vec3 lookup = world_position + n * frame.shadow.z * texel_world;
-        irradiance = frame.light_intensity.rgb * cone_factor(-to_light) * light_falloff(r) *
-                     cos_theta * light_visibility(lookup);
+        irradiance = frame.light_intensity.rgb * cone_factor(-to_light) *
+                     light_attenuation(-to_light) * cos_theta * light_visibility(lookup);
         radiance += albedo / PI * irradiance;
         if (environment_on() || is_translucent) {
             radiance += irradiance / cos_theta * spot_specular(n, v, l, roughness, f0);

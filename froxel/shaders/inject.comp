@@ -24,8 +24,9 @@ vec3 source(vec3 p, vec3 direction) {
     if (!(r > 0.0) || !in_light_range(from_light)) return vec3(0.0);
     float cone = cone_factor(from_light);
     if (cone == 0.0) return vec3(0.0);
-    float phase = phase_function(-dot(from_light / r, direction));
-    return frame.medium_sigma_s.rgb * phase * frame.light_intensity.rgb * cone * light_falloff(r);
+    float phase = phase_function(-dot(light_travel(from_light), direction));
+    return frame.medium_sigma_s.rgb * phase * frame.light_intensity.rgb * cone *
+           light_attenuation(from_light);
 }
 
 void main() {

@@ -36,7 +36,10 @@ SL_UNIFORM_BLOCK(FrameUniforms, SL_FRAME_UNIFORMS_BINDING) {
     vec4 light_direction;        // xyz unit axis; w = far range (the backplate)
     vec4 light_intensity;        // rgb
     vec4 light_cone;             // x = cone half-angle (rad), y = falloff width (rad, 0 = hard),
-                                 // z = 1 for a pyramid (SpotShape), 0 for a cone
+                                 // z = 1 for a pyramid (SpotShape), 0 for a cone; w > 0:
+                                 // parallel beams (a directional light) in a box of this
+                                 // half-width, light_position on its entry plane (near = 0),
+                                 // light_intensity the irradiance
     vec4 medium_sigma_s;         // rgb; w = phase function (PhaseFunction's order)
     vec4 medium_sigma_t;         // rgb; w = model (0 simplified, 1 physical)
     vec4 medium_attenuation;     // x = a0, y = a1 (simplified model, Nilsson eq. 2.13);

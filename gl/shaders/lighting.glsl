@@ -30,10 +30,29 @@ vec3 transmittance(float s) {
     return frame.medium_sigma_t.w > 0.5 ? exp(-frame.medium_sigma_t.rgb * s) : vec3(1.0);
 }
 
+// Parallel beams (a directional light: frame.light_cone.w, its box's half-width, > 0): the light
+// travels along the axis everywhere, from the entry plane through light_position.
+bool light_parallel() {
+    return frame.light_cone.w > 0.0;
+}
+
+// The unit direction the light travels at p (from_light = p - light_position).
+vec3 light_travel(vec3 from_light) {
+    return light_parallel() ? frame.light_direction.xyz : normalize(from_light);
+}
+
 // Falloff of the light's intensity with distance r: T(r)/r² (eq. 2.8) or 1/(a1 r² + a0) (eq. 2.13).
 vec3 light_falloff(float r) {
     if (frame.medium_sigma_t.w > 0.5) {
         return transmittance(r) / (r * r);
     }
     return vec3(1.0 / (frame.medium_attenuation.y * r * r + frame.medium_attenuation.x));
+}
+
+// What reaches p of the light's intensity (I(Ω) or the irradiance), cone aside: light_falloff
+// of the distance; for parallel beams T(s) of the path s past the entry plane (1 in the
+// simplified model: no attenuation, no falloff).
+vec3 light_attenuation(vec3 from_light) {
+    if (light_parallel()) return transmittance(dot(from_light, frame.light_direction.xyz));
+    return light_falloff(length(from_light));
 }

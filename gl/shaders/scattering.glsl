@@ -39,6 +39,12 @@ vec3 scattering_density_g(vec3 origin, vec3 direction, float t, float g) {
     if (!(r > 0.0) || !in_light_range(from_light)) return vec3(0.0);
     float cone = cone_factor(from_light);
     if (cone == 0.0) return vec3(0.0);
+    if (light_parallel()) {
+        // Parallel beams: E T(s) along the beams, s the path past the entry plane.
+        float p = phase_function_g(-dot(frame.light_direction.xyz, direction), g);
+        return transmittance(t) * frame.medium_sigma_s.rgb * p * frame.light_intensity.rgb *
+               cone * light_attenuation(from_light);
+    }
     float p = phase_function_g(-dot(from_light / r, direction), g);
     vec3 source = frame.medium_sigma_s.rgb * p * frame.light_intensity.rgb * cone;
     if (frame.medium_sigma_t.w < 0.5) {

@@ -58,7 +58,11 @@ bool light_volume_contains(vec3 p) {
     // The cell's two triangles, split along its diagonal from (0, 0) to (1, 1).
     vec3 a = grid_point(cell, false), c = grid_point(cell + ivec2(1, 1), false);
     vec3 b = grid_point(cell + (f.x >= f.y ? ivec2(1, 0) : ivec2(0, 1)), false);
+    // The ray's start: the light, or for parallel beams p's beam on the entry plane.
     vec3 light = frame.light_position.xyz;
+    if (frame.light_cone.w > 0.0) {
+        light = p - dot(p - light, frame.light_direction.xyz) * frame.light_direction.xyz;
+    }
     vec3 normal = cross(b - a, c - a);
     vec3 ray = p - light;
     float along = dot(ray, normal);
