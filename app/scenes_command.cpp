@@ -70,7 +70,7 @@ Command add_scenes_command(CLI::App& app) {
                     ? fmt::format("  animated {:g}-{:g} s at {:g} fps", scene.animation->start,
                                   scene.animation->end, scene.animation->fps)
                     : "";
-            fmt::print("{:<16} {:>3} objects {:>8} triangles  {}  medium {}{}  {}\n", name,
+            fmt::print("{:<20} {:>3} objects {:>8} triangles  {}  medium {}{}  {}\n", name,
                        scene.objects.size(), scene.triangle_count(), describe_lights(scene),
                        to_string(scene.medium.model), motion, scene.source.string());
         }

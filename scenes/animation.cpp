@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
+#include <variant>
 
 #include <glm/geometric.hpp>
 
@@ -56,7 +58,7 @@ int Animation::frame_count() const {
 
 bool Animation::moves_light() const {
     return !light_position.empty() || !light_target.empty() || !cone_angle.empty() ||
-           !light_intensity.empty();
+           !light_intensity.empty() || !lights.empty();
 }
 
 namespace {
@@ -122,6 +124,78 @@ void read_camera_key(TomlTableReader& k, double t, Animation& a) {
     if (k.has("fov"))
         add_key(a.fov, t, float(k.number_in("fov", 0, 0, 180, true, true)));
 }
+
+// The keys of [[animation.light]] in a scene of [[lights]]: each names its entry (`light = N`,
+// from 1) and sets that light type's keys; each entry's key times rise on their own.
+class LightKeys {
+public:
+    LightKeys(const Scene& scene, const KeyReader& keys)
+        : scene_(scene),
+          keys_(keys),
+          previous_(scene.lights.size(), 0.0),
+          tracks_of_(scene.lights.size(), -1) {}
+
+    double read(TomlTableReader& k, Animation& a) {
+        const int count = int(scene_.lights.size());
+        if (!k.has("light")) {
+            k.error("light",
+                    fmt::format("missing: which [[lights]] entry the key moves, 1 to {}", count));
+        }
+        const size_t light = size_t(k.integer_in("light", 1, 1, count) - 1);
+        int& index = tracks_of_[light];
+        const double t = keys_.time(k, previous_[light], index < 0);
+        if (index < 0) {
+            index = int(a.lights.size());
+            Animation::LightTracks tracks;
+            tracks.light = int(light);
+            a.lights.push_back(std::move(tracks));
+        }
+        Animation::LightTracks& tracks = a.lights[size_t(index)];
+        const LightSource& source = scene_.lights[light];
+        auto refuse = [&](std::initializer_list<const char*> keys, const char* takes) {
+            for (const char* key : keys) {
+                if (k.has(key)) {
+                    k.error(key, fmt::format("light {} is a {} light, which takes {}", light + 1,
+                                             light_type(source), takes));
+                }
+            }
+        };
+        if (std::holds_alternative<DirectionalLight>(source)) {
+            refuse({"position", "target", "cone_angle", "intensity"}, "direction and irradiance");
+            if (k.has("direction")) {
+                const glm::vec3 d = k.vec3("direction");
+                if (d == glm::vec3(0.0f)) {
+                    k.error("direction", "must not be [0, 0, 0]");
+                }
+                add_key(tracks.direction, t, d);
+            }
+            if (k.has("irradiance"))
+                add_key(tracks.intensity, t, k.non_negative_vec3("irradiance", glm::vec3(0)));
+            return t;
+        }
+        refuse({"direction", "irradiance"}, std::holds_alternative<SpotLight>(source)
+                                                ? "position, target, cone_angle and intensity"
+                                                : "position and intensity");
+        if (std::holds_alternative<PointLight>(source)) {
+            refuse({"target", "cone_angle"}, "position and intensity");
+        }
+        if (k.has("position"))
+            add_key(tracks.position, t, k.vec3("position"));
+        if (k.has("target"))
+            add_key(tracks.target, t, k.vec3("target"));
+        if (k.has("cone_angle"))
+            add_key(tracks.cone_angle, t, float(k.number_in("cone_angle", 0, 0, 89, true)));
+        if (k.has("intensity"))
+            add_key(tracks.intensity, t, k.non_negative_vec3("intensity", glm::vec3(0)));
+        return t;
+    }
+
+private:
+    const Scene& scene_;
+    const KeyReader& keys_;
+    std::vector<double> previous_;
+    std::vector<int> tracks_of_;
+};
 
 // The keys of [[animation.objects]]: each names an object of the scene, whose tracks are made at
 // its first key; each object's key times rise on their own.
@@ -197,12 +271,14 @@ Animation read_animation(const toml::table& table, const std::string& origin, co
         }
     };
     double light_previous = 0.0, camera_previous = 0.0;
-    if (!scene.lights.empty() && r.has("light")) {
-        r.error("light",
-                "[[animation.light]] moves the scene's one light ([light]); this scene "
-                "has [[lights]], which take no animation keys yet");
-    }
+    LightKeys light_keys(scene, keys);
     each_key("light", [&](TomlTableReader& k, size_t i) {
+        if (!scene.lights.empty()) {
+            return light_keys.read(k, a);
+        }
+        if (k.has("light")) {
+            k.error("light", "the scene has one light ([light]): its keys need no `light`");
+        }
         const double t = keys.time(k, light_previous, i == 0);
         read_light_key(k, t, a);
         return t;
@@ -276,6 +352,63 @@ Scene scene_at(const Scene& scene, const Animation& a, double time) {
         s.camera.target = a.camera_target.at(time, in);
     if (!a.fov.empty())
         s.camera.fov_y_degrees = a.fov.at(time, in);
+    const char* bad = nullptr;
+    if (!a.lights.empty()) {
+        std::vector<LightSource> lights = s.lights;
+        for (const Animation::LightTracks& tracks : a.lights) {
+            LightSource& source = lights[size_t(tracks.light)];
+            const glm::vec3 intensity =
+                tracks.intensity.empty() ? glm::vec3(0.0f)
+                                         : glm::max(tracks.intensity.at(time, in), glm::vec3(0.0f));
+            if (auto* sun = std::get_if<DirectionalLight>(&source)) {
+                if (!tracks.direction.empty()) {
+                    const glm::vec3 d = tracks.direction.at(time, in);
+                    if (!(glm::length(d) > 1e-6f)) {
+                        bad = "a directional light's direction passed through zero";
+                        continue;
+                    }
+                    sun->direction = glm::normalize(d);
+                    if (sun->default_entry) {
+                        sun->enter_region();
+                    }
+                }
+                if (!tracks.intensity.empty())
+                    sun->irradiance = intensity;
+                continue;
+            }
+            std::visit(
+                [&](auto& light) {
+                    using Light = std::decay_t<decltype(light)>;
+                    if constexpr (!std::is_same_v<Light, DirectionalLight>) {
+                        if (!tracks.position.empty())
+                            light.position = tracks.position.at(time, in);
+                        if (!tracks.intensity.empty())
+                            light.intensity = intensity;
+                    }
+                    if constexpr (std::is_same_v<Light, SpotLight>) {
+                        if (!tracks.target.empty())
+                            light.target = tracks.target.at(time, in);
+                        if (!tracks.cone_angle.empty())
+                            light.cone_half_angle_degrees = tracks.cone_angle.at(time, in);
+                    }
+                },
+                source);
+        }
+        for (const LightSource& source : lights) {
+            const auto* spot = std::get_if<SpotLight>(&source);
+            if (spot && !distinct_in_float(spot->position, spot->target)) {
+                bad = "a spot light's target is on its position";
+            } else if (spot && !(spot->cone_half_angle_degrees > 0.0f &&
+                                 spot->cone_half_angle_degrees < 89.0f)) {
+                bad = "a spot light's cone angle left (0, 89) degrees";
+            } else if (spot && spot->falloff_degrees > spot->cone_half_angle_degrees) {
+                bad = "a spot light's cone angle fell below its falloff";
+            }
+        }
+        if (!bad) {
+            s.set_lights(std::move(lights));
+        }
+    }
     for (const Animation::ObjectTracks& tracks : a.objects) {
         Object& object = s.objects[size_t(tracks.object)];
         if (!tracks.translate.empty())
@@ -301,8 +434,13 @@ Scene scene_at(const Scene& scene, const Animation& a, double time) {
         all_finite = all_finite && finite(o.placement.translate) &&
                      finite(o.placement.rotate_degrees) && finite(o.placement.scale);
     }
-    const char* bad = nullptr;
-    if (!all_finite) {
+    for (const SpotLight& light : s.spot_lights()) {
+        all_finite = all_finite && finite(light.position) && finite(light.target) &&
+                     finite(light.intensity) && std::isfinite(light.cone_half_angle_degrees);
+    }
+    if (bad) {
+        // a light's, found above
+    } else if (!all_finite) {
         bad = "an interpolated value is not finite (keys too far apart for float)";
     } else if (!distinct_in_float(s.camera.position, s.camera.target)) {
         bad = "the camera's target is on its position";
@@ -311,8 +449,8 @@ Scene scene_at(const Scene& scene, const Animation& a, double time) {
         bad = "the camera looks along its up vector";
     } else if (!distinct_in_float(s.light.position, s.light.target)) {
         bad = "the light's target is on its position";
-    } else if (!(s.light.cone_half_angle_degrees > 0.0f &&
-                 s.light.cone_half_angle_degrees < 89.0f)) {
+    } else if (!s.light.parallel() && !(s.light.cone_half_angle_degrees > 0.0f &&
+                                        s.light.cone_half_angle_degrees < 89.0f)) {
         bad = "the cone angle left (0, 89) degrees";
     } else if (s.light.falloff_degrees > s.light.cone_half_angle_degrees) {
         bad = "the cone angle fell below the light's falloff";

@@ -9,14 +9,20 @@
 //   fps = 30                 the step the harness and the viewer play it at (default 30)
 //   interpolation = "linear" | "catmull-rom"   (default "linear")
 //
-//   [[animation.light]]      time, and any of: position, target, cone_angle, intensity
+//   [[animation.light]]      time, and any of: position, target, cone_angle, intensity; in a
+//                            scene of [[lights]], also `light = N` (the N-th entry, from 1)
+//                            and that light type's keys: a spot's as above, a point light's
+//                            position and intensity, a directional light's direction and
+//                            irradiance (its entry plane, when the scene gave none, follows
+//                            the direction: the plane touching its region)
 //   [[animation.camera]]     time, and any of: position, target, fov
 //   [[animation.objects]]    name (an object of the scene), time, and any of: translate,
 //                            rotate, scale (as in [[objects]]; they replace the object's own)
 //
 // Every quantity is its own track: interpolated between the keys that set it, held before the
 // first and after the last; a quantity no key sets keeps the scene's value. Per track (the
-// light, the camera, each object) the keys' times increase strictly and lie in [start, end].
+// light, each [[lights]] entry, the camera, each object) the keys' times increase strictly and
+// lie in [start, end].
 // Catmull-Rom is the non-uniform cardinal spline with tangents (p[i+1] - p[i-1]) / (t[i+1] -
 // t[i-1]) (one-sided at the ends); it passes through every key. Rotations interpolate their
 // angles component by component.
@@ -47,6 +53,13 @@ public:
         int object = 0;  // index into Scene::objects
         Track<glm::vec3> translate, rotate, scale;
     };
+    // One [[lights]] entry's tracks (keys with `light = N`): intensity is a directional light's
+    // irradiance.
+    struct LightTracks {
+        int light = 0;  // index into Scene::lights
+        Track<glm::vec3> position, target, intensity, direction;
+        Track<float> cone_angle;
+    };
 
     double start = 0.0;
     double end = 0.0;
@@ -57,6 +70,7 @@ public:
     Track<glm::vec3> camera_position, camera_target;
     Track<float> fov;
     std::vector<ObjectTracks> objects;
+    std::vector<LightTracks> lights;  // for a scene of [[lights]]; the light_* tracks for [light]
 
     // Frames played at `fps` from start to end, both included when (end - start)·fps is whole;
     // a file may ask for at most kMaxFrames.

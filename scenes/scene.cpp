@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -194,6 +195,20 @@ SpotLight DirectionalLight::beam() const {
     beam.intensity = irradiance;
     beam.shape = SpotShape::pyramid;
     return beam;
+}
+
+void DirectionalLight::enter_region() {
+    const glm::dvec3 d(direction);
+    double nearest = std::numeric_limits<double>::max();
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner(i & 1 ? region.max.x : region.min.x,
+                               i & 2 ? region.max.y : region.min.y,
+                               i & 4 ? region.max.z : region.min.z);
+        if (glm::dot(glm::dvec3(corner), d) < nearest) {
+            nearest = glm::dot(glm::dvec3(corner), d);
+            entry = corner;
+        }
+    }
 }
 
 const char* light_type(const LightSource& light) {

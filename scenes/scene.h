@@ -169,12 +169,17 @@ struct DirectionalLight {
     // World box where it scatters: by default the scene's objects' bounds and the camera's
     // position (docs/scenes.md), resolved when the scene is read.
     Box region{};
+    // The scene gave no entry: it is the plane touching the region on the light's side, and
+    // follows the direction when an animation turns it (enter_region).
+    bool default_entry = false;
 
     bool operator==(const DirectionalLight&) const = default;
     // The region's bounding box across the beams as the spot light that every part taking one
     // light reads: SpotLight::parallel, a square of half-width covering the region about the
     // axis through its centre, from the entry plane to the region's far side.
     SpotLight beam() const;
+    // Sets `entry` to the region's corner nearest the light: the plane touching it.
+    void enter_region();
 };
 
 // The most spot lights a scene file may ask for, a point light counting as its six faces (each

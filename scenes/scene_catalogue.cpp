@@ -54,7 +54,7 @@ std::vector<std::string> real_scene_names() {
 }
 
 std::vector<std::string> light_scene_names() {
-    return {"room", "parallel-lamps", "house-morning"};
+    return {"room", "parallel-lamps", "house-morning", "parallel-lamps-swing", "house-day"};
 }
 
 std::vector<std::string> named_scene_names() {

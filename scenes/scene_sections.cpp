@@ -112,22 +112,18 @@ void resolve_directional_light(DirectionalLight& light, const Scene& scene,
         }
     }
     light.region = {bounds.min, bounds.max};
+    if (std::isnan(light.entry.x)) {
+        light.default_entry = true;
+        light.enter_region();  // the plane touching the region on the light's side
+        return;
+    }
     const glm::dvec3 d(light.direction);
-    double nearest = std::numeric_limits<double>::max(), farthest = -nearest;
-    glm::dvec3 first{};
+    double farthest = std::numeric_limits<double>::lowest();
     for (int i = 0; i < 8; ++i) {
         const glm::dvec3 corner(i & 1 ? bounds.max.x : bounds.min.x,
                                 i & 2 ? bounds.max.y : bounds.min.y,
                                 i & 4 ? bounds.max.z : bounds.min.z);
-        if (glm::dot(corner, d) < nearest) {
-            nearest = glm::dot(corner, d);
-            first = corner;
-        }
         farthest = std::max(farthest, glm::dot(corner, d));
-    }
-    if (std::isnan(light.entry.x)) {
-        light.entry = glm::vec3(first);  // the plane touching the region on the light's side
-        return;
     }
     const double entry = glm::dot(glm::dvec3(light.entry), d);
     const double size = glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));

@@ -251,7 +251,7 @@ TEST(Cli, ScenesListsEverySceneThatLoadsByName) {
               "toplight\nparallel\nmultiple\ntoplight-orbit\nparallel-walk\nmultiple-moving\n"
               "ibl-spheres\nsss-bunny\nsss-dragon\nsss-shaft\n"
               "house\nhouse-sweep\nengine\nengine-orbit\narena\narena-sweep\n"
-              "room\nparallel-lamps\nhouse-morning\n");
+              "room\nparallel-lamps\nhouse-morning\nparallel-lamps-swing\nhouse-day\n");
     const CommandResult listing = run_shaftlab("scenes");
     ASSERT_EQ(listing.exit_code, 0) << listing.output;
     for (const std::string& name : named_scene_names()) {

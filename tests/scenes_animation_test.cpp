@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
+#include <variant>
 
 #include <glm/geometric.hpp>
 
@@ -133,6 +135,49 @@ TEST(Animation, CanonicalAnimatedScenesLoadAndMove) {
     }
 }
 
+// The animated light scenes: parallel-lamps-swing's second lamp stays on its 1.2 m cord and
+// points along it while the other lamps hang still; house-day's sun turns from the morning
+// through the south at noon, its entry plane following.
+TEST(Animation, TheLightScenesSwingALampAndTurnTheSun) {
+    const Scene swing = load_scene("parallel-lamps-swing", SceneSearchPaths::defaults());
+    ASSERT_TRUE(swing.animation);
+    const glm::vec3 pivot(0.0f, 4.9f, 2.0f);
+    for (const double t : {0.0, 0.5, 1.0, 1.7, 2.9, 3.5}) {
+        const Scene s = scene_at(swing, t);
+        ASSERT_EQ(s.lights.size(), swing.lights.size());
+        for (size_t i = 0; i < s.lights.size(); ++i) {
+            const auto& lamp = std::get<SpotLight>(s.lights[i]);
+            if (i != 1) {
+                EXPECT_EQ(lamp, std::get<SpotLight>(swing.lights[i])) << "lamp " << i + 1;
+                continue;
+            }
+            // Catmull-Rom between keys on the arc: within a few mm of the cord's length.
+            EXPECT_NEAR(glm::length(lamp.position - pivot), 1.2f, 0.01f) << "t = " << t;
+            const glm::vec3 cord = glm::normalize(lamp.position - pivot);
+            const glm::vec3 axis = glm::normalize(lamp.target - lamp.position);
+            EXPECT_GT(glm::dot(glm::normalize(glm::vec3(cord.x, cord.y, 0.0f)),
+                               glm::normalize(glm::vec3(axis.x, axis.y, 0.0f))),
+                      0.999f)
+                << "the beam along the cord at t = " << t;
+        }
+    }
+    const Scene day = load_scene("house-day", SceneSearchPaths::defaults());
+    ASSERT_TRUE(day.animation);
+    EXPECT_EQ(day.animation->frame_count(), 181);  // 6 s at 30 fps
+    const auto sun_at = [&](double t) {
+        return std::get<DirectionalLight>(scene_at(day, t).lights[0]);
+    };
+    const DirectionalLight morning = sun_at(0.0), noon = sun_at(3.0), evening = sun_at(6.0);
+    EXPECT_LT(morning.direction.x, -0.4f);
+    EXPECT_NEAR(noon.direction.x, 0.0f, 1e-4f);
+    EXPECT_GT(evening.direction.x, 0.4f);
+    EXPECT_NE(morning.entry, evening.entry) << "the entry plane follows the sun";
+    for (const DirectionalLight& sun : {morning, noon, evening}) {
+        EXPECT_NEAR(glm::length(sun.direction), 1.0f, 1e-5f);
+        EXPECT_LT(sun.direction.y, -0.3f) << "the sun is above the horizon";
+    }
+}
+
 TEST(Animation, SceneChangeSaysWhatDiffers) {
     const Scene a = load_scene("toplight", SceneSearchPaths::defaults());
     Scene b = a;
@@ -195,6 +240,136 @@ TEST(Animation, BadInputGivesOneClearErrorNamingFileLineAndKey) {
             EXPECT_EQ(message.find('\n'), std::string::npos) << message;
         }
     }
+}
+
+// The same scene lit by [[lights]]: a spot, a point light and a sun.
+std::string lights_scene(const std::string& animation) {
+    return R"([camera]
+position = [0.0, 2.0, 8.0]
+target = [0.0, 1.0, 0.0]
+[[lights]]
+type = "spot"
+position = [0.0, 6.0, 0.0]
+target = [0.0, 0.0, 0.0]
+cone_angle = 30.0
+[[lights]]
+type = "point"
+position = [2.0, 3.0, 0.0]
+intensity = [5.0, 5.0, 5.0]
+[[lights]]
+type = "directional"
+direction = [0.0, -1.0, 0.0]
+[[objects]]
+name = "floor"
+shape = "plane"
+size = [8.0, 0.0, 8.0]
+[[objects]]
+name = "box"
+shape = "box"
+size = [1.0, 1.0, 1.0]
+translate = [1.0, 0.5, 0.0]
+)" + animation;
+}
+
+// [[animation.light]] keys in a scene of [[lights]] move the entry `light = N` names, each light
+// type by its own keys, each entry's times on their own: a swinging spot's target, a point
+// light's position, a sun's direction (its default entry plane following it); the methods' spot
+// lights follow, and the change is the light's geometry.
+TEST(Animation, LightsKeysMoveTheEntryTheyName) {
+    const Scene scene = parse(lights_scene(R"([animation]
+[[animation.light]]
+light = 1
+time = 0.0
+target = [-1.0, 0.0, 0.0]
+[[animation.light]]
+light = 3
+time = 0.0
+direction = [0.0, -1.0, 0.0]
+[[animation.light]]
+light = 1
+time = 2.0
+target = [1.0, 0.0, 0.0]
+[[animation.light]]
+light = 2
+time = 1.0
+position = [2.0, 3.0, 0.0]
+intensity = [5.0, 5.0, 5.0]
+[[animation.light]]
+light = 2
+time = 2.0
+position = [-2.0, 3.0, 0.0]
+intensity = [1.0, 1.0, 1.0]
+[[animation.light]]
+light = 3
+time = 2.0
+direction = [-1.0, -1.0, 0.0]
+irradiance = [2.0, 2.0, 2.0]
+)"));
+    ASSERT_TRUE(scene.animation);
+    EXPECT_TRUE(scene.animation->moves_light());
+    const Scene start = scene_at(scene, 0.0), middle = scene_at(scene, 1.0),
+                end = scene_at(scene, 2.0);
+    EXPECT_EQ(std::get<SpotLight>(middle.lights[0]).target, glm::vec3(0.0f));
+    EXPECT_EQ(std::get<SpotLight>(end.lights[0]).target, glm::vec3(1.0f, 0.0f, 0.0f));
+    EXPECT_EQ(std::get<PointLight>(middle.lights[1]).position, glm::vec3(2.0f, 3.0f, 0.0f));
+    EXPECT_EQ(std::get<PointLight>(end.lights[1]).position, glm::vec3(-2.0f, 3.0f, 0.0f));
+    EXPECT_EQ(std::get<PointLight>(end.lights[1]).intensity, glm::vec3(1.0f));
+    const auto& sun = std::get<DirectionalLight>(end.lights[2]);
+    EXPECT_LT(glm::length(sun.direction - glm::normalize(glm::vec3(-1.0f, -1.0f, 0.0f))), 1e-6f);
+    EXPECT_EQ(sun.irradiance, glm::vec3(2.0f));
+    // The entry plane follows: the region's corner nearest the turned sun (at the start, the
+    // scene's sun straight down, it was on the region's top at its -x side).
+    EXPECT_EQ(std::get<DirectionalLight>(start.lights[2]).entry.x, sun.region.min.x);
+    EXPECT_EQ(sun.entry, glm::vec3(sun.region.max.x, sun.region.max.y, sun.entry.z));
+    EXPECT_EQ(end.light, end.spot_lights()[0]);
+    EXPECT_EQ(end.spot_lights().size(), 8u);
+    const SceneChange change = scene_change(start, end);
+    EXPECT_TRUE(change.light_geometry);
+    EXPECT_FALSE(change.camera);
+    EXPECT_TRUE(change.objects.empty());
+}
+
+// Each light type takes its own keys, and a scene of [[lights]] needs `light = N` in range.
+TEST(Animation, LightsKeysAreCheckedAgainstTheLightTheyName) {
+    const std::pair<std::string, std::string> cases[] = {
+        {"[animation]\n[[animation.light]]\ntime = 0.0\ntarget = [1.0, 0.0, 0.0]\n",
+         "[[animation.light]] #1 light: missing: which [[lights]] entry the key moves, 1 to 3"},
+        {"[animation]\n[[animation.light]]\nlight = 4\ntime = 0.0\n",
+         "[[animation.light]] #1 light: expected an integer in [1, 3]"},
+        {"[animation]\n[[animation.light]]\nlight = 2\ntime = 0.0\ntarget = [1.0, 0.0, 0.0]\n",
+         "[[animation.light]] #1 target: light 2 is a point light, which takes position and "
+         "intensity"},
+        {"[animation]\n[[animation.light]]\nlight = 3\ntime = 0.0\nposition = [1.0, 0.0, 0.0]\n",
+         "[[animation.light]] #1 position: light 3 is a directional light, which takes "
+         "direction and irradiance"},
+        {"[animation]\n[[animation.light]]\nlight = 1\ntime = 0.0\ndirection = [1.0, 0.0, 0.0]\n",
+         "[[animation.light]] #1 direction: light 1 is a spot light"},
+        {"[animation]\n[[animation.light]]\nlight = 3\ntime = 0.0\ndirection = [0.0, 0.0, 0.0]\n",
+         "[[animation.light]] #1 direction: must not be [0, 0, 0]"},
+    };
+    for (const auto& [animation, expected] : cases) {
+        try {
+            parse(lights_scene(animation));
+            ADD_FAILURE() << "accepted:\n" << animation;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(expected), std::string::npos)
+                << "expected: " << expected << "\ngot: " << e.what();
+        }
+    }
+    // A scene of one [light] takes no `light` key.
+    try {
+        parse(animated_scene("[animation]\n[[animation.light]]\nlight = 1\ntime = 0.0\n"));
+        ADD_FAILURE() << "accepted a light key with [light]";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("its keys need no `light`"), std::string::npos)
+            << e.what();
+    }
+    // A sun turned through zero is refused at that time.
+    const Scene through = parse(lights_scene(
+        "[animation]\n[[animation.light]]\nlight = 3\ntime = 0.0\ndirection = [1.0, -1.0, "
+        "0.0]\n[[animation.light]]\nlight = 3\ntime = 2.0\ndirection = [-1.0, 1.0, 0.0]\n"));
+    EXPECT_THROW(scene_at(through, 1.0), Error);
+    EXPECT_NO_THROW(scene_at(through, 0.5));
 }
 
 TEST(Animation, TimesOutsideTheRangeAndOvershootsAreRefused) {
