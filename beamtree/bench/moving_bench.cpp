@@ -251,7 +251,8 @@ void lights_move_table(const SceneSearchPaths& paths) {
     fmt::print("## A light move on the light scenes, walk route\n\n");
     fmt::print(
         "Every light circles 0.5 m about its place over {} frames (a sun swings its direction "
-        "5° about the vertical and back); per frame, each spot light (a point light: its six "
+        "5° about the vertical and back; an animated scene plays its own animation over the frames "
+        "instead); per frame, each spot light (a point light: its six "
         "faces) gets its tree and GPU tree (the walk route: what all four region methods need); "
         "milliseconds per frame summed over the lights, one core, medians over the frames (p95 "
         "beside). Issue 47's budget: 4 ms for a point light (six faces), 2 ms per spot light or "
@@ -279,6 +280,12 @@ void lights_move_table(const SceneSearchPaths& paths) {
     for (const auto& [name, scene] : scenes) {
         std::vector<Scene> states;
         for (int k = 0; k < kFrames; ++k) {
+            if (scene.animation) {  // an animated light scene plays its own animation
+                const Animation& animation = *scene.animation;
+                states.push_back(scene_at(
+                    scene, animation.start + (animation.end - animation.start) * k / kFrames));
+                continue;
+            }
             const double a = 2.0 * M_PI * k / kFrames;
             const glm::vec3 offset =
                 glm::vec3(0.5 * std::cos(a), 0.0, 0.5 * std::sin(a)) - glm::vec3(0.5f, 0.0f, 0.0f);
