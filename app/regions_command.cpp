@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -34,6 +35,7 @@ struct RegionsArguments : CommonOptions {
     std::string occluders;  // empty: the scene's setting
     bool verbose = false;
     int light = -1;  // -1: the scene's one light
+    bool all_lights = false;
 };
 
 // The scene as light `index` alone sees it (Scene::spot_lights' order): each light has its own
@@ -220,10 +222,33 @@ Command add_regions_command(CLI::App& app) {
                      "The light whose tree to build, for a scene of several ([[lights]] in order, "
                      "a point light as six faces: +x, -x, +y, -y, +z, -z)")
         ->check(CLI::Range(0, 1 << 20));
+    command
+        ->add_flag("--all-lights", args->all_lights,
+                   "Every light's regions, each into DIR/light<N>/ for a scene of several (as "
+                   "--light N); a scene of one light writes DIR/ as without it")
+        ->excludes("--light")
+        ->excludes("--classify");
     command->add_flag("--verbose", args->verbose,
                       "List each object without an automatic inner volume, not only the count, "
                       "and each object that entered the tree as triangles, with why");
-    return [args] { return run_regions(*args); };
+    return [args] {
+        if (!args->all_lights) {
+            return run_regions(*args);
+        }
+        const size_t lights = load_scene_at(args->scene, args->time).spot_lights().size();
+        if (lights == 1) {
+            return run_regions(*args);
+        }
+        for (size_t i = 0; i < lights; ++i) {
+            RegionsArguments one = *args;
+            one.light = int(i);
+            one.out = (std::filesystem::path(args->out) / fmt::format("light{}", i)).string();
+            if (const int code = run_regions(one); code != 0) {
+                return code;
+            }
+        }
+        return 0;
+    };
 }
 
 }  // namespace sl::app

@@ -50,7 +50,7 @@ fi
 "$build_dir/shaftlab" "${arguments[@]}"
 if [ "$name" = default ]; then
     for scene in $("$build_dir/shaftlab" scenes --names); do
-        "$build_dir/shaftlab" regions --scene "$scene" --size 960x540 --out "$regions/$scene"
+        "$build_dir/shaftlab" regions --scene "$scene" --all-lights --size 960x540 --out "$regions/$scene"
     done
     echo "run: table, results.csv, plots and images in $out; beam-tree regions in $regions"
 else

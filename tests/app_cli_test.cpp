@@ -525,6 +525,39 @@ TEST(Cli, UnwritableOutputIsAnError) {
     EXPECT_NE(run.output.find("cannot create output directory"), std::string::npos) << run.output;
 }
 
+// A scene of several lights has a tree per light: `regions` asks which (--light N), and
+// --all-lights (what the main job runs over every scene) writes each into DIR/light<N>/; a scene
+// of one light writes DIR/ as without it.
+TEST(Cli, RegionsOfEveryLightGoEachIntoItsOwnDirectory) {
+    TempDir out;
+    const CommandResult ask =
+        run_shaftlab("regions --scene parallel-lamps --size 32x18 --out " + out.path().string());
+    EXPECT_NE(ask.exit_code, 0);
+    EXPECT_NE(ask.output.find("choose one with --light 0 to 3"), std::string::npos) << ask.output;
+    const CommandResult all = run_shaftlab(
+        "regions --scene parallel-lamps --all-lights --size 32x18 --out " + out.path().string());
+    ASSERT_EQ(all.exit_code, 0) << all.output;
+    for (int i = 0; i < 4; ++i) {
+        const std::filesystem::path dir = out / ("light" + std::to_string(i));
+        for (const char* file : {"regions.ply", "regions.json", "regions.png"}) {
+            EXPECT_TRUE(std::filesystem::exists(dir / file)) << dir / file;
+        }
+        std::ifstream json_file(dir / "regions.json");
+        const nlohmann::json json = nlohmann::json::parse(json_file);
+        EXPECT_GT(json["beams"].get<int>(), 0) << "light " << i;
+    }
+    EXPECT_FALSE(std::filesystem::exists(out / "light4"));
+    TempDir one;
+    const CommandResult single = run_shaftlab(
+        "regions --scene multiple:3 --all-lights --size 32x18 --out " + one.path().string());
+    ASSERT_EQ(single.exit_code, 0) << single.output;
+    EXPECT_TRUE(std::filesystem::exists(one / "regions.json"));
+    EXPECT_NE(run_shaftlab("regions --scene parallel-lamps --all-lights --light 1 --out " +
+                           one.path().string())
+                  .exit_code,
+              0);
+}
+
 // `regions` writes the PLY, JSON and PNG; the JSON's region volumes tile the influence volume and
 // the PLY's header counts match its body.
 TEST(Cli, RegionsWritesPlyJsonAndPng) {
