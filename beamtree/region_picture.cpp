@@ -83,11 +83,13 @@ void mean_of(const std::vector<const PixelRegions*>& neighbours, PixelRegions& m
 }
 
 // The regions as a coloured fog over one pixel: lit yellow, uncertain grey, unlit black.
-// Uncertain and unlit absorb 8x more than lit so that thin shadow volumes show through the lit
-// air in front of them.
-void shade(const PixelRegions& regions, double far, uint8_t* pixel) {
+// Uncertain and unlit absorb `shadow_weight` times more than lit (8 under a spot light) so that
+// thin shadow volumes show through the lit air in front of them; `scale` is the length over which
+// lit air reaches 78 % opacity.
+void shade(const PixelRegions& regions, double scale, double shadow_weight, uint8_t* pixel) {
     const glm::dvec3 colors[3] = {{1.0, 0.82, 0.1}, {0.55, 0.55, 0.55}, {0.0, 0.0, 0.0}};
-    const double extinction[3] = {1.5 / far, 12.0 / far, 12.0 / far};
+    const double extinction[3] = {1.5 / scale, 1.5 * shadow_weight / scale,
+                                  1.5 * shadow_weight / scale};
     dvec3 color(0.0);
     double transparency = 1.0;
     for (const RegionInterval& interval : regions.intervals) {
@@ -124,6 +126,25 @@ std::vector<uint8_t> draw_regions(const Scene& scene, const BeamTree& tree,
                 trace_pixel(tree, pixels, depth, width, 2 * i, 2 * j);
         }
     });
+    // The fog's length scale: a spot light's range; a sun's range is the depth of the scene's
+    // whole box, which says nothing of what the camera sees, so there the longest stretch of the
+    // influence along a traced eye ray (the house seen from inside: metres of a box tens deep).
+    // A sun lights the scene but for its shadows, and a camera inside them (a room lit through
+    // its windows) looks through metres of unlit air: there shadows absorb as lit air does, so
+    // that the shafts show through them.
+    double scale = double(scene.light.far), shadow_weight = 8.0;
+    if (scene.light.parallel()) {
+        shadow_weight = 1.0;
+        double longest = 0.0;
+        for (const PixelRegions& traced : coarse) {
+            if (traced.inside && !traced.intervals.empty()) {
+                longest = std::max(longest, traced.end - traced.intervals.front().begin);
+            }
+        }
+        if (longest > 0.0) {
+            scale = std::min(scale, longest);
+        }
+    }
     std::vector<uint8_t> image(srgb8.begin(), srgb8.end());
     tbb::parallel_for(0, height, [&](int y) {
         std::vector<const PixelRegions*> neighbours;
@@ -152,7 +173,7 @@ std::vector<uint8_t> draw_regions(const Scene& scene, const BeamTree& tree,
                 regions = &own;
             }
             if (regions->inside) {
-                shade(*regions, double(scene.light.far), &image[(size_t(y) * width + x) * 3]);
+                shade(*regions, scale, shadow_weight, &image[(size_t(y) * width + x) * 3]);
             }
         }
     });
