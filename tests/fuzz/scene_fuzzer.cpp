@@ -1,9 +1,22 @@
 // Scene files (scenes/scene_file.h): any text parses into a valid scene or throws sl::Error, and
-// a valid scene's lights give a view each (Scene::for_light).
+// a valid scene's lights give a view each (Scene::for_light); an animated one gives, at its start,
+// middle and end, a scene whose spot lights are finite, or throws sl::Error (an overshoot).
 // Meshes, base scenes and environments resolve in the project's real folders, so inputs may
 // reach the OFF/OBJ loaders and the multiple:N generator too.
+#include <cmath>
+#include <cstdlib>
+
+#include "scenes/animation.h"
 #include "scenes/scene_file.h"
 #include "tests/fuzz/fuzz_support.h"
+
+namespace {
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const sl::SceneSearchPaths paths = sl::SceneSearchPaths::defaults();
@@ -15,5 +28,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const size_t lights = scene.spot_lights().size();
         scene.for_light(0);
         scene.for_light(lights - 1);
+        if (!scene.animation) {
+            return;
+        }
+        const sl::Animation& a = *scene.animation;
+        for (const double t : {a.start, 0.5 * (a.start + a.end), a.end}) {
+            const sl::Scene s = sl::scene_at(scene, t);
+            for (const sl::SpotLight& light : s.spot_lights()) {
+                if (!finite(light.position) || !finite(light.target) || !finite(light.intensity)) {
+                    std::abort();
+                }
+            }
+        }
     });
 }
