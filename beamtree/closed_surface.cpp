@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <tuple>
 #include <unordered_map>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -12,29 +11,11 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "scenes/weld.h"
+
 namespace sl::bt {
 
 namespace {
-
-// One id per distinct position.
-std::vector<uint32_t> weld_equal_positions(const std::vector<glm::vec3>& positions) {
-    std::vector<uint32_t> order(positions.size());
-    std::iota(order.begin(), order.end(), 0u);
-    auto less = [&](uint32_t a, uint32_t b) {
-        const glm::vec3 p = positions[a], q = positions[b];
-        return std::tie(p.x, p.y, p.z) < std::tie(q.x, q.y, q.z);
-    };
-    std::sort(order.begin(), order.end(), less);
-    std::vector<uint32_t> id(positions.size());
-    uint32_t next = 0;
-    for (size_t i = 0; i < order.size(); ++i) {
-        if (i > 0 && less(order[i - 1], order[i])) {
-            ++next;
-        }
-        id[order[i]] = next;
-    }
-    return id;
-}
 
 uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
     while (parent[i] != i) {

@@ -6,11 +6,11 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
-#include <tuple>
 
 #include <glm/geometric.hpp>
 
 #include "core/error.h"
+#include "scenes/weld.h"
 
 namespace sl {
 
@@ -40,23 +40,7 @@ double Mesh::area() const {
 
 bool Mesh::is_closed() const {
     // Weld equal positions so that flat-shaded meshes (duplicated corners) count as closed.
-    std::vector<uint32_t> order(positions.size());
-    for (uint32_t i = 0; i < order.size(); ++i) {
-        order[i] = i;
-    }
-    auto less = [&](uint32_t a, uint32_t b) {
-        const glm::vec3 p = positions[a], q = positions[b];
-        return std::tie(p.x, p.y, p.z) < std::tie(q.x, q.y, q.z);
-    };
-    std::sort(order.begin(), order.end(), less);
-    std::vector<uint32_t> id(positions.size());
-    uint32_t next = 0;
-    for (size_t i = 0; i < order.size(); ++i) {
-        if (i > 0 && less(order[i - 1], order[i])) {
-            ++next;
-        }
-        id[order[i]] = next;
-    }
+    const std::vector<uint32_t> id = weld_equal_positions(positions);
     // Closed and consistently oriented: every directed edge once, and its reverse once.
     std::vector<uint64_t> edges;
     edges.reserve(triangles.size() * 3);
