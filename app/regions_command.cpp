@@ -101,10 +101,11 @@ void warn_missing_inner(const Scene& scene, const std::vector<bt::MissingInner>&
     }
 }
 
-int run_regions(const RegionsArguments& args) {
+// The regions of `loaded` (the scene as read, at --time) for the light args.light.
+int run_regions(const RegionsArguments& args, const Scene& loaded) {
     int width = 0, height = 0;
     parse_size(args.size, width, height);
-    Scene scene = one_light(load_scene_at(args.scene, args.time), args.light);
+    Scene scene = one_light(loaded, args.light);
     for (const Occluders choice : kOccluders) {
         if (args.occluders == to_string(choice)) {
             scene.bounds.occluders = choice;
@@ -232,18 +233,16 @@ Command add_regions_command(CLI::App& app) {
                       "List each object without an automatic inner volume, not only the count, "
                       "and each object that entered the tree as triangles, with why");
     return [args] {
-        if (!args->all_lights) {
-            return run_regions(*args);
-        }
-        const size_t lights = load_scene_at(args->scene, args->time).spot_lights().size();
-        if (lights == 1) {
-            return run_regions(*args);
+        const Scene loaded = load_scene_at(args->scene, args->time);
+        const size_t lights = loaded.spot_lights().size();
+        if (!args->all_lights || lights == 1) {
+            return run_regions(*args, loaded);
         }
         for (size_t i = 0; i < lights; ++i) {
             RegionsArguments one = *args;
             one.light = int(i);
             one.out = (std::filesystem::path(args->out) / fmt::format("light{}", i)).string();
-            if (const int code = run_regions(one); code != 0) {
+            if (const int code = run_regions(one, loaded); code != 0) {
                 return code;
             }
         }

@@ -180,10 +180,7 @@ SpotLight DirectionalLight::beam() const {
     const glm::dvec3 r = glm::cross(d, u);
     double width = 0.0, depth = 0.0;
     for (int i = 0; i < 8; ++i) {
-        const glm::dvec3 corner(i & 1 ? region.max.x : region.min.x,
-                                i & 2 ? region.max.y : region.min.y,
-                                i & 4 ? region.max.z : region.min.z);
-        const glm::dvec3 q = corner - position;
+        const glm::dvec3 q = glm::dvec3(region.corner(i)) - position;
         width = std::max({width, std::abs(glm::dot(q, r)), std::abs(glm::dot(q, u))});
         depth = std::max(depth, glm::dot(q, d));
     }
@@ -201,12 +198,10 @@ void DirectionalLight::enter_region() {
     const glm::dvec3 d(direction);
     double nearest = std::numeric_limits<double>::max();
     for (int i = 0; i < 8; ++i) {
-        const glm::vec3 corner(i & 1 ? region.max.x : region.min.x,
-                               i & 2 ? region.max.y : region.min.y,
-                               i & 4 ? region.max.z : region.min.z);
-        if (glm::dot(glm::dvec3(corner), d) < nearest) {
-            nearest = glm::dot(glm::dvec3(corner), d);
-            entry = corner;
+        const double along = glm::dot(glm::dvec3(region.corner(i)), d);
+        if (along < nearest) {
+            nearest = along;
+            entry = region.corner(i);
         }
     }
 }

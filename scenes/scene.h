@@ -47,6 +47,10 @@ struct Box {
     glm::vec3 min{0.0f};
     glm::vec3 max{0.0f};
     bool operator==(const Box&) const = default;
+    // Corner i of 8: bit 0 picks max.x, bit 1 max.y, bit 2 max.z.
+    glm::vec3 corner(int i) const {
+        return {i & 1 ? max.x : min.x, i & 2 ? max.y : min.y, i & 4 ? max.z : min.z};
+    }
 };
 
 // An object's placement as scene files write it: translate, then rotate about z, y and x (degrees;

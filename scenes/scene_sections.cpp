@@ -120,10 +120,7 @@ void resolve_directional_light(DirectionalLight& light, const Scene& scene,
     const glm::dvec3 d(light.direction);
     double farthest = std::numeric_limits<double>::lowest();
     for (int i = 0; i < 8; ++i) {
-        const glm::dvec3 corner(i & 1 ? bounds.max.x : bounds.min.x,
-                                i & 2 ? bounds.max.y : bounds.min.y,
-                                i & 4 ? bounds.max.z : bounds.min.z);
-        farthest = std::max(farthest, glm::dot(corner, d));
+        farthest = std::max(farthest, glm::dot(glm::dvec3(light.region.corner(i)), d));
     }
     const double entry = glm::dot(glm::dvec3(light.entry), d);
     const double size = glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));

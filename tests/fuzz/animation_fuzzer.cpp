@@ -7,13 +7,7 @@
 #include "scenes/scene.h"
 #include "tests/fuzz/fuzz_support.h"
 
-namespace {
-
-bool finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-}  // namespace
+using sl::fuzz::finite;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

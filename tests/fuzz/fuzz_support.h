@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -14,9 +15,15 @@
 #include <string>
 #include <string_view>
 
+#include <glm/vec3.hpp>
+
 #include "core/error.h"
 
 namespace sl::fuzz {
+
+inline bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 // The input as a file of the given extension (loaders that take a path), in a per-process
 // scratch folder that stays for the run.

@@ -3,20 +3,13 @@
 // middle and end, a scene whose spot lights are finite, or throws sl::Error (an overshoot).
 // Meshes, base scenes and environments resolve in the project's real folders, so inputs may
 // reach the OFF/OBJ loaders and the multiple:N generator too.
-#include <cmath>
 #include <cstdlib>
 
 #include "scenes/animation.h"
 #include "scenes/scene_file.h"
 #include "tests/fuzz/fuzz_support.h"
 
-namespace {
-
-bool finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-}  // namespace
+using sl::fuzz::finite;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const sl::SceneSearchPaths paths = sl::SceneSearchPaths::defaults();
