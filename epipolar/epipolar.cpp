@@ -34,6 +34,15 @@ struct Counters {
              fixup_samples = 0;
 };
 
+// The frame's light as the slice geometry takes it (Views::light): its position, or for parallel
+// beams (light_cone.w > 0, a directional light) the point at infinity they come from.
+glm::dvec4 light_point(const gl::shared::FrameUniforms& uniforms) {
+    if (uniforms.light_cone.w > 0.0f) {
+        return glm::dvec4(-glm::dvec3(uniforms.light_direction), 0.0);
+    }
+    return glm::dvec4(glm::dvec3(uniforms.light_position), 1.0);
+}
+
 class EpipolarMethod final : public frame::VolumeMethod {
 public:
     EpipolarMethod() : VolumeMethod("epipolar") {
@@ -75,21 +84,13 @@ public:
     }
 
     std::string accepts() const override {
-        return "not directional lights (refused); every medium and spot or point light with "
-               "lit_integral = samples; with closed_form (the default): " +
+        return "every light type (a sun's lines meet at its point on screen, or at the "
+               "anti-solar point); every medium with lit_integral = samples; with closed_form "
+               "(the default): " +
                analytic::AnalyticRegionPass::accepts();
     }
 
     void prepare_light(const Scene& scene) override {
-        if (scene.light.parallel()) {
-            // The epipolar lines of a light at infinity (Yusov's case: they meet at the sun's
-            // point on screen, or run parallel when the sun is at 90° to the view) are not built.
-            fail(
-                "epipolar: scene '{}' has a directional light, which epipolar does not take yet "
-                "(its lines meet at the light's point on screen, built for a light at a finite "
-                "position); use march, froxel, lightvolume, planes or the region methods",
-                scene.name);
-        }
         if (!coordinates_program_) {
             const auto compute = [](const char* path) {
                 return gl::create_program({{GL_COMPUTE_SHADER, path}});
@@ -142,7 +143,7 @@ public:
             .view_projection = glm::dmat4(inputs.uniforms.view_projection),
             .light_view_projection = glm::dmat4(inputs.uniforms.light_view_projection),
             .camera = glm::dvec3(inputs.uniforms.camera_position),
-            .light = glm::dvec3(inputs.uniforms.light_position),
+            .light = light_point(inputs.uniforms),
             .width = inputs.width,
             .height = inputs.height};
         set_uniforms(views, grid, texels, levels, direct);

@@ -22,6 +22,10 @@
 //   apply        every pixel from the 4 samples about it on its two slices, bilateral in view
 //                depth; a pixel with none of its surface is marched directly through the frame's
 //                shadow map (shaders/apply.frag).
+// Every light type: a point light's faces and spot lights by their positions, a sun as its point
+// at infinity (Yusov's outdoor case: the lines meet where the sun is seen, on screen or off it, or
+// at the anti-solar point behind the camera, and run parallel when its beams cross the view; its
+// orthographic shadow map sees every epipolar plane as one line, as a perspective map does).
 // With interpolation off every pixel is marched directly: the method is then `march` with clip =
 // cone (the same samples and sums). With minmax off the march tests every step against the
 // rectified line (the plain march the tree must equal).

@@ -55,7 +55,8 @@ std::pair<double, double> slab(glm::dvec2 p, glm::dvec2 d, glm::dvec2 lo, glm::d
 
 // The shadow map's line of the epipolar plane with normal n through the camera: Chen et al.
 // 2011 §4. A plane π through the light maps to light clip space as M^-T π, with no depth term
-// (the light's centre is the clip point (0, 0, B, 0)), so in the map's [0, 1]² it is the line
+// (a perspective light's centre is the clip point (0, 0, B, 0); a sun's orthographic depth axis
+// is its direction, which the plane contains), so in the map's [0, 1]² it is the line
 // a (2u - 1) + b (2v - 1) + d = 0 (`plane_to_light_clip`: M^-T).
 void map_line(const Views& views, const glm::dmat4& plane_to_light_clip, glm::dvec3 n, int texels,
               Slice& slice) {
@@ -85,7 +86,7 @@ glm::dvec2 light_screen_position(const Views& views) {
     const glm::dvec2 size(views.width, views.height);
     const glm::dvec2 centre = 0.5 * size;
     const double far = kFarLight * glm::length(size);
-    const glm::dvec4 clip = views.view_projection * glm::dvec4(views.light, 1.0);
+    const glm::dvec4 clip = views.view_projection * views.light;
     const glm::dvec2 scaled = glm::dvec2(clip) * 0.5 * size;  // pixels from the centre, times w
     if (std::abs(clip.w) * far > glm::length(scaled)) {
         return centre + scaled / clip.w;
@@ -165,7 +166,10 @@ std::vector<Slice> make_slices(const Views& views, int slices, int map_texels) {
     const glm::dvec2 p = light_screen_position(views);
     const ExitArc arc = exit_arc(p, views.width, views.height);
     const bool inside = inside_image(p, views.width, views.height);
-    const glm::dvec3 to_light = views.light - views.camera;
+    // The epipolar planes contain the camera and the light: the direction to it (a sun's plane
+    // contains its beams, which an orthographic map sees as one line, as a point light's plane
+    // through its centre is one line of its perspective map).
+    const glm::dvec3 to_light = glm::dvec3(views.light) - views.light.w * views.camera;
     const glm::dmat4 clip_to_world = glm::inverse(views.view_projection);
     const glm::dmat4 plane_to_light_clip =
         glm::transpose(glm::inverse(views.light_view_projection));

@@ -28,8 +28,11 @@ struct Views {
     glm::dmat4 view_projection;        // camera: world -> clip
     glm::dmat4 light_view_projection;  // shadow map: world -> light clip
     glm::dvec3 camera;                 // camera position
-    glm::dvec3 light;                  // light position
-    int width = 1, height = 1;         // image size in pixels
+    // The light as a homogeneous point: (position, 1), or for a directional light (the sun) the
+    // point at infinity it shines from, (-direction, 0) (Yusov 2013/2014: the sun's epipolar
+    // lines meet at its projection, or run parallel when it lies in the camera's plane).
+    glm::dvec4 light{0.0, 0.0, 0.0, 1.0};
+    int width = 1, height = 1;  // image size in pixels
 };
 
 // The part of the image border where slices end, walked counter-clockwise from `start`
@@ -42,8 +45,11 @@ struct ExitArc {
 
 // The light's screen position: its projection in window pixels, also when it lies behind the
 // camera (the epipolar lines meet at the projection of the point opposite it; they are the same
-// lines). A light in the camera's plane projects to infinity: the position is moved to 1e3 image
-// diagonals from the centre, in its direction, where the lines are parallel to a few 1e-4 px.
+// lines). A sun projects like any point at infinity: to where its direction is seen (Yusov's
+// sun on screen or off it), or to the anti-solar point when it is behind the camera. A light in
+// the camera's plane (for a sun: a direction perpendicular to the view) projects to infinity: the
+// position is moved to 1e3 image diagonals from the centre, in its direction, where the lines are
+// parallel to a few 1e-4 px.
 glm::dvec2 light_screen_position(const Views& views);
 
 // Whether P lies inside the image (then every slice starts at P).

@@ -1,6 +1,8 @@
 // `epipolar`'s slice geometry on the CPU (epipolar/geometry.h): the slices tile the image and the
 // unwarp finds them, and every eye ray of a slice projects onto the slice's shadow-map line, for
-// every placement of the light (on screen, beyond each side, behind the camera).
+// every placement of the light (on screen, beyond each side, behind the camera), a spot light's
+// and a sun's (its point at infinity: an orthographic shadow map, whose lines are those of the
+// planes that contain the sun's direction).
 
 #include <gtest/gtest.h>
 
@@ -22,9 +24,19 @@ Views views_of(const Scene& scene, int width, int height) {
                                           scene.camera.view()),
             .light_view_projection = glm::dmat4(scene.light.projection() * scene.light.view()),
             .camera = glm::dvec3(scene.camera.position),
-            .light = glm::dvec3(scene.light.position),
+            .light = scene.light.parallel() ? glm::dvec4(-glm::dvec3(scene.light.direction()), 0.0)
+                                            : glm::dvec4(glm::dvec3(scene.light.position), 1.0),
             .width = width,
             .height = height};
+}
+
+// Every placement of a spot light and of a sun (Yusov's light at infinity).
+std::vector<std::pair<std::string, Scene>> placements() {
+    std::vector<std::pair<std::string, Scene>> scenes = light_placements();
+    for (auto& placed : sun_placements()) {
+        scenes.push_back(std::move(placed));
+    }
+    return scenes;
 }
 
 double cross2(glm::dvec2 a, glm::dvec2 b) {
@@ -37,7 +49,7 @@ double cross2(glm::dvec2 a, glm::dvec2 b) {
 // from the light's screen position turns the same way from the first as to the second).
 TEST(EpipolarGeometry, SlicesTileTheImageAndTheUnwarpFindsThem) {
     const int width = 160, height = 90, n = 64;
-    for (const auto& [name, scene] : light_placements()) {
+    for (const auto& [name, scene] : placements()) {
         const Views views = views_of(scene, width, height);
         const glm::dvec2 p = light_screen_position(views);
         const ExitArc arc = exit_arc(p, width, height);
@@ -93,11 +105,13 @@ TEST(EpipolarGeometry, SlicesTileTheImageAndTheUnwarpFindsThem) {
 // a texel; the march projects each point onto the line, so this is harmless).
 TEST(EpipolarGeometry, EveryEyeRayOfASliceProjectsOntoItsShadowMapLine) {
     const int width = 160, height = 90, n = 48;
-    for (const auto& [name, scene] : light_placements()) {
+    for (const auto& [name, scene] : placements()) {
         const Views views = views_of(scene, width, height);
         const glm::dmat4 inverse = glm::inverse(views.view_projection);
         const std::vector<Slice> slices = make_slices(views, n, 1024);
-        const double tolerance = name == "light in the camera's plane" ? 1e-4 : 1e-5;
+        const double tolerance =
+            name == "light in the camera's plane" || name == "sun in the camera's plane" ? 1e-4
+                                                                                         : 1e-5;
         int projected = 0;
         for (const Slice& slice : slices) {
             if (slice.map_step == glm::dvec2(0.0) || slice.entry == slice.exit) {

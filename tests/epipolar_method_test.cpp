@@ -59,6 +59,22 @@ std::vector<std::pair<std::string, Scene>> oracle_scenes() {
     for (const auto& [name, scene] : eye_and_light_views()) {
         scenes.emplace_back(name, scene);
     }
+    // Yusov's sun: on screen, off it, behind the camera (the anti-solar point) and across the view
+    // (parallel lines).
+    for (auto& [name, scene] : sun_placements()) {
+        if (name != "sun above (boxes)" && name != "sun left, above") {
+            scenes.emplace_back(name, std::move(scene));
+        }
+    }
+    return scenes;
+}
+
+// Every placement of a spot light and of a sun.
+std::vector<std::pair<std::string, Scene>> placements() {
+    std::vector<std::pair<std::string, Scene>> scenes = light_placements();
+    for (auto& placed : sun_placements()) {
+        scenes.push_back(std::move(placed));
+    }
     return scenes;
 }
 
@@ -109,11 +125,12 @@ TEST_F(Epipolar, WithoutInterpolationItIsMarchAtTheSameSteps) {
 }
 
 // Through the interpolation, on an unoccluded light (no objects: I_s is smooth but for the cone's
-// edge), the method stays within 2% (relative RMSE) of the closed form wherever the light's
-// screen position is, inside the image, beyond a side or a corner, behind the camera: the
-// unwarp finds each pixel's samples (a wrong slice or position is off by far more).
+// or the sun's box's edge), the method stays within 2% (relative RMSE) of the closed form
+// wherever the light's screen position is, inside the image, beyond a side or a corner, behind
+// the camera, for a spot light and a sun: the unwarp finds each pixel's samples (a wrong slice or
+// position is off by far more).
 TEST_F(Epipolar, InterpolatesAnUnoccludedBeamWhereverTheLightIs) {
-    for (auto [name, scene] : light_placements()) {
+    for (auto [name, scene] : placements()) {
         scene.objects.clear();
         const Image exact = unoccluded_in_scattering(scene, 160, 90);
         const Render render = render_with_statistics(scene, "epipolar", 160, 90,
@@ -127,18 +144,20 @@ TEST_F(Epipolar, InterpolatesAnUnoccludedBeamWhereverTheLightIs) {
         EXPECT_LT(error, 0.02) << name;
         // Behind the camera the screen position is that of the point opposite the light.
         EXPECT_EQ(statistic(render.statistics, "light_on_screen") > 0.5,
-                  name == "light on screen" || name == "light behind")
+                  name == "light on screen" || name == "light behind" || name == "sun on screen" ||
+                      name == "sun behind")
             << name;
     }
 }
 
 // It converges to the exact reference as its slices, samples, refinement and steps grow: the
 // error falls at every step and ends below 0.5%, with the light off the screen and on it (where
-// I_s peaks as 1/h about the light's own pixel, the hardest case for interpolation).
+// I_s peaks as 1/h about the light's own pixel, the hardest case for interpolation), and with the
+// sun on screen (Yusov's case: every slice starts at the sun's point).
 TEST_F(Epipolar, ConvergesToTheReference) {
-    for (const char* name : {"boxes", "light on screen"}) {
+    for (const char* name : {"boxes", "light on screen", "sun on screen"}) {
         Scene scene = boxes_scene(MediumModel::physical);
-        for (auto& [placement, placed] : light_placements()) {
+        for (auto& [placement, placed] : placements()) {
             if (placement == name) {
                 scene = placed;
             }

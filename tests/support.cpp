@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <random>
 
 #include <glm/geometric.hpp>
@@ -18,6 +19,7 @@
 #include "core/error.h"
 #include "scenes/mesh.h"
 #include "scenes/scene_file.h"
+#include "scenes/scene_sections.h"
 
 namespace sl::test {
 
@@ -194,6 +196,27 @@ std::vector<std::pair<std::string, Scene>> light_placements() {
     add("light left, above", {6.0f, 2.0f, 6.0f}, {4.0f, 1.0f, -2.0f});
     add("light behind", {0.9f, 6.5f, -0.6f}, {-0.2f, 0.0f, 0.1f});
     add("light in the camera's plane", {-2.5f, 2.0f, -0.5f}, {-2.5f, 2.0f, -10.0f});
+    return scenes;
+}
+
+std::vector<std::pair<std::string, Scene>> sun_placements() {
+    std::vector<std::pair<std::string, Scene>> scenes;
+    for (auto [name, scene] : light_placements()) {
+        // Towards the sun: the spot as the camera sees it; behind the camera (where the spot lies
+        // below it), the way back past the camera's shoulder, so that the sun stays above the
+        // floor.
+        glm::vec3 toward = scene.light.position - scene.camera.position;
+        if (name == "light behind") {
+            toward = scene.camera.position - scene.camera.target + glm::vec3(0.6f, 0.0f, 0.4f);
+        }
+        DirectionalLight sun;
+        sun.direction = -glm::normalize(toward);
+        sun.irradiance = glm::vec3(1.5f, 1.4f, 1.2f);
+        sun.entry = glm::vec3(std::numeric_limits<float>::quiet_NaN());
+        resolve_directional_light(sun, scene, "sun_placements");
+        scene.set_lights({sun});
+        scenes.emplace_back("sun" + name.substr(name.find(' ')), std::move(scene));
+    }
     return scenes;
 }
 

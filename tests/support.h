@@ -76,6 +76,14 @@ std::vector<std::pair<std::string, Scene>> eye_and_light_views();
 // side and corner, behind the camera, and (nearly) in the camera's plane. Named.
 std::vector<std::pair<std::string, Scene>> light_placements();
 
+// light_placements() under a sun instead of the spot: a directional light shining from where the
+// spot is seen from the camera, so that the sun's point at infinity lies where the spot's position
+// did (on screen, beyond each side and corner, in the camera's plane: a direction across the
+// view, whose epipolar lines are parallel); "sun behind" shines from behind the camera's shoulder,
+// its anti-solar point in view. Its region is the default one (the objects and the camera).
+// Named "sun ..." after the placement.
+std::vector<std::pair<std::string, Scene>> sun_placements();
+
 // Eye rays at a small angle from the two directions where the light model's integral is worst
 // conditioned (analytic/in_scattering.h): `away` leaves an eye inside the cone at that angle from
 // the direction straight away from the light (the antilight direction, light behind the eye);

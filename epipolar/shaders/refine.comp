@@ -2,11 +2,11 @@
 // Epipolar pass 2 (Engelhardt & Dachsbacher 2010 §3.2; Yusov 2013 §3.2): which samples are
 // marched. Every max_step-th sample and the last of each slice are, and so is each sample beside a
 // depth discontinuity (view depths further apart than depth_threshold of the nearer), or beside
-// a fast change of the light's distance from the ray (its closest approach, further apart than
-// depth_threshold of the nearer: a point light's unshadowed in-scattering grows as 1/h near it,
-// Nilsson eq. 2.17, which a line between two samples misses; Yusov 2013 §3.2 refines where the
-// coarse in-scattering changes for the same reason). The others
-// are interpolated (interpolate.comp) between the nearest marched samples on each side, which no
+// a fast change of a point light's distance from the ray (its closest approach, further apart
+// than depth_threshold of the nearer: a point light's unshadowed in-scattering grows as 1/h near
+// it, Nilsson eq. 2.17, which a line between two samples misses; Yusov 2013 §3.2 refines where
+// the coarse in-scattering changes for the same reason; a sun has no such peak). The others are
+// interpolated (interpolate.comp) between the nearest marched samples on each side, which no
 // discontinuity separates from them. Output per sample: 1 where it is marched, else 0; and the
 // marched samples appended to a list, so that march.comp's invocations are all busy.
 layout(local_size_x = 64, local_size_y = 1) in;
@@ -39,8 +39,12 @@ void main() {
         vec4 current = texelFetch(coordinates, id, 0);
         vec4 next = texelFetch(coordinates, id + ivec2(1, 0), 0);
         marched = !same_surface(previous.w, current.w) || !same_surface(current.w, next.w);
-        float h = light_distance(current), before = light_distance(previous), after = light_distance(next);
-        marched = marched || !same_surface(before, h) || !same_surface(h, after);
+        // A sun has no position: its unshadowed in-scattering along a ray is smooth (constant
+        // phase angle, exponential in t), so only depth breaks refine.
+        if (frame.light_cone.w <= 0.0) {
+            float h = light_distance(current), before = light_distance(previous), after = light_distance(next);
+            marched = marched || !same_surface(before, h) || !same_surface(h, after);
+        }
     }
     imageStore(marks, id, ivec4(marched ? 1 : 0));
     if (marched) {
