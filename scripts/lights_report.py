@@ -8,11 +8,16 @@ exponent k of a least-squares fit frame_ms ∝ N^k, the cost of each further lig
 Usage: lights_report.py RESULTS_CSV OUT_MD [MOVE_MD]
 
 MOVE_MD: the output of `moving_bench lights` (a light move on the light scenes), appended.
+Whatever OUT_MD holds from the line KEEP_MARKER on (the sections written by hand from the other
+runs: equal error, the animations, the sun) is kept after the generated part.
 """
 import csv
 import math
 import re
 import sys
+
+
+KEEP_MARKER = "<!-- Below: written from the other runs; lights_report.py keeps it. -->"
 
 
 def fit_exponent(counts, values):
@@ -71,8 +76,15 @@ def main(csv_path, out_path, move_path=None):
     if move_path:
         with open(move_path) as f:
             out.append(f.read())
+    try:
+        with open(out_path) as f:
+            previous = f.read()
+    except FileNotFoundError:
+        previous = ""
+    if KEEP_MARKER in previous:
+        out += ["", previous[previous.index(KEEP_MARKER):].rstrip("\n")]
     with open(out_path, "w") as f:
-        f.write("\n".join(out))
+        f.write("\n".join(out) + "\n")
 
 
 if __name__ == "__main__":
