@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "frame/shaders/frame_interface.h"
+#include "frame/shadow_fit.h"
 #include "gl/debug.h"
 #include "gl/shaders.h"
 #include "gl/shaders/object_uniforms.h"
@@ -68,7 +69,7 @@ gl::shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOp
     gl::shared::FrameUniforms u{};
     u.view_projection = view_projection;
     u.inverse_view_projection = glm::inverse(view_projection);
-    u.light_view_projection = light.projection() * light.view();
+    u.light_view_projection = shadow_view_projection(light, scene.camera, aspect);
     u.camera_position = glm::vec4(scene.camera.position, 1.0f);
     u.camera_forward = glm::vec4(glm::normalize(scene.camera.target - scene.camera.position), 0.0f);
     u.light_position = glm::vec4(light.position, light.near);

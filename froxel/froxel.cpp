@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "frame/method_registry.h"
+#include "frame/shadow_fit.h"
 #include "froxel/shaders/froxel_interface.h"
 #include "gl/functions.h"
 #include "gl/shaders.h"
@@ -52,12 +53,12 @@ double slice_depth(const FroxelGrid& grid, double s) {
     return c * std::exp(s / grid.size.z * std::log1p(E / c)) - c;
 }
 
-double influence_depth(const Scene& scene) {
+double influence_depth(const Scene& scene, double aspect) {
     const Camera& camera = scene.camera;
     const glm::dvec3 eye(camera.position);
     const glm::dvec3 forward = glm::normalize(glm::dvec3(camera.target) - eye);
     const glm::dmat4 inverse =
-        glm::inverse(glm::dmat4(scene.light.projection() * scene.light.view()));
+        glm::inverse(glm::dmat4(frame::shadow_view_projection(scene.light, camera, float(aspect))));
     double farthest = -HUGE_VAL;
     for (int corner = 0; corner < 8; ++corner) {
         const glm::dvec4 p = inverse * glm::dvec4(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1,
@@ -82,7 +83,8 @@ FroxelGrid make_grid(const Scene& scene, int width, int height, double grid_scal
             "lower grid_scale or slices",
             grid.size.x, grid.size.y, grid.size.z, kMaxSide);
     }
-    grid.depth_extent = float(depth_extent > 0.0 ? depth_extent : influence_depth(scene));
+    grid.depth_extent = float(
+        depth_extent > 0.0 ? depth_extent : influence_depth(scene, double(width) / double(height)));
     grid.linear_depth = float(linear_depth > 0.0 ? linear_depth : grid.depth_extent / 8.0);
     return grid;
 }

@@ -45,16 +45,17 @@ struct FroxelGrid {
 // slice_depth in double precision.
 double slice_depth(const FroxelGrid& grid, double s);
 
-// The farthest view depth of the light's influence pyramid from the scene's camera, within the
+// The farthest view depth of the light's influence pyramid (a sun's: its box as the frame's shadow
+// map is fitted to the camera at `aspect`, frame/shadow_fit.h) from the scene's camera, within the
 // camera's far plane (its near plane when the light is wholly behind the eye): what an automatic
 // depth_extent covers, so that no lit froxel is left out.
-double influence_depth(const Scene& scene);
+double influence_depth(const Scene& scene, double aspect);
 
 // The grid for an image of width x height: round(160 x grid_scale x width / 1280) x
 // round(90 x grid_scale x height / 720) x round(slices x grid_scale), each at least 1;
-// depth_extent 0 is influence_depth(scene), linear_depth 0 is an eighth of the extent. Throws
-// sl::Error when a side exceeds 2048 (the 3D texture size every GL 4.5 offers) or the grid 2^26
-// froxels.
+// depth_extent 0 is influence_depth(scene, width / height), linear_depth 0 is an eighth of the
+// extent. Throws sl::Error when a side exceeds 2048 (the 3D texture size every GL 4.5 offers) or
+// the grid 2^26 froxels.
 FroxelGrid make_grid(const Scene& scene, int width, int height, double grid_scale, int slices,
                      double depth_extent, double linear_depth);
 

@@ -106,8 +106,8 @@ std::vector<glm::dvec3> light_volume_positions(const std::vector<float>& depths,
     return positions;
 }
 
-glm::mat4 light_clip_to_world(const SpotLight& light) {
-    return glm::mat4(glm::inverse(glm::dmat4(light.projection() * light.view())));
+glm::mat4 light_clip_to_world(const glm::mat4& light_view_projection) {
+    return glm::mat4(glm::inverse(glm::dmat4(light_view_projection)));
 }
 
 namespace {
@@ -164,7 +164,6 @@ public:
             // One region about the eye when the triangle is not collapsed (regions_eye.frag).
             GL.ProgramUniform1f(eye_program_.id(), SL_REGIONS_EYE_WINDINGS, 1.0f);
         }
-        clip_to_world_ = light_clip_to_world(scene.light);
     }
 
     void render(const frame::VolumeInputs& inputs) override {
@@ -182,10 +181,13 @@ public:
             resolution_ = resolution;
         }
         inputs.timeline.section("light volume");
+        // The shadow map's placement is the frame's (a sun's follows the camera:
+        // frame/shadow_fit.h), so the grid's too.
+        const glm::mat4 clip_to_world = light_clip_to_world(inputs.uniforms.light_view_projection);
         for (const gl::Program* program : {&program_, &eye_program_, &wireframe_program_}) {
             GL.ProgramUniform1i(program->id(), SL_LIGHT_VOLUME_RESOLUTION, resolution_);
             GL.ProgramUniformMatrix4fv(program->id(), SL_LIGHT_VOLUME_CLIP_TO_WORLD, 1, GL_FALSE,
-                                       &clip_to_world_[0][0]);
+                                       &clip_to_world[0][0]);
         }
         GL.BindTextureUnit(SL_LIGHT_VOLUME_LIGHT_DEPTH_UNIT, inputs.shadow_map);
         GL.BindSampler(SL_LIGHT_VOLUME_LIGHT_DEPTH_UNIT,
@@ -250,7 +252,6 @@ private:
     gl::Query fragments_;
     gl::PictureTarget wireframe_;
     mutable bool wireframe_wanted_ = false;
-    glm::mat4 clip_to_world_{1.0f};
     GLsizei index_count_ = 0;
     int resolution_ = 0;
 };

@@ -39,9 +39,10 @@ std::vector<glm::dvec3> light_volume_positions(const std::vector<float>& depths,
                                                const glm::mat4& light_clip_to_world,
                                                int resolution);
 
-// The inverse of the light's view-projection as the renderer makes it (frame/renderer.cpp), in
-// double precision rounded to float: what the grid's vertices are unprojected with.
-glm::mat4 light_clip_to_world(const SpotLight& light);
+// The inverse of the frame's shadow-map view-projection (FrameUniforms::light_view_projection,
+// frame/shadow_fit.h), in double precision rounded to float: what the grid's vertices are
+// unprojected with.
+glm::mat4 light_clip_to_world(const glm::mat4& light_view_projection);
 
 // Registers `lightvolume` (frame/method_registry.h).
 void register_methods(frame::MethodRegistry& registry);

@@ -97,10 +97,11 @@ TEST_F(LightVolume, EqualsItsCpuOracle) {
         gl::GL.GetTextureImage(shadow_map, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
                                GLsizei(depths.size() * sizeof(float)), depths.data());
 
-        const std::vector<glm::dvec3> positions = lightvolume::light_volume_positions(
-            depths, map, lightvolume::light_clip_to_world(scene.light), resolution);
-        const std::vector<glm::uvec3> triangles = lightvolume::light_volume_triangles(resolution);
         const gl::shared::FrameUniforms uniforms = frame::make_frame_uniforms(scene, options);
+        const std::vector<glm::dvec3> positions = lightvolume::light_volume_positions(
+            depths, map, lightvolume::light_clip_to_world(uniforms.light_view_projection),
+            resolution);
+        const std::vector<glm::uvec3> triangles = lightvolume::light_volume_triangles(resolution);
         const glm::dmat4 inverse(uniforms.inverse_view_projection);
         Image cpu(width, height);
         double peak = 0.0;

@@ -11,7 +11,8 @@
 //   2. The canonical animations, every frame.
 //   3. Scaling over multiple:N.
 //   4. The static half: each mesh's volumes computed, and read back from the disk cache.
-//   5. (`moving_bench lights`) A light move on the light scenes, every spot light and face.
+//   5. (`moving_bench lights [SCENE]`) A light move on the light scenes, every spot light and face
+//      (only the rows whose name starts with SCENE when given, e.g. to profile one).
 
 #include <tbb/global_control.h>
 
@@ -247,7 +248,7 @@ void static_half_table(const std::vector<std::string>& stills, const SceneSearch
 // 5. A light move on the light scenes: every light circles 0.5 m about its place, and
 //    each of the scene's spot lights (a point light's six faces) gets its tree on the walk route;
 //    per frame, the sum over them.
-void lights_move_table(const SceneSearchPaths& paths) {
+void lights_move_table(const SceneSearchPaths& paths, const std::string& only) {
     fmt::print("## A light move on the light scenes, walk route\n\n");
     fmt::print(
         "Every light circles 0.5 m about its place over {} frames (a sun swings its direction "
@@ -265,9 +266,14 @@ void lights_move_table(const SceneSearchPaths& paths) {
     // its axis over the scene's default region (the sun's budget is for the canonical scenes).
     std::vector<std::pair<std::string, Scene>> scenes;
     for (const std::string& name : light_scene_names()) {
-        scenes.emplace_back(name, load_scene(name, paths));
+        if (name.starts_with(only)) {
+            scenes.emplace_back(name, load_scene(name, paths));
+        }
     }
     for (const std::string& name : canonical_scene_names()) {
+        if (!(name + " (sun)").starts_with(only)) {
+            continue;
+        }
         Scene scene = load_scene(name, paths);
         DirectionalLight sun;
         sun.direction = scene.light.direction();
@@ -370,7 +376,7 @@ int main(int argc, char** argv) {
     try {
         if (argc > 1 && std::string(argv[1]) == "lights") {
             const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-            sl::bt::lights_move_table(sl::SceneSearchPaths::defaults());
+            sl::bt::lights_move_table(sl::SceneSearchPaths::defaults(), argc > 2 ? argv[2] : "");
             return 0;
         }
         return sl::bt::run(argc > 1 && std::string(argv[1]) == "real");
