@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <variant>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -195,11 +196,16 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     create_programs();
     environment_ = std::make_unique<ibl::EnvironmentTextures>(scene);
     environment_->set_uniforms(uniforms_, scene.environment);
-    if (scene.has_translucent_objects() && !scene.lights.empty()) {
-        fail(
-            "scene '{}': translucent objects (sss) take one light ([light]); this scene has {} "
-            "([[lights]]): give it one spot light, or no translucent material",
-            scene.name, scene.lights.size());
+    if (scene.has_translucent_objects()) {
+        for (const LightSource& light : scene.lights) {
+            if (std::holds_alternative<DirectionalLight>(light)) {
+                fail(
+                    "scene '{}': translucent objects (sss) take spot and point lights; its "
+                    "[[lights]] has a directional light, whose parallel beams the splats do not "
+                    "model: light it with spot or point lights, or use no translucent material",
+                    scene.name);
+            }
+        }
     }
     if (scene.has_translucent_objects()) {
         subsurface_ = std::make_unique<sss::SubsurfacePass>(scene, options.width, options.height);
@@ -424,7 +430,7 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
             GroupTimer timer(*surface_timeline_, "surfaces");
             draw_surfaces(i > 0);
         }
-        if (subsurface_) {
+        if (subsurface_ && i == 0) {  // once: it splats every light itself (sss/subsurface_pass.h)
             PassTimer timer(subsurface_timer_, "subsurface");
             subsurface_->render(
                 [this](size_t index, GLuint program) { draw_object(index, program, true); },

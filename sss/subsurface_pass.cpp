@@ -64,8 +64,10 @@ void attach(const Framebuffer& framebuffer, std::initializer_list<GLuint> colour
     }
 }
 
+// Every light the translucent objects take: the scene's (its `[light]`, or every spot light and
+// point-light face of its `[[lights]]`), then [sss]'s own.
 std::vector<SpotLight> lights_of(const Scene& scene) {
-    std::vector<SpotLight> lights{scene.light};
+    std::vector<SpotLight> lights = scene.spot_lights();
     lights.insert(lights.end(), scene.subsurface.lights.begin(), scene.subsurface.lights.end());
     return lights;
 }

@@ -7,7 +7,10 @@
 // additive blending and no depth test, for the eye G-buffer's pixels of the same object. With an
 // environment, uniform surface samples lit by SH9 irradiance are splatted the same way. The sum is
 // finally added to the surface pass's colour (the deferred composite of listing 5.6; the
-// specular term is drawn by the surface pass itself).
+// specular term is drawn by the surface pass itself). The lights are the scene's spot lights
+// (its `[light]`, or every spot light and point-light face of its `[[lights]]`; a directional
+// light is refused by the renderer) and then [sss]'s own; the frame draws the pass once, after
+// the first light's surfaces, and it splats them all.
 
 #include <cstdint>
 #include <functional>

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/error.h"
 #include "core/metrics.h"
 #include "frame/renderer.h"
 #include "methods/registry.h"
@@ -257,6 +258,91 @@ TEST_F(SssRender, VolumeMethodsAfterTheSubsurfacePassStillSeeTheShadowMap) {
         };
         const Image a = in_scattering(translucent), b = in_scattering(opaque);
         EXPECT_LT(compare_images(a, b).rel_rmse, 1e-6) << name;
+    }
+}
+
+// The slab under `lights` ([[lights]] entries in TOML), no ambient light: what the surfaces get
+// is each light's specular term and its splats.
+Scene slab_under(const std::string& lights) {
+    const std::string text = R"(
+[scene]
+ambient = [0.0, 0.0, 0.0]
+[camera]
+position = [0.0, 2.6, 0.0]
+target = [0.0, 0.0, 0.0]
+up = [0.0, 0.0, -1.0]
+fov = 40.0
+[medium]
+model = "physical"
+[sss]
+mm_per_unit = 20.0
+grid = [48, 40]
+jitter = false
+map_size = 256
+profile_texels = 512
+environment_samples = 0
+[materials.marble]
+translucent = "marble"
+[[objects]]
+shape = "box"
+size = [2.0, 0.1, 2.0]
+material = "marble"
+)" + lights;
+    return parse_scene(text, "sss-slab-lights", {}, SceneSearchPaths::defaults());
+}
+
+const char* const kSpotLight = R"(
+[[lights]]
+type = "spot"
+position = [0.35, 1.6, 0.2]
+target = [0.0, 0.0, 0.0]
+cone_angle = 40.0
+near = 0.2
+far = 5.0
+intensity = [2.0, 1.6, 1.2]
+)";
+const char* const kPointLight = R"(
+[[lights]]
+type = "point"
+position = [-0.5, 0.9, -0.3]
+near = 0.1
+far = 5.0
+intensity = [0.6, 0.8, 1.2]
+)";
+
+// Translucent objects take every spot and point light of [[lights]] (a point light as its six
+// faces): under a spot and a point light together the slab's surfaces, splats and all, are the
+// sum of what each light gives alone (the pass runs once and splats every light; were it drawn
+// once per light, the sum would count each light twice), and each light adds some.
+TEST_F(SssRender, TranslucentObjectsTakeEveryLightAndTheirSplatsAddUp) {
+    const Scene both = slab_under(std::string(kSpotLight) + kPointLight);
+    ASSERT_EQ(both.spot_lights().size(), 7u);
+    const int w = 96, h = 96;
+    const Image together = render_method(both, "none", w, h).surface;
+    const Image spot = render_method(slab_under(kSpotLight), "none", w, h).surface;
+    const Image point = render_method(slab_under(kPointLight), "none", w, h).surface;
+    EXPECT_GT(image_peak(spot), 0.0);
+    EXPECT_GT(image_peak(point), 0.0);
+    Image added = spot;
+    for (size_t i = 0; i < added.rgb.size(); ++i) {
+        added.rgb[i] += point.rgb[i];
+    }
+    EXPECT_LE(max_abs_difference(together, added), 1e-4 * image_peak(added));
+}
+
+// A directional light with translucent objects is refused by name (the splats model a light at a
+// point).
+TEST_F(SssRender, ASunWithTranslucentObjectsIsRefused) {
+    const Scene scene = slab_under(R"(
+[[lights]]
+type = "directional"
+direction = [0.2, -1.0, 0.1]
+)");
+    try {
+        frame::SceneRenderer renderer(scene, {.width = 32, .height = 32});
+        ADD_FAILURE() << "a sun with translucent objects was taken";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("directional light"), std::string::npos) << e.what();
     }
 }
 
