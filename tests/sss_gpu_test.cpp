@@ -24,22 +24,25 @@ using SssRender = GlTest;
 
 constexpr float kHalfThickness = 0.05f;  // slab: 2 x 0.1 x 2 units, top face at y = 0.05
 
-Scene slab_scene(const std::string& model, const std::string& weighting, bool footprint = false,
-                 int grid = 48) {
-    const std::string text =
-        fmt::format(R"(
-[camera]
+// Every slab scene's camera: above the slab, looking down.
+const char* const kSlabCamera = R"([camera]
 position = [0.0, 2.6, 0.0]
 target = [0.0, 0.0, 0.0]
 up = [0.0, 0.0, -1.0]
-fov = 40.0
-[light]
+fov = 40.0)";
+// The slab's spot light: above it, to one side.
+const char* const kSlabSpotKeys = R"(
 position = [0.35, 1.6, 0.2]
 target = [0.0, 0.0, 0.0]
 cone_angle = 40.0
 near = 0.2
 far = 5.0
-intensity = [2.0, 1.6, 1.2]
+intensity = [2.0, 1.6, 1.2])";
+
+Scene slab_scene(const std::string& model, const std::string& weighting, bool footprint = false,
+                 int grid = 48) {
+    const std::string text = fmt::format(R"({}
+[light]{}
 [medium]
 model = "physical"
 [sss]
@@ -59,7 +62,8 @@ shape = "box"
 size = [2.0, {}, 2.0]
 material = "marble"
 )",
-                    grid, grid * 5 / 6, footprint, weighting, model, 2.0f * kHalfThickness);
+                                         kSlabCamera, kSlabSpotKeys, grid, grid * 5 / 6, footprint,
+                                         weighting, model, 2.0f * kHalfThickness);
     return parse_scene(text, "sss-slab", {}, SceneSearchPaths::defaults());
 }
 
@@ -264,14 +268,10 @@ TEST_F(SssRender, VolumeMethodsAfterTheSubsurfacePassStillSeeTheShadowMap) {
 // The slab under `lights` ([[lights]] entries in TOML), no ambient light: what the surfaces get
 // is each light's specular term and its splats.
 Scene slab_under(const std::string& lights) {
-    const std::string text = R"(
+    const std::string text = std::string(R"(
 [scene]
 ambient = [0.0, 0.0, 0.0]
-[camera]
-position = [0.0, 2.6, 0.0]
-target = [0.0, 0.0, 0.0]
-up = [0.0, 0.0, -1.0]
-fov = 40.0
+)") + kSlabCamera + R"(
 [medium]
 model = "physical"
 [sss]
@@ -291,16 +291,7 @@ material = "marble"
     return parse_scene(text, "sss-slab-lights", {}, SceneSearchPaths::defaults());
 }
 
-const char* const kSpotLight = R"(
-[[lights]]
-type = "spot"
-position = [0.35, 1.6, 0.2]
-target = [0.0, 0.0, 0.0]
-cone_angle = 40.0
-near = 0.2
-far = 5.0
-intensity = [2.0, 1.6, 1.2]
-)";
+const std::string kSpotLight = std::string("\n[[lights]]\ntype = \"spot\"") + kSlabSpotKeys + "\n";
 const char* const kPointLight = R"(
 [[lights]]
 type = "point"
@@ -315,7 +306,7 @@ intensity = [0.6, 0.8, 1.2]
 // sum of what each light gives alone (the pass runs once and splats every light; were it drawn
 // once per light, the sum would count each light twice), and each light adds some.
 TEST_F(SssRender, TranslucentObjectsTakeEveryLightAndTheirSplatsAddUp) {
-    const Scene both = slab_under(std::string(kSpotLight) + kPointLight);
+    const Scene both = slab_under(kSpotLight + kPointLight);
     ASSERT_EQ(both.spot_lights().size(), 7u);
     const int w = 96, h = 96;
     const Image together = render_method(both, "none", w, h).surface;
