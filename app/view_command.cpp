@@ -46,6 +46,9 @@ Command add_view_command(CLI::App& app) {
     std::string layers;
     for (const std::string& name : viewer::layer_names())
         layers += (layers.empty() ? "" : ", ") + name;
+    command->add_option("--light", o.light,
+                        "Whose regions the overlays show: a spot light or point-light face, "
+                        "0-based, as `regions --light N`");
     command->add_option("--layers", o.layers, "Layers shown at start, comma separated: " + layers)
         ->delimiter(',');
     command->add_option("--preview", o.preview,

@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "beamtree/beam_tree.h"
+#include "beamtree/frame_regions.h"
 #include "core/image.h"
 #include "core/metrics.h"
 #include "reference/reference.h"
@@ -134,6 +135,40 @@ TEST(ViewerScripted, RegionOverlayAppearsWhereTheRegionsProject) {
                     name.c_str(), outside, 100.0 * outside_diff / std::max(outside, 1), lit,
                     lit_shift / std::max(lit, 1), unlit, unlit_shift / std::max(unlit, 1));
     }
+}
+
+// In a scene of several lights the overlays show the regions of the spot light or point-light face
+// that --light names (as `shaftlab regions --light N`): the viewer's tree for room's bulb's +x and
+// -y faces is that face's own (its beam count), the two overlays differ, and a face the scene does
+// not have is refused by name.
+TEST(ViewerScripted, TheOverlaysShowTheChosenLightsRegions) {
+    TempDir dir;
+    const Scene scene = load_canonical("room");
+    ASSERT_EQ(scene.spot_lights().size(), 6u);
+    std::vector<Png> shots;
+    for (const int light : {0, 3}) {
+        const fs::path shot = dir / fmt::format("room-light{}.png", light);
+        const CommandResult run = run_shaftlab(fmt::format(
+            "view --scene room --method none --size 160x100 --frames 1 --no-ui --layers volumes "
+            "--light {} --screenshot {}",
+            light, shot.string()));
+        ASSERT_EQ(run.exit_code, 0) << run.output;
+        const bt::FrameRegions own =
+            bt::build_frame_regions(scene.for_light(size_t(light)), {.pieces = true});
+        EXPECT_NE(run.output.find(fmt::format("beam tree {} beams", own.regions->beam_count)),
+                  std::string::npos)
+            << "light " << light << ": " << run.output;
+        shots.push_back(read_png(shot));
+    }
+    ASSERT_EQ(shots[0].rgb.size(), shots[1].rgb.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < shots[0].rgb.size(); i += 3) {
+        differ += shots[0].rgb[i] != shots[1].rgb[i] ? 1 : 0;
+    }
+    EXPECT_GT(differ, shots[0].rgb.size() / 3 / 20) << "the two faces' overlays differ";
+    const CommandResult bad = run_shaftlab("view --scene room --light 6 --frames 1 --no-ui");
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.output.find("--light 6"), std::string::npos) << bad.output;
 }
 
 // A view reached by a camera and light path, saved as an experiment, is the view the harness

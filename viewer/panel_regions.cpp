@@ -6,8 +6,9 @@ namespace sl::viewer {
 
 void Viewer::ui_regions() {
     if (!scene_.lights.empty()) {
-        // Each light has its own tree; the overlay and the figures below are the first's.
-        ImGui::TextDisabled("light 1 of %zu (each has its own tree: `shaftlab regions --light N`)",
+        // Each light has its own tree; the overlay and the figures below are one's (the light
+        // panel's "overlay" chooses it).
+        ImGui::TextDisabled("spot light or face %zu of %zu (each has its own tree)", overlay_light_,
                             scene_.spot_lights().size());
     }
     ImGui::Checkbox("volumes", &overlay_settings_.volumes);

@@ -1,17 +1,18 @@
 #include "viewer/window.h"
 
+#include <algorithm>
+#include <variant>
+
+#include <fmt/format.h>
 #include <imgui.h>
+#include <glm/geometric.hpp>
 
 namespace sl::viewer {
 
-void Viewer::ui_light() {
-    if (!scene_.lights.empty()) {
-        // Several lights: each is the scene file's ([[lights]]); the overlays show the first.
-        ImGui::TextDisabled("[[lights]]: %zu (%zu spot lights and faces), set in the file",
-                            scene_.lights.size(), scene_.spot_lights().size());
-        return;
-    }
-    SpotLight& l = scene_.light;
+namespace {
+
+// A spot light's widgets (its [light], or a [[lights]] entry); true when one changed it.
+bool edit_spot(SpotLight& l) {
     bool changed = false;
     changed |= ImGui::DragFloat3("position", &l.position.x, 0.02f);
     changed |= ImGui::DragFloat3("target", &l.target.x, 0.02f);
@@ -23,10 +24,85 @@ void Viewer::ui_light() {
     l.near = std::max(l.near, 1e-3f);
     l.far = std::max(l.far, l.near * 1.01f);
     l.falloff_degrees = std::min(l.falloff_degrees, l.cone_half_angle_degrees);
-    if (changed && glm::length(l.target - l.position) > 1e-4f) {
+    return changed && glm::length(l.target - l.position) > 1e-4f;
+}
+
+bool edit_point(PointLight& l) {
+    bool changed = false;
+    changed |= ImGui::DragFloat3("position", &l.position.x, 0.02f);
+    changed |= ImGui::DragFloatRange2("range", &l.near, &l.far, 0.05f, 0.01f, 1000.0f);
+    changed |= ImGui::DragFloat3("intensity", &l.intensity.x, 1.0f, 0.0f, 1e6f);
+    l.near = std::max(l.near, 1e-3f);
+    l.far = std::max(l.far, l.near * 1.01f);
+    return changed;
+}
+
+// A sun's direction and irradiance; its entry plane follows the direction where the scene gave
+// none (DirectionalLight::enter_region), else it is edited too.
+bool edit_directional(DirectionalLight& l) {
+    bool changed = false;
+    glm::vec3 direction = l.direction;
+    if (ImGui::DragFloat3("direction", &direction.x, 0.01f, -1.0f, 1.0f) &&
+        glm::length(direction) > 1e-3f) {
+        l.direction = glm::normalize(direction);
+        changed = true;
+    }
+    changed |= ImGui::DragFloat3("irradiance", &l.irradiance.x, 0.05f, 0.0f, 1e6f);
+    if (l.default_entry) {
+        if (changed) {
+            l.enter_region();
+        }
+        ImGui::TextDisabled("entry: the plane touching the scene's box");
+    } else {
+        changed |= ImGui::DragFloat3("entry", &l.entry.x, 0.02f);
+    }
+    return changed;
+}
+
+}  // namespace
+
+void Viewer::ui_light() {
+    if (!scene_.lights.empty()) {
+        ui_lights();
+        return;
+    }
+    if (edit_spot(scene_.light)) {
         scene_changed();
     }
     ImGui::TextDisabled("ctrl + drag in the view moves it too");
+}
+
+void Viewer::ui_lights() {
+    std::vector<LightSource> lights = scene_.lights;
+    const auto name = [&](size_t i) { return fmt::format("{}: {}", i, light_type(lights[i])); };
+    edited_light_ = std::min(edited_light_, lights.size() - 1);
+    if (ImGui::BeginCombo("edit", name(edited_light_).c_str())) {
+        for (size_t i = 0; i < lights.size(); ++i) {
+            if (ImGui::Selectable(name(i).c_str(), i == edited_light_)) {
+                edited_light_ = i;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    LightSource& light = lights[edited_light_];
+    const bool changed = std::holds_alternative<SpotLight>(light)
+                             ? edit_spot(std::get<SpotLight>(light))
+                         : std::holds_alternative<PointLight>(light)
+                             ? edit_point(std::get<PointLight>(light))
+                             : edit_directional(std::get<DirectionalLight>(light));
+    if (changed) {
+        scene_.set_lights(std::move(lights));
+        scene_changed();
+    }
+    // The overlays show one spot light's (or point-light face's) regions at a time.
+    const int spots = int(scene_.spot_lights().size());
+    int shown = int(overlay_light_);
+    if (ImGui::SliderInt("overlay", &shown, 0, spots - 1, "spot light or face %d")) {
+        overlay_light_ = size_t(std::clamp(shown, 0, spots - 1));
+        build_overlay();
+    }
+    ImGui::TextDisabled("%zu lights, %d spot lights and point-light faces", scene_.lights.size(),
+                        spots);
 }
 
 void Viewer::ui_objects() {

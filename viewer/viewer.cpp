@@ -52,6 +52,12 @@ Viewer::Viewer(const ViewerOptions& options)
         }
         layers_[name] = true;
     }
+    const size_t spots = scene_.spot_lights().size();
+    if (options.light < 0 || size_t(options.light) >= spots) {
+        fail("--light {}: scene {} has {} spot light(s) and point-light faces (0 to {})",
+             options.light, quote(scene_.name), spots, spots - 1);
+    }
+    overlay_light_ = size_t(options.light);
     overlay_settings_.volumes = layers_["volumes"];
     overlay_settings_.outlines = layers_["outlines"];
     // Fail on an unknown method, setting or path before opening a window.
@@ -110,6 +116,28 @@ Viewer::~Viewer() {
     ImGui::DestroyContext();
 }
 
+void Viewer::build_overlay() {
+    // The overlay's regions, with the methods' per-frame path (cached volumes), of the
+    // light the overlays show.
+    const Scene seen = overlay_scene();
+    const bt::FrameRegions frame = bt::build_frame_regions(seen, {.pieces = true});
+    tree_ms_ = frame.ms.volumes + frame.ms.tree;
+    extract_ms_ = frame.ms.regions;
+    const bt::Regions& regions = *frame.regions;
+    overlay_.upload(regions, seen.light.far);
+    beams_ = regions.beam_count;
+    exact_ = frame.exact;
+    for (int r = 0; r < 3; ++r) {
+        region_faces_[size_t(r)] = regions.face_count(bt::Region(r));
+    }
+    region_volume_ = regions.volume;
+    influence_volume_ = regions.influence_volume;
+}
+
+Scene Viewer::overlay_scene() const {
+    return scene_.lights.empty() ? scene_ : scene_.for_light(overlay_light_);
+}
+
 bool Viewer::layer(const char* name) const {
     return layers_.at(name);
 }
@@ -143,19 +171,7 @@ void Viewer::scene_changed() {
         const SceneChange change =
             applied_ ? scene_change(*applied_, scene_) : SceneChange::everything(scene_);
         if (change.regions()) {
-            // The overlay's regions, with the methods' per-frame path (cached volumes).
-            const bt::FrameRegions frame = bt::build_frame_regions(scene_, {.pieces = true});
-            tree_ms_ = frame.ms.volumes + frame.ms.tree;
-            extract_ms_ = frame.ms.regions;
-            const bt::Regions& regions = *frame.regions;
-            overlay_.upload(regions, scene_.light.far);
-            beams_ = regions.beam_count;
-            exact_ = frame.exact;
-            for (int r = 0; r < 3; ++r) {
-                region_faces_[size_t(r)] = regions.face_count(bt::Region(r));
-            }
-            region_volume_ = regions.volume;
-            influence_volume_ = regions.influence_volume;
+            build_overlay();
         }
         start = Clock::now();
         if (applied_) {
@@ -235,7 +251,8 @@ void Viewer::draw_frame() {
         overlay_.draw(0, depth, w, h, renderer_->uniforms().view_projection, overlay_settings_);
     }
     if (layer("light-view")) {
-        overlay_.draw_light_view(scene_.light.projection() * scene_.light.view(), kLightViewSize);
+        const SpotLight light = scene_.spot_lights()[overlay_light_];
+        overlay_.draw_light_view(light.projection() * light.view(), kLightViewSize);
     }
     gl::check_errors("drawing the viewer's frame");
 }

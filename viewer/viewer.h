@@ -23,9 +23,12 @@ struct ViewerOptions {
     std::vector<std::string> layers;  // shown at start: volumes, outlines, light-view, error,
                                       // previewer, timings
     std::string preview;              // the previewer's texture at start (by name)
-    float error_scale = 0.5f;         // the heat map's full scale, times the reference's RMS
-    bool ui = true;                   // panels drawn (F1 toggles)
-    bool hidden = false;              // no visible window (still needs a display)
+    // Whose regions the overlays show: an index into the scene's spot lights (a point light
+    // counting as its six faces), as `shaftlab regions --light N`.
+    int light = 0;
+    float error_scale = 0.5f;  // the heat map's full scale, times the reference's RMS
+    bool ui = true;            // panels drawn (F1 toggles)
+    bool hidden = false;       // no visible window (still needs a display)
 
     // Scripted mode: draw `frames` frames (following `path` or orbiting `orbit_degrees` about the
     // target over them), then write the outputs below and exit.

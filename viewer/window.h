@@ -89,6 +89,10 @@ private:
     // The light, an object or the medium changed: the overlay's regions and the method's
     // per-frame update (VolumeMethod::update), through the path every moving frame takes.
     void scene_changed();
+    // The scene as the overlays' light alone sees it (scene_ itself for a scene of one light),
+    // and that light's regions built and uploaded for the overlays.
+    Scene overlay_scene() const;
+    void build_overlay();
     void prepare_method();
     void handle_input(double dt);  // input.cpp: keys and mouse; true where the camera moved
     bool handle_keys(double dt);
@@ -101,6 +105,7 @@ private:
     // The panels (panel_*.cpp, error_view.cpp, saving.cpp).
     void ui_view();
     void ui_light();
+    void ui_lights();  // a scene of [[lights]]
     void ui_objects();
     void ui_medium();
     void ui_environment();
@@ -123,7 +128,11 @@ private:
     CameraMode mode_ = CameraMode::orbit;
     std::optional<Animation> path_;  // scripted mode: --path, or the scene's own animation
     int selected_object_ = -1;       // alt + drag moves it (panel "objects")
-    float fly_speed_ = 2.0f;         // metres per second
+    // [[lights]]: the spot light (or point-light face) whose regions the overlays show, and the
+    // [[lights]] entry the light panel edits.
+    size_t overlay_light_ = 0;
+    size_t edited_light_ = 0;
+    float fly_speed_ = 2.0f;  // metres per second
     std::unique_ptr<frame::VolumeMethod> method_;
     std::unique_ptr<frame::SceneRenderer> renderer_;
     int width_ = 0, height_ = 0;
