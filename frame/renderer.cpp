@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <variant>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -196,17 +195,6 @@ SceneRenderer::SceneRenderer(const Scene& scene, const RenderOptions& options)
     create_programs();
     environment_ = std::make_unique<ibl::EnvironmentTextures>(scene);
     environment_->set_uniforms(uniforms_, scene.environment);
-    if (scene.has_translucent_objects()) {
-        for (const LightSource& light : scene.lights) {
-            if (std::holds_alternative<DirectionalLight>(light)) {
-                fail(
-                    "scene '{}': translucent objects (sss) take spot and point lights; its "
-                    "[[lights]] has a directional light, whose parallel beams the splats do not "
-                    "model: light it with spot or point lights, or use no translucent material",
-                    scene.name);
-            }
-        }
-    }
     if (scene.has_translucent_objects()) {
         subsurface_ = std::make_unique<sss::SubsurfacePass>(scene, options.width, options.height);
     }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <variant>
 
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/trigonometric.hpp>
@@ -168,6 +169,15 @@ void average_over_disk(const TabulatedMaterial& tabulated, int texels, double rh
 
 SubsurfacePass::SubsurfacePass(const Scene& scene, int width, int height)
     : scene_(scene), width_(width), height_(height) {
+    for (const LightSource& light : scene.lights) {
+        if (std::holds_alternative<DirectionalLight>(light)) {
+            fail(
+                "scene '{}': translucent objects (sss) take spot and point lights; its "
+                "[[lights]] has a directional light, whose parallel beams the splats do not "
+                "model: light it with spot or point lights, or use no translucent material",
+                scene.name);
+        }
+    }
     upload_profiles();
     if (scene.environment.enabled() && scene.subsurface.environment_samples > 0) {
         build_environment_samples();

@@ -9,7 +9,7 @@
 // finally added to the surface pass's colour (the deferred composite of listing 5.6; the
 // specular term is drawn by the surface pass itself). The lights are the scene's spot lights
 // (its `[light]`, or every spot light and point-light face of its `[[lights]]`; a directional
-// light is refused by the renderer) and then [sss]'s own; the frame draws the pass once, after
+// light is refused by the constructor) and then [sss]'s own; the frame draws the pass once, after
 // the first light's surfaces, and it splats them all.
 
 #include <cstdint>
@@ -49,6 +49,7 @@ using DrawObject = std::function<void(size_t index, GLuint program)>;
 class SubsurfacePass {
 public:
     // Tabulates the profiles and builds the environment samples; needs a current GL context.
+    // Throws sl::Error for a scene with a directional light (the splats model lights at a point).
     SubsurfacePass(const Scene& scene, int width, int height);
     ~SubsurfacePass();
 

@@ -118,8 +118,9 @@ Viewer::~Viewer() {
 
 void Viewer::build_overlay() {
     // The overlay's regions, with the methods' per-frame path (cached volumes), of the
-    // light the overlays show.
-    const Scene seen = overlay_scene();
+    // light the overlays show (the scene itself when it has one light).
+    const Scene one_light = scene_.lights.empty() ? Scene() : scene_.for_light(overlay_light_);
+    const Scene& seen = scene_.lights.empty() ? scene_ : one_light;
     const bt::FrameRegions frame = bt::build_frame_regions(seen, {.pieces = true});
     tree_ms_ = frame.ms.volumes + frame.ms.tree;
     extract_ms_ = frame.ms.regions;
@@ -132,10 +133,6 @@ void Viewer::build_overlay() {
     }
     region_volume_ = regions.volume;
     influence_volume_ = regions.influence_volume;
-}
-
-Scene Viewer::overlay_scene() const {
-    return scene_.lights.empty() ? scene_ : scene_.for_light(overlay_light_);
 }
 
 bool Viewer::layer(const char* name) const {

@@ -89,9 +89,7 @@ private:
     // The light, an object or the medium changed: the overlay's regions and the method's
     // per-frame update (VolumeMethod::update), through the path every moving frame takes.
     void scene_changed();
-    // The scene as the overlays' light alone sees it (scene_ itself for a scene of one light),
-    // and that light's regions built and uploaded for the overlays.
-    Scene overlay_scene() const;
+    // The regions of the light the overlays show, built and uploaded for them.
     void build_overlay();
     void prepare_method();
     void handle_input(double dt);  // input.cpp: keys and mouse; true where the camera moved
