@@ -808,4 +808,33 @@ std::vector<ObjectVolumes> VolumeLibrary::build(const Scene& scene,
     return result;
 }
 
+VolumeLibrary::SceneState VolumeLibrary::state_of(const Scene& scene) {
+    SceneState state{
+        {}, scene.bounds.occluders, scene.bounds.max_triangles, scene.bounds.min_inner_fill};
+    state.parts.reserve(scene.objects.size());
+    for (const Object& object : scene.objects) {
+        state.parts.push_back({object.name, object.mesh, object.transform, object.inner_boxes,
+                               scene.casts_shadow(object)});
+    }
+    return state;
+}
+
+std::shared_ptr<const std::vector<ObjectVolumes>> VolumeLibrary::build_shared(const Scene& scene) {
+    if (!caching_) {
+        return std::make_shared<const std::vector<ObjectVolumes>>(build(scene, nullptr));
+    }
+    SceneState state = state_of(scene);
+    {
+        const std::lock_guard lock(mutex_);
+        if (last_volumes_ && state == last_state_) {
+            return last_volumes_;
+        }
+    }
+    auto volumes = std::make_shared<const std::vector<ObjectVolumes>>(build(scene, nullptr));
+    const std::lock_guard lock(mutex_);
+    last_state_ = std::move(state);
+    last_volumes_ = volumes;
+    return volumes;
+}
+
 }  // namespace sl::bt

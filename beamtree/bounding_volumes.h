@@ -129,6 +129,12 @@ public:
     // inner box is not strictly inside its mesh. Each object that gets no automatic inner
     // volume (an open mesh, one too thin for a box) is listed in `missing` with the reason.
     std::vector<ObjectVolumes> build(const Scene& scene, std::vector<MissingInner>* missing);
+    // build(scene, nullptr), shared: the six faces of a point light, and every light of one
+    // scene state, ask for the same world-space volumes in turn (each face is its own tree), and
+    // get the last answer again while the objects' meshes, transforms, names, inner boxes and
+    // shadow casting and the scene's occluder settings are unchanged (with caching off, each
+    // call builds anew).
+    std::shared_ptr<const std::vector<ObjectVolumes>> build_shared(const Scene& scene);
     VolumeLibraryStats stats() const;
 
 private:
@@ -152,8 +158,28 @@ private:
     // (ObjectVolumes::why_triangles; empty: its volumes).
     std::vector<std::string> exact_objects(const Scene& scene);
 
+    // What build_shared's last answer was built from (the scene's parts build() reads).
+    struct SceneState {
+        struct Part {
+            std::string name;
+            std::shared_ptr<const Mesh> mesh;  // held: the address names this mesh
+            glm::mat4 transform;
+            std::vector<Box> inner_boxes;
+            bool casts_shadow;
+            bool operator==(const Part&) const = default;
+        };
+        std::vector<Part> parts;
+        Occluders occluders;
+        int max_triangles;
+        double min_inner_fill;
+        bool operator==(const SceneState&) const = default;
+    };
+    static SceneState state_of(const Scene& scene);
+
     BoundsSettings options_;
     bool caching_ = true;
+    SceneState last_state_;
+    std::shared_ptr<const std::vector<ObjectVolumes>> last_volumes_;
     mutable std::mutex mutex_;
     std::map<const Mesh*, Entry> cache_;
     // Each mesh's closed_surface(), once per mesh (for the objects that go in as triangles).

@@ -31,7 +31,8 @@ FrameRegions build_frame_regions(const Scene& scene, const RegionRequest& reques
         t = now;
     };
     VolumeLibrary& library = VolumeLibrary::shared(scene.bounds);
-    const std::vector<ObjectVolumes> volumes = library.build(scene, nullptr);
+    const std::shared_ptr<const std::vector<ObjectVolumes>> shared = library.build_shared(scene);
+    const std::vector<ObjectVolumes>& volumes = *shared;
     out.exact = exact_occluders(volumes);
     lap(out.ms.volumes);
     auto tree = std::make_shared<const BeamTree>(scene.light, volumes);

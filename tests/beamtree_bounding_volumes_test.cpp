@@ -1,6 +1,7 @@
 // Bounding volumes (beamtree/bounding_volumes.h): hulls enclose their meshes, also reduced;
 // volumes do not depend on the heap's layout; inner boxes lie inside their meshes (ray parity);
-// an explicit inner box outside its mesh is refused.
+// an explicit inner box outside its mesh is refused; shared volumes are reused only while the
+// scene state they were built from lasts.
 
 #include <gtest/gtest.h>
 
@@ -234,6 +235,77 @@ TEST(ClosedSurface, TrianglesComeOutWoundOutwardUnderAMirror) {
             EXPECT_GT(glm::dot(normal, (v[0] + v[1] + v[2]) / 3.0), 0.0) << "mirror " << mirror;
         }
     }
+}
+
+// Every outer face's and triangle's corners, in order: what a tree is built from.
+std::vector<dvec3> corners_of(const std::vector<bt::ObjectVolumes>& volumes) {
+    std::vector<dvec3> corners;
+    for (const bt::ObjectVolumes& object : volumes) {
+        for (const auto* polygons : {&object.outer.faces, &object.triangles}) {
+            for (const bt::Polygon& polygon : *polygons) {
+                corners.insert(corners.end(), polygon.vertices.begin(), polygon.vertices.end());
+            }
+        }
+    }
+    return corners;
+}
+
+// build_shared gives the faces of a point light one set of volumes, and builds anew (the same
+// volumes build() gives) when an object moves, is renamed, stops casting shadows or the occluder
+// setting changes. Fails if the memo ignores any of them.
+TEST(VolumeLibrary, SharedVolumesLastAsLongAsTheirSceneState) {
+    Scene scene;
+    scene.bounds.occluders = Occluders::volumes;
+    scene.materials.push_back({});
+    for (int i = 0; i < 2; ++i) {
+        Object object;
+        object.name = i == 0 ? "left" : "right";
+        object.mesh = std::make_shared<const Mesh>(make_box(glm::vec3(0.5f)));
+        object.transform = glm::translate(glm::mat4(1.0f), glm::vec3(2.0f * float(i) - 1.0f, 0, 0));
+        scene.objects.push_back(object);
+    }
+    PointLight bulb;
+    bulb.position = glm::vec3(0.0f, 3.0f, 0.0f);
+    scene.set_lights({bulb});
+    ASSERT_EQ(scene.spot_lights().size(), 6u);
+
+    bt::VolumeLibrary library(scene.bounds);
+    const auto first = library.build_shared(scene.for_light(0));
+    for (size_t face = 1; face < 6; ++face) {
+        EXPECT_EQ(library.build_shared(scene.for_light(face)).get(), first.get()) << face;
+    }
+    EXPECT_EQ(corners_of(*first), corners_of(library.build(scene, nullptr)));
+
+    // Each change is made to the state just answered, so only that change can tell them apart.
+    auto expect_rebuilt = [&](const Scene& changed, const char* what) {
+        const auto base = library.build_shared(scene);
+        ASSERT_EQ(library.build_shared(scene).get(), base.get()) << what;
+        const auto again = library.build_shared(changed);
+        EXPECT_NE(again.get(), base.get()) << what;
+        EXPECT_EQ(corners_of(*again), corners_of(library.build(changed, nullptr))) << what;
+        ASSERT_EQ(again->size(), library.build(changed, nullptr).size()) << what;
+        for (size_t i = 0; i < again->size(); ++i) {
+            EXPECT_EQ((*again)[i].name, library.build(changed, nullptr)[i].name) << what;
+        }
+    };
+    Scene moved = scene;
+    moved.objects[1].transform = glm::translate(moved.objects[1].transform, glm::vec3(0, 0.25f, 0));
+    expect_rebuilt(moved, "moved");
+    Scene renamed = scene;
+    renamed.objects[0].name = "port";
+    expect_rebuilt(renamed, "renamed");
+    Scene glass = scene;
+    glass.materials.push_back({});
+    glass.materials.back().casts_shadow = false;
+    glass.objects[0].material = 1;
+    ASSERT_FALSE(glass.casts_shadow(glass.objects[0]));
+    expect_rebuilt(glass, "glass");
+    Scene exact = scene;
+    exact.bounds.occluders = Occluders::triangles;
+    expect_rebuilt(exact, "triangles");
+
+    library.set_caching(false);
+    EXPECT_NE(library.build_shared(scene).get(), library.build_shared(scene).get());
 }
 
 }  // namespace
