@@ -204,14 +204,21 @@ private:
     // True when every vertex lies outside one side of the influence pyramid or beyond its far
     // range: what the polygons bound casts no shadow inside it.
     bool outside_influence(const std::vector<Polygon>& polygons) const;
+    // A fragment of an inserted polygon waiting to go down the subtree at `node`; `ball` bounds
+    // the polygon it was cut from, and so the fragment.
+    struct Pending {
+        int32_t node = 0;
+        Polygon fragment;
+        Ball ball;
+    };
     // Takes `fragment` down from node `index` to its leaf, pushing the far parts of straddled
     // splits onto `stack`; -1 where nothing of it is left to attach.
-    int32_t descend(int32_t index, double nearest, Polygon& fragment,
-                    std::vector<std::pair<int32_t, Polygon>>& stack) const;
+    int32_t descend(int32_t index, double nearest, Polygon& fragment, const Ball& ball,
+                    std::vector<Pending>& stack) const;
     // What a fragment does to the leaf it reached; a part that must go down the subtree the
     // leaf has become is pushed onto `stack`.
-    void insert_at_leaf(int32_t index, const Polygon& fragment, const Inserted& inserted,
-                        std::vector<std::pair<int32_t, Polygon>>& stack);
+    void insert_at_leaf(int32_t index, const Polygon& fragment, const Ball& ball,
+                        const Inserted& inserted, std::vector<Pending>& stack);
     void attach(int32_t node, const Polygon& fragment, const Leaf& inside, const Leaf& outside);
     // The planes through L and the fragment's edges (corners merged, edges on a path plane
     // skipped), fragment behind; false where the fragment is edge-on to the light.

@@ -59,6 +59,33 @@ dvec3 centroid(const Polygon& polygon) {
     return polygon.vertices.empty() ? sum : sum / double(polygon.size());
 }
 
+Ball bounding_ball(const Polygon& polygon) {
+    Ball ball;
+    const size_t n = polygon.size();
+    if (n == 0) {
+        return ball;
+    }
+    dvec3 sum(0.0);
+    for (const dvec3& v : polygon.vertices) {
+        sum += v;
+    }
+    ball.center = sum / double(n);
+    double farthest2 = 0.0, extent = 0.0;  // squared radius; largest coordinate's magnitude
+    for (const dvec3& v : polygon.vertices) {
+        const dvec3 r = v - ball.center;
+        const double r2 = r.x * r.x + r.y * r.y + r.z * r.z;
+        farthest2 = r2 > farthest2 ? r2 : farthest2;
+        const double e = std::abs(v.x) + std::abs(v.y) + std::abs(v.z);
+        extent = e > extent ? e : extent;
+    }
+    // A vertex's distance to a unit-normal plane differs from the center's by at most the radius;
+    // the pad here and Ball::side's cover the round-off of both distances (a few ulps of the
+    // coordinates and of the plane's offset, far below 1e-12 of them), so that Ball::side never
+    // decides where side() would not.
+    ball.radius = std::sqrt(farthest2) * (1.0 + 1e-12) + 1e-12 * (1.0 + extent);
+    return ball;
+}
+
 Side side(const Polygon& polygon, const Plane& plane, double epsilon) {
     bool any_front = false, any_back = false;
     for (const dvec3& v : polygon.vertices) {
@@ -125,11 +152,14 @@ void cut_in_two(const Polygon& polygon, const double* d, bool cut_on_split_plane
             }
         }
     }
+    // Emptied, not freed: a caller that reuses the parts keeps their storage.
     if (front.size() < 3) {
-        front = Polygon();
+        front.vertices.clear();
+        front.on_split_plane = 0;
     }
     if (back.size() < 3) {
-        back = Polygon();
+        back.vertices.clear();
+        back.on_split_plane = 0;
     }
 }
 

@@ -3,6 +3,7 @@
 // planes with a thickness ε (Nilsson §4.3), and convex polyhedra clipped by planes.
 
 #include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -82,6 +83,23 @@ struct Split {
 // parts conserve its area. The new edge is marked with `cut_on_split_plane`.
 Split split(const Polygon& polygon, const Plane& plane, double epsilon,
             bool cut_on_split_plane = false);
+
+// A sphere around a polygon's vertices, for deciding in one distance where a plane leaves the
+// whole polygon (the usual case in a deep tree) before looking at its vertices.
+struct Ball {
+    dvec3 center{0.0};
+    double radius = 0.0;  // the farthest vertex from the center, padded for round-off
+
+    // Side::front or Side::back where every vertex is farther than ε on that side of the plane,
+    // exactly where side() finds so vertex by vertex; Side::straddling where the ball cannot
+    // tell (the polygon may still lie on one side).
+    Side side(const Plane& plane, double epsilon) const {
+        const double d = plane.distance(center);
+        const double reach = radius + epsilon + 1e-12 * std::abs(plane.offset);  // + round-off
+        return d > reach ? Side::front : d < -reach ? Side::back : Side::straddling;
+    }
+};
+Ball bounding_ball(const Polygon& polygon);
 
 // side() and split() in one pass over the distances, for a fragment descending a tree: where the
 // polygon lies, and when it straddles, its two parts in `front` and `back` (empty ones on entry)

@@ -124,6 +124,57 @@ TEST(Geometry, ConvexPolygonOnPlaneIsRobustToRoundOff) {
     }
 }
 
+// The descent's shortcut: where a polygon's bounding ball says a plane leaves the whole polygon
+// on one side, split_straddling() says so too, vertex by vertex. The planes are put at the tie,
+// the center's distance exactly the ball's radius plus ε (and within a few ulps of it), for
+// polygons from 1 fm to 3 m across, near the origin and a kilometre away, and planes whose
+// offsets are large (through a light far off).
+TEST(Geometry, BallDecidesOnlyWhereEveryVertexDoes) {
+    std::mt19937 rng(5);
+    int decided = 0, agreed = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const double scale = std::pow(10.0, uniform(rng, -15, 0.5));
+        const double far = i % 2 ? 0.0 : 1000.0;
+        const bt::Polygon polygon =
+            random_convex_polygon(rng, dvec3(uniform(rng, -5, 5)) + far * random_unit(rng), scale);
+        const bt::Ball ball = bt::bounding_ball(polygon);
+        const double epsilon = std::pow(10.0, uniform(rng, -15, -5));
+        bt::Plane plane{random_unit(rng), 0.0};
+        const double side_sign = i % 4 < 2 ? 1.0 : -1.0;
+        const int ulps = int(uniform(rng, -4, 4));
+        double target = ball.radius + epsilon;
+        for (int u = 0; u < std::abs(ulps); ++u) {
+            target = std::nextafter(target, ulps > 0 ? 2.0 * target : 0.0);
+        }
+        plane.offset = side_sign * target - glm::dot(plane.normal, ball.center);
+        const bt::Side by_ball = ball.side(plane, epsilon);
+        if (by_ball == bt::Side::straddling) {
+            continue;
+        }
+        ++decided;
+        bt::Polygon front, back;
+        const bt::Side by_vertex = bt::split_straddling(polygon, plane, epsilon, true, front, back);
+        agreed += by_vertex == by_ball;
+        ASSERT_EQ(by_vertex, by_ball) << "polygon " << i << " across " << scale << " m, epsilon "
+                                      << epsilon << ", " << ulps << " ulps from the tie";
+        EXPECT_TRUE(front.empty() && back.empty());
+    }
+    EXPECT_EQ(agreed, decided);
+    // Away from the tie the ball decides: a plane a radius beyond it leaves every polygon whole.
+    for (int i = 0; i < 1000; ++i) {
+        const bt::Polygon polygon = random_convex_polygon(rng, dvec3(uniform(rng, -5, 5)), 1.0);
+        const bt::Ball ball = bt::bounding_ball(polygon);
+        const bt::Plane plane{random_unit(rng), 0.0};
+        const bt::Plane beyond{plane.normal,
+                               2.0 * ball.radius - glm::dot(plane.normal, ball.center)};
+        ASSERT_EQ(ball.side(beyond, 1e-9), bt::Side::front);
+        ASSERT_EQ(ball.side(beyond.flipped(), 1e-9), bt::Side::back);
+        for (const dvec3& v : polygon.vertices) {
+            ASSERT_LE(glm::length(v - ball.center), ball.radius);
+        }
+    }
+}
+
 // Clipping a convex polyhedron by a plane and by its flip conserves the volume.
 TEST(Geometry, ClipConservesVolume) {
     std::mt19937 rng(2);
