@@ -426,8 +426,7 @@ int32_t BeamTree::descend(int32_t index, double nearest, Polygon& fragment, cons
     // Descend while the fragment lies on one side: no copies on the way down, and the parts of
     // a split reuse storage (the far part, going onto the stack, takes a finished fragment's).
     thread_local Polygon front, back;  // empty between splits
-    front.vertices.clear();
-    front.on_split_plane = 0;
+    front.clear();
     int32_t found = -1;
     for (;;) {
         const Node& node = at(index);
@@ -456,15 +455,13 @@ int32_t BeamTree::descend(int32_t index, double nearest, Polygon& fragment, cons
             stack.push_back({node.back, std::move(back), ball});
             back = reused_polygon();
         } else {
-            back.vertices.clear();
-            back.on_split_plane = 0;
+            back.clear();
         }
         if (!area_exceeds(front, epsilon_ * epsilon_)) {
             break;
         }
         std::swap(fragment, front);  // the old fragment's storage takes the next front part
-        front.vertices.clear();
-        front.on_split_plane = 0;
+        front.clear();
         index = node.front;
     }
     return found;

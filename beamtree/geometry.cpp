@@ -61,15 +61,10 @@ dvec3 centroid(const Polygon& polygon) {
 
 Ball bounding_ball(const Polygon& polygon) {
     Ball ball;
-    const size_t n = polygon.size();
-    if (n == 0) {
+    if (polygon.vertices.empty()) {
         return ball;
     }
-    dvec3 sum(0.0);
-    for (const dvec3& v : polygon.vertices) {
-        sum += v;
-    }
-    ball.center = sum / double(n);
+    ball.center = centroid(polygon);
     double farthest2 = 0.0, extent = 0.0;  // squared radius; largest coordinate's magnitude
     for (const dvec3& v : polygon.vertices) {
         const dvec3 r = v - ball.center;
@@ -154,12 +149,10 @@ void cut_in_two(const Polygon& polygon, const double* d, bool cut_on_split_plane
     }
     // Emptied, not freed: a caller that reuses the parts keeps their storage.
     if (front.size() < 3) {
-        front.vertices.clear();
-        front.on_split_plane = 0;
+        front.clear();
     }
     if (back.size() < 3) {
-        back.vertices.clear();
-        back.on_split_plane = 0;
+        back.clear();
     }
 }
 

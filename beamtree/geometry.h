@@ -56,6 +56,11 @@ struct Polygon {
     Polygon() = default;
     explicit Polygon(std::vector<dvec3> v) : vertices(std::move(v)) {}
     bool empty() const { return vertices.size() < 3; }
+    // No vertices and no marked edges, keeping the storage for the next polygon.
+    void clear() {
+        vertices.clear();
+        on_split_plane = 0;
+    }
     size_t size() const { return vertices.size(); }
     bool edge_on_split_plane(size_t i) const { return i < 64 && (on_split_plane >> i & 1u); }
 };
