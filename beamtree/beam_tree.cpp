@@ -442,11 +442,16 @@ int32_t BeamTree::descend(int32_t index, double nearest, Polygon& fragment, cons
             index = passed == Side::front ? node.front : node.back;
             continue;
         }
-        const Side where = split_straddling(fragment, node.plane, epsilon_, true, front, back);
+        uint64_t touching = 0;
+        const Side where = split_straddling(fragment, node.plane, epsilon_, true, front, back,
+                                            &touching, kCoincident * epsilon_);
         if (where == Side::coplanar) {
             break;  // on a plane through L: edge-on to the light, occludes nothing
         }
         if (where != Side::straddling) {
+            // An edge on the plane (shared with the polygon whose edge made it) already has
+            // its plane on the path: attach() adds none for it.
+            fragment.on_split_plane |= touching;
             index = where == Side::front ? node.front : node.back;
             continue;
         }

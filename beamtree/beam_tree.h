@@ -86,6 +86,11 @@ struct Beam {
 class BeamTree {
 public:
     static constexpr double kRelativeEpsilon = 1e-6;
+    // An edge whose ends lie within kCoincident·ε of a plane on a fragment's path lies on it (a
+    // neighbour's shared edge made the plane): it gets no plane of its own. Far above the
+    // round-off of a shared vertex (1e-16 of its coordinates) and far below ε, so that the beam
+    // it leaves out is a sliver of 1e-3 ε where the edge and the plane part.
+    static constexpr double kCoincident = 1e-3;
     // What an inserted polygon is: an outer volume's face (lit in front, uncertain behind), an
     // inner volume's face (unlit behind), or an exact triangle, both at once (unlit behind).
     enum class Role : uint8_t { occluder, stopper, opaque };

@@ -205,9 +205,24 @@ Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut
 }
 
 Side split_straddling(const Polygon& polygon, const Plane& plane, double epsilon,
-                      bool cut_on_split_plane, Polygon& front, Polygon& back) {
+                      bool cut_on_split_plane, Polygon& front, Polygon& back, uint64_t* touching,
+                      double coincident) {
     Distances d(polygon, plane, epsilon);
     if (!(d.any_front && d.any_back)) {
+        if (touching) {
+            // Edge i runs from vertex i to vertex i + 1 (the last one closes to vertex 0).
+            const size_t n = std::min<size_t>(polygon.size(), 64);
+            const double* distance = d.data();
+            uint64_t on = 0;
+            for (size_t i = 0; i < n; ++i) {
+                on |= uint64_t(std::abs(distance[i]) <= coincident) << i;
+            }
+            uint64_t next = on >> 1;
+            if (polygon.size() <= 64) {
+                next |= (on & 1u) << (n - 1);
+            }
+            *touching = on & next;
+        }
         return d.any_front ? Side::front : d.any_back ? Side::back : Side::coplanar;
     }
     cut_in_two(polygon, d.data(), cut_on_split_plane, front, back, nullptr);

@@ -108,9 +108,12 @@ Ball bounding_ball(const Polygon& polygon);
 
 // side() and split() in one pass over the distances, for a fragment descending a tree: where the
 // polygon lies, and when it straddles, its two parts in `front` and `back` (empty ones on entry)
-// exactly as split() cuts them.
+// exactly as split() cuts them. Where it lies on one side, `touching` (when given) receives the
+// edges whose both ends lie within `coincident` of the plane, one bit per edge as
+// Polygon::on_split_plane marks them (an edge shared with a polygon whose edge made the plane).
 Side split_straddling(const Polygon& polygon, const Plane& plane, double epsilon,
-                      bool cut_on_split_plane, Polygon& front, Polygon& back);
+                      bool cut_on_split_plane, Polygon& front, Polygon& back,
+                      uint64_t* touching = nullptr, double coincident = 0.0);
 
 // The convex polygon spanned by points lying on `plane`, counter-clockwise around its normal,
 // with duplicates (within epsilon) removed; empty when fewer than three remain.
