@@ -249,7 +249,7 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     for (const Inserting& o : polygons) {
         if (o.reversed) {
             const std::vector<dvec3>& v = o.polygon->vertices;
-            insert(Polygon({v[0], v[2], v[1]}), o.plane, o.role);
+            insert(Polygon(std::vector<dvec3>(v.rbegin(), v.rend())), o.plane, o.role);
         } else {
             insert(*o.polygon, o.plane, o.role);
         }
@@ -397,7 +397,7 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
     const bool stops = role != Role::occluder;
     ++(role == Role::occluder  ? outer_polygons_
        : role == Role::stopper ? stopper_polygons_
-                               : exact_triangles_);
+                               : exact_polygons_);
     Inserted inserted{role, plane, -1, nearest_to_light(clipped)};
     if (stops) {
         inserted.stopper = int32_t(stoppers_.size());
@@ -1092,7 +1092,7 @@ BeamTreeStats BeamTree::stats() const {
     stats.nodes = nodes_.size();
     stats.outer_polygons = outer_polygons_;
     stats.stopper_polygons = stopper_polygons_;
-    stats.exact_triangles = exact_triangles_;
+    stats.exact_polygons = exact_polygons_;
     std::vector<std::pair<int32_t, size_t>> stack = {{0, 1}};
     while (!stack.empty()) {
         const auto [index, depth] = stack.back();

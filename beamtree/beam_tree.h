@@ -71,7 +71,9 @@ struct BeamTreeStats {
     size_t blocker_leaves = 0;
     size_t outer_polygons = 0;    // light-facing outer-volume polygons inserted
     size_t stopper_polygons = 0;  // light-facing inner-volume polygons inserted
-    size_t exact_triangles = 0;   // light-facing exact triangles, each an occluder and a stopper
+    // Light-facing exact occluders (a mesh's coplanar triangles joined: coplanar_faces.h), each
+    // an occluder and a stopper.
+    size_t exact_polygons = 0;
     size_t max_depth = 0;
 };
 
@@ -263,7 +265,7 @@ private:
     std::vector<Plane> stoppers_;
     size_t outer_polygons_ = 0;
     size_t stopper_polygons_ = 0;
-    size_t exact_triangles_ = 0;
+    size_t exact_polygons_ = 0;
 };
 
 // The beam tree of a scene's light over its objects' bounding volumes, built with the scene's

@@ -585,8 +585,9 @@ ExactOccluders exact_occluders(const std::vector<ObjectVolumes>& volumes) {
     ExactOccluders out;
     for (const ObjectVolumes& v : volumes) {
         if (!v.triangles.empty()) {
-            out.triangles += v.triangles.size();
-            out.list.push_back({v.name, v.triangles.size(), v.why_triangles});
+            out.triangles += v.mesh_triangles;
+            out.polygons += v.triangles.size();
+            out.list.push_back({v.name, v.mesh_triangles, v.why_triangles});
         }
     }
     return out;
@@ -739,7 +740,7 @@ std::vector<std::string> VolumeLibrary::exact_objects(const Scene& scene) {
     return exact;
 }
 
-std::shared_ptr<const ClosedSurface> VolumeLibrary::surface_of(
+std::shared_ptr<const VolumeLibrary::MeshSurface> VolumeLibrary::surface_of(
     const std::shared_ptr<const Mesh>& mesh) {
     {
         const std::lock_guard lock(mutex_);
@@ -750,7 +751,8 @@ std::shared_ptr<const ClosedSurface> VolumeLibrary::surface_of(
             surfaces_.erase(it);
         }
     }
-    auto surface = std::make_shared<const ClosedSurface>(closed_surface(*mesh));
+    auto surface = std::make_shared<const MeshSurface>(
+        MeshSurface{closed_surface(*mesh), coplanar_faces(*mesh)});
     const std::lock_guard lock(mutex_);
     surfaces_[mesh.get()] = {mesh, surface};
     return surface;
@@ -762,20 +764,21 @@ ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
     volumes.object = index;
     volumes.name = object.name;
     const Mesh& mesh = *object.mesh;
-    const std::shared_ptr<const ClosedSurface> surface = surface_of(object.mesh);
-    volumes.closed = surface->usable();
+    const std::shared_ptr<const MeshSurface> surface = surface_of(object.mesh);
+    volumes.closed = surface->closed.usable();
+    volumes.mesh_triangles = mesh.triangles.size();
     // A mirroring transform turns every winding.
     const int8_t mirrored = glm::determinant(glm::dmat3(transform)) < 0.0 ? -1 : 1;
-    volumes.triangles.reserve(mesh.triangles.size());
-    for (size_t f = 0; f < mesh.triangles.size(); ++f) {
-        const glm::uvec3& t = mesh.triangles[f];
+    const CoplanarFaces& faces = surface->faces;
+    volumes.triangles.reserve(faces.faces.size());
+    for (size_t f = 0; f < faces.faces.size(); ++f) {
         std::vector<dvec3> corners;
-        corners.reserve(3);
-        for (int k = 0; k < 3; ++k) {
-            corners.emplace_back(transform * glm::dvec4(dvec3(mesh.positions[t[k]]), 1.0));
+        corners.reserve(faces.faces[f].size());
+        for (const uint32_t k : faces.faces[f]) {
+            corners.emplace_back(transform * glm::dvec4(dvec3(mesh.positions[k]), 1.0));
         }
-        if (volumes.closed && surface->outward[f] * mirrored < 0) {
-            std::swap(corners[1], corners[2]);  // wound outward in the world
+        if (volumes.closed && surface->closed.outward[faces.triangle[f]] * mirrored < 0) {
+            std::reverse(corners.begin(), corners.end());  // wound outward in the world
         }
         volumes.triangles.emplace_back(std::move(corners));
     }

@@ -18,6 +18,7 @@
 
 #include "beamtree/closed_surface.h"
 #include "beamtree/convex_volume.h"
+#include "beamtree/coplanar_faces.h"
 #include "beamtree/geometry.h"
 #include "core/check.h"
 #include "scenes/scene.h"
@@ -34,9 +35,11 @@ struct ObjectVolumes {
     ConvexVolume outer;
     std::vector<ConvexVolume> inner;
     // Exact occluders ([beamtree] occluders = triangles, or auto for an object without an inner
-    // volume): the object's triangles in world space, each unlit behind it. Then `outer` and
-    // `inner` are empty.
+    // volume): the object's triangles in world space, each unlit behind it, neighbours on one
+    // plane joined into convex polygons (beamtree/coplanar_faces.h). Then `outer` and `inner`
+    // are empty.
     std::vector<Polygon> triangles;
+    size_t mesh_triangles = 0;  // the triangles of the mesh they came from
     // The triangles make a closed surface wound outward in world space (closed_surface.h): while
     // the light is outside their bounds, those facing away from it may be left out of the tree.
     bool closed = false;
@@ -48,6 +51,7 @@ struct ObjectVolumes {
 // How many objects entered the tree as exact triangles, and those triangles.
 struct ExactOccluders {
     size_t triangles = 0;  // of every object in `list`
+    size_t polygons = 0;   // those triangles joined into coplanar faces: what the tree takes
     struct Object {
         std::string name;
         size_t triangles = 0;
@@ -153,7 +157,12 @@ private:
     void append_volumes(const Object& object, int index, std::vector<ObjectVolumes>& result);
     // Scene object `index` as its triangles (exact occluders).
     ObjectVolumes triangles_of(const Object& object, int index);
-    std::shared_ptr<const ClosedSurface> surface_of(const std::shared_ptr<const Mesh>& mesh);
+    // What the triangles of one mesh need, once per mesh.
+    struct MeshSurface {
+        ClosedSurface closed;
+        CoplanarFaces faces;
+    };
+    std::shared_ptr<const MeshSurface> surface_of(const std::shared_ptr<const Mesh>& mesh);
     // Which objects enter the tree as triangles under the scene's [beamtree] occluders, and why
     // (ObjectVolumes::why_triangles; empty: its volumes).
     std::vector<std::string> exact_objects(const Scene& scene);
@@ -182,9 +191,9 @@ private:
     std::shared_ptr<const std::vector<ObjectVolumes>> last_volumes_;
     mutable std::mutex mutex_;
     std::map<const Mesh*, Entry> cache_;
-    // Each mesh's closed_surface(), once per mesh (for the objects that go in as triangles).
-    std::map<const Mesh*,
-             std::pair<std::weak_ptr<const Mesh>, std::shared_ptr<const ClosedSurface>>>
+    // Each mesh's closed_surface() and coplanar_faces(), once per mesh (for the objects that go
+    // in as triangles).
+    std::map<const Mesh*, std::pair<std::weak_ptr<const Mesh>, std::shared_ptr<const MeshSurface>>>
         surfaces_;
     std::set<std::pair<uint64_t, uint64_t>> verified_boxes_;
     VolumeLibraryStats stats_;

@@ -117,7 +117,7 @@ Row regions_summary_json(const RegionsSummaryInputs& in) {
           {"blocker_leaves", stats.blocker_leaves},
           {"outer_polygons", stats.outer_polygons},
           {"stopper_polygons", stats.stopper_polygons},
-          {"exact_triangles", stats.exact_triangles}}},
+          {"exact_polygons", stats.exact_polygons}}},
         {"regions",
          {{"lit", region_json(in.regions, bt::Region::lit)},
           {"uncertain", region_json(in.regions, bt::Region::uncertain)},
@@ -153,9 +153,10 @@ std::string regions_summary_text(const RegionsSummaryInputs& in, double write_ms
             ? std::string()
             : fmt::format(" in {} convex pieces ({} objects x pieces)", piece_count, pieces);
     if (exact_objects > 0) {
-        objects += fmt::format("{} {} objects as {} exact triangles (occluders = {})",
-                               objects.empty() ? ":" : ";", exact_objects, exact_triangles,
-                               to_string(in.scene.bounds.occluders));
+        objects +=
+            fmt::format("{} {} objects as {} exact triangles in {} coplanar faces (occluders = {})",
+                        objects.empty() ? ":" : ";", exact_objects, exact_triangles, exact.polygons,
+                        to_string(in.scene.bounds.occluders));
     }
     const bt::Regions& r = in.regions;
     const RegionsTimings& t = in.timings;

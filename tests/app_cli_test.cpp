@@ -691,7 +691,7 @@ translate = [3.0, 0.5, 3.0]
     const nlohmann::json exact_json = nlohmann::json::parse(exact_file);
     EXPECT_EQ(exact_json["occluders"], "auto");
     EXPECT_EQ(exact_json["objects_as_triangles"].size(), 2u) << exact_json.dump(2);
-    EXPECT_GT(exact_json["tree"]["exact_triangles"].get<int>(), 0);
+    EXPECT_GT(exact_json["tree"]["exact_polygons"].get<int>(), 0);
     const CommandResult bad = run_shaftlab("regions --occluders exact --scene " + scene +
                                            " --size 32x18 --out " + (dir / "d").string());
     EXPECT_NE(bad.exit_code, 0);

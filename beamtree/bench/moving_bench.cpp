@@ -200,7 +200,7 @@ void scaling_table(const char* route, const RegionRequest& request, const SceneS
         const BeamTreeStats stats = build_frame_regions(scene, request).tree->stats();
         fit.emplace_back(std::log(double(n)), std::log(quantile(s.totals(), 0.5)));
         fmt::print("| {} | {} | {} |{}\n", n, scene.triangle_count(),
-                   stats.outer_polygons + stats.stopper_polygons + stats.exact_triangles,
+                   stats.outer_polygons + stats.stopper_polygons + stats.exact_polygons,
                    stage_cells(s));
         std::fflush(stdout);
     }
