@@ -73,7 +73,31 @@ struct Inserting {
     Plane plane;             // facing the light
     BeamTree::Role role;
     bool reversed = false;  // a triangle wound the other way about `plane`: turned when inserted
+    int32_t object = -1;    // an exact face's object (its index among the volumes), else -1
 };
+
+// The faces of the box around `polygons` (outward, counter-clockwise seen from outside).
+std::vector<Polygon> box_faces(const std::vector<Polygon>& polygons) {
+    dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const Polygon& polygon : polygons) {
+        for (const dvec3& v : polygon.vertices) {
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
+    }
+    auto corner = [&](int i) {
+        return dvec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+    };
+    // -x, +x, -y, +y, -z, +z, each counter-clockwise about its outward normal.
+    constexpr int kFaces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                  {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    std::vector<Polygon> faces;
+    for (const auto& face : kFaces) {
+        faces.emplace_back(
+            std::vector<dvec3>{corner(face[0]), corner(face[1]), corner(face[2]), corner(face[3])});
+    }
+    return faces;
+}
 
 // The point of triangle abc closest to p (Ericson, Real-Time Collision Detection §5.1.5).
 dvec3 closest_on_triangle(const dvec3& p, const dvec3& a, const dvec3& b, const dvec3& c) {
@@ -130,7 +154,8 @@ double distance_to_polygon(const dvec3& p, const Polygon& polygon) {
 // a polygon's distance from the light (BeamTree::nearest_to_light).
 template <typename Side, typename Nearest>
 void add_facing_triangles(const std::vector<Polygon>& triangles, const Side& side,
-                          const Nearest& nearest, bool outward_only, std::vector<Inserting>& out) {
+                          const Nearest& nearest, bool outward_only, int32_t object,
+                          std::vector<Inserting>& out) {
     for (const Polygon& triangle : triangles) {
         const std::vector<dvec3>& v = triangle.vertices;
         Plane plane;
@@ -142,7 +167,7 @@ void add_facing_triangles(const std::vector<Polygon>& triangles, const Side& sid
             continue;
         }
         out.push_back({nearest(triangle), &triangle, reversed ? plane.flipped() : plane,
-                       BeamTree::Role::opaque, reversed});
+                       BeamTree::Role::opaque, reversed, object});
     }
 }
 
@@ -213,7 +238,16 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     // after every occluder; the regions are the same, and on multiple:1650 the tree is as big
     // and 20 % faster to build this way.)
     std::vector<Inserting> polygons;
-    for (const ObjectVolumes& object : volumes) {
+    // Per object of exact faces: the faces of its box that face the light (empty where the
+    // light is within ε of the box), whether the rest of its faces is hidden, and when to ask.
+    struct Hiding {
+        std::vector<Polygon> box;
+        bool hidden = false;
+        size_t seen = 0, next_question = 0;
+    };
+    std::vector<Hiding> hiding(volumes.size());
+    for (size_t k = 0; k < volumes.size(); ++k) {
+        const ObjectVolumes& object = volumes[k];
         if (outside_influence(object.triangles.empty() ? object.outer.faces : object.triangles)) {
             continue;
         }
@@ -225,7 +259,23 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
             add_facing_triangles(
                 object.triangles, [&](const Plane& plane) { return light_side(plane); },
                 [&](const Polygon& triangle) { return nearest_to_light(triangle); }, outward_only,
-                polygons);
+                int32_t(k), polygons);
+            if (object.triangles.size() >= kHidingFaces) {
+                std::vector<Polygon> box = box_faces(object.triangles);
+                bool beside = false;  // the light inside the box, or within ε of a face's plane
+                for (const Polygon& face : box) {
+                    Plane plane;
+                    Plane::through(face.vertices[0], face.vertices[1], face.vertices[2], plane);
+                    const double s = light_side(plane);
+                    beside |= std::abs(s) <= epsilon_;
+                    if (s > epsilon_) {
+                        hiding[k].box.push_back(face);
+                    }
+                }
+                if (beside || hiding[k].box.empty()) {
+                    hiding[k].box.clear();
+                }
+            }
             continue;
         }
         // A volume's faces go in together, at the distance of the box around it.
@@ -253,6 +303,25 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     parents_.reserve(nodes_.capacity());
     for (const auto& [distance, i] : order) {
         const Inserting& o = polygons[i];
+        if (o.object >= 0) {
+            // An object whose box lies wholly behind what is in already, from this face's depth
+            // on, has nothing left that the tree would keep: each of its faces would descend to
+            // nodes that all lie beyond their reach, and be dropped there. Asked at its first
+            // face, then after 8, 24, 56, ... of them.
+            Hiding& h = hiding[size_t(o.object)];
+            if (h.hidden) {
+                ++hidden_polygons_;
+                continue;
+            }
+            if (!h.box.empty() && h.seen++ == h.next_question) {
+                h.next_question = 2 * h.next_question + 8;
+                if (hidden_beyond(h.box, distance)) {
+                    h.hidden = true;
+                    ++hidden_polygons_;
+                    continue;
+                }
+            }
+        }
         if (o.reversed) {
             const std::vector<dvec3>& v = o.polygon->vertices;
             insert(Polygon(std::vector<dvec3>(v.rbegin(), v.rend())), o.plane, o.role);
@@ -425,6 +494,41 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
         }
         recycle(std::move(next.fragment));
     }
+}
+
+bool BeamTree::hidden_beyond(const std::vector<Polygon>& polygons, double nearest) const {
+    // Every ray through the polygons, followed down the tree: a part that comes within ε of a
+    // plane goes down both sides whole (a superset of the rays a face's fragment could take
+    // there, whatever ε decides for it), so that the answer never depends on round-off.
+    thread_local std::vector<std::pair<int32_t, const Polygon*>> stack;
+    stack.clear();
+    for (const Polygon& polygon : polygons) {
+        stack.push_back({0, &polygon});
+    }
+    while (!stack.empty()) {
+        auto [index, polygon] = stack.back();
+        stack.pop_back();
+        for (;;) {
+            const Node& node = at(index);
+            if (nearest > double(node.reach) || node.kind == Kind::out) {
+                break;  // unlit beyond its reach, or outside the influence
+            }
+            if (node.kind != Kind::split) {
+                return false;  // a leaf that something beyond `nearest` would still change
+            }
+            bool front = false, back = false;
+            for (const dvec3& v : polygon->vertices) {
+                const double d = node.plane.distance(v);
+                front |= d > -epsilon_;
+                back |= d < epsilon_;
+            }
+            if (front && back) {
+                stack.push_back({node.back, polygon});
+            }
+            index = front ? node.front : node.back;
+        }
+    }
+    return true;
 }
 
 int32_t BeamTree::descend(int32_t index, double nearest, Polygon& fragment, const Ball& ball,
@@ -1099,6 +1203,7 @@ BeamTreeStats BeamTree::stats() const {
     stats.outer_polygons = outer_polygons_;
     stats.stopper_polygons = stopper_polygons_;
     stats.exact_polygons = exact_polygons_;
+    stats.hidden_polygons = hidden_polygons_;
     std::vector<std::pair<int32_t, size_t>> stack = {{0, 1}};
     while (!stack.empty()) {
         const auto [index, depth] = stack.back();

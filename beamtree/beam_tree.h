@@ -74,6 +74,9 @@ struct BeamTreeStats {
     // Light-facing exact occluders (a mesh's coplanar triangles joined: coplanar_faces.h), each
     // an occluder and a stopper.
     size_t exact_polygons = 0;
+    // Light-facing exact faces left out because their object's box was wholly hidden behind
+    // what was in already (they would have changed nothing).
+    size_t hidden_polygons = 0;
     size_t max_depth = 0;
 };
 
@@ -220,6 +223,12 @@ private:
     };
     // Takes `fragment` down from node `index` to its leaf, pushing the far parts of straddled
     // splits onto `stack`; -1 where nothing of it is left to attach.
+    // True when every ray through `polygons` (faces of a box around what is still to come) is
+    // unlit beyond `nearest` in the tree as it stands: then nothing that lies in the box
+    // beyond that depth can change the tree.
+    bool hidden_beyond(const std::vector<Polygon>& polygons, double nearest) const;
+    // Objects of fewer exact faces are not asked about: inserting them costs about as much.
+    static constexpr size_t kHidingFaces = 16;
     int32_t descend(int32_t index, double nearest, Polygon& fragment, const Ball& ball,
                     std::vector<Pending>& stack) const;
     // What a fragment does to the leaf it reached; a part that must go down the subtree the
@@ -266,6 +275,7 @@ private:
     size_t outer_polygons_ = 0;
     size_t stopper_polygons_ = 0;
     size_t exact_polygons_ = 0;
+    size_t hidden_polygons_ = 0;
 };
 
 // The beam tree of a scene's light over its objects' bounding volumes, built with the scene's

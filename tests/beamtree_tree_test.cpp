@@ -397,12 +397,16 @@ TEST(BeamTree, PointsBehindATerrainCutIntoPiecesAreNotLit) {
 // volumes and triangles: with volumes alone (pieces) and as the scene sets it (auto: the open and
 // loose objects as triangles).
 TEST(BeamTree, IsSoundOnTheHouse) {
-    for (const Occluders occluders : {Occluders::volumes, Occluders::automatic}) {
+    for (const Occluders occluders :
+         {Occluders::volumes, Occluders::automatic, Occluders::triangles}) {
         Scene scene = load_canonical("house");
         scene.bounds.occluders = occluders;
         bt::VolumeLibrary library({.pieces = true});
         const std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
         const bt::BeamTree tree(scene.light, volumes);
+        if (occluders == Occluders::triangles) {
+            EXPECT_GT(tree.stats().hidden_polygons, 1000u) << "objects hidden behind the walls";
+        }
         Oracles oracles;
         add_volumes(volumes, scene, oracles);
         std::mt19937 rng(37);
@@ -646,6 +650,50 @@ TEST(BeamTree, BothGpuLayoutsHoldTheTreeClassifyWalks) {
     }
     EXPECT_GT(compared, 90000u);
     EXPECT_GT(splits, 5000u) << "the level's tree is deep";
+}
+
+// An object whose box lies wholly behind what is in already is left out (BeamTree's
+// hidden_beyond): it changes nothing. The same faces cut into objects of 8 faces, too few to be
+// asked about, and inserted in the same order, build the same tree node for node (planes,
+// children, leaves and their stoppers' planes), on the house from its light (most of its faces
+// hidden) and under a sun, and on the level.
+TEST(BeamTree, HiddenObjectsAreLeftOutAndChangeNothing) {
+    std::vector<Scene> scenes = {load_canonical("house"), load_canonical("house-morning"),
+                                 load_canonical("arena")};
+    for (Scene& scene : scenes) {
+        scene.bounds.occluders = Occluders::triangles;
+        bt::VolumeLibrary library(scene.bounds);
+        const std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
+        std::vector<bt::ObjectVolumes> pieces;
+        for (const bt::ObjectVolumes& object : volumes) {
+            for (size_t first = 0; first < object.triangles.size(); first += 8) {
+                bt::ObjectVolumes piece = object;
+                piece.triangles.assign(
+                    object.triangles.begin() + std::ptrdiff_t(first),
+                    object.triangles.begin() +
+                        std::ptrdiff_t(std::min(first + 8, object.triangles.size())));
+                pieces.push_back(std::move(piece));
+            }
+        }
+        const SpotLight light = scene.spot_lights().front();
+        const bt::BeamTree whole(light, volumes), cut(light, pieces);
+        EXPECT_GT(whole.stats().hidden_polygons, 0u) << scene.name;
+        EXPECT_EQ(cut.stats().hidden_polygons, 0u) << scene.name;
+        const bt::GpuTree a = whole.gpu_tree(bt::GpuTreeLayout::build);
+        const bt::GpuTree b = cut.gpu_tree(bt::GpuTreeLayout::build);
+        ASSERT_EQ(a.nodes.size(), b.nodes.size()) << scene.name;
+        // The stoppers are numbered as their faces went in (a hidden face left out, or a piece
+        // wholly outside the light's influence, takes no number): a blocker's stopper is compared
+        // by its plane.
+        size_t differ = 0;
+        for (size_t i = 0; i < a.nodes.size(); ++i) {
+            const glm::ivec4 p = a.nodes[i].link, q = b.nodes[i].link;
+            differ += a.nodes[i].plane != b.nodes[i].plane || glm::ivec3(p) != glm::ivec3(q) ||
+                      (p.w >= 0) != (q.w >= 0) ||
+                      (p.w >= 0 && a.planes.at(size_t(p.w)) != b.planes.at(size_t(q.w)));
+        }
+        EXPECT_EQ(differ, 0u) << scene.name;
+    }
 }
 
 // Neighbouring triangles share their edges: the plane through L and a shared edge is made once,
