@@ -465,8 +465,24 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
         return;
     }
     // Nothing beyond the far range matters (Nilsson §4.2): clip to the backplate first.
-    Polygon clipped = split(polygon, influence_[5], epsilon_).back;
+    // (as split(...).back, into a finished fragment's storage instead of a new one)
+    Polygon clipped = reused_polygon();
+    thread_local Polygon beyond;  // the part past the far range: dropped
+    beyond.clear();
+    switch (split_straddling(polygon, influence_[5], epsilon_, false, beyond, clipped)) {
+        case Side::back:
+            clipped.vertices.assign(polygon.vertices.begin(), polygon.vertices.end());
+            clipped.on_split_plane = polygon.on_split_plane;
+            break;
+        case Side::straddling:
+            break;
+        case Side::front:
+        case Side::coplanar:
+            clipped.clear();
+            break;
+    }
     if (clipped.empty()) {
+        recycle(std::move(clipped));
         return;
     }
     const bool stops = role != Role::occluder;
