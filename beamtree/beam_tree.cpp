@@ -30,15 +30,21 @@ const char* to_string(Region region) {
 
 namespace {
 
-// From p to the box around the polygons (an object's outer volume).
-double distance_to_box(const dvec3& p, const std::vector<Polygon>& polygons) {
+// The box around the polygons' vertices: its least and greatest corners.
+std::pair<dvec3, dvec3> bounds_of(const std::vector<Polygon>& polygons) {
     dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
-    for (const Polygon& face : polygons) {
-        for (const dvec3& v : face.vertices) {
+    for (const Polygon& polygon : polygons) {
+        for (const dvec3& v : polygon.vertices) {
             lo = glm::min(lo, v);
             hi = glm::max(hi, v);
         }
     }
+    return {lo, hi};
+}
+
+// From p to the box around the polygons (an object's outer volume).
+double distance_to_box(const dvec3& p, const std::vector<Polygon>& polygons) {
+    const auto [lo, hi] = bounds_of(polygons);
     return glm::length(glm::max(dvec3(0.0), glm::max(lo - p, p - hi)));
 }
 
@@ -76,25 +82,32 @@ struct Inserting {
     int32_t object = -1;    // an exact face's object (its index among the volumes), else -1
 };
 
-// The faces of the box around `polygons` (outward, counter-clockwise seen from outside).
-std::vector<Polygon> box_faces(const std::vector<Polygon>& polygons) {
-    dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    for (const Polygon& polygon : polygons) {
-        for (const dvec3& v : polygon.vertices) {
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-        }
-    }
+// The faces of the box around `polygons` whose outward side faces the light by more than ε
+// (`side(plane)`: BeamTree::light_side); none where the light lies within ε of a face's plane
+// and the box (the light inside, or on the edge of, what the faces bound).
+template <typename Side>
+std::vector<Polygon> facing_box_faces(const std::vector<Polygon>& polygons, const Side& side,
+                                      double epsilon) {
+    const auto [lo, hi] = bounds_of(polygons);
     auto corner = [&](int i) {
         return dvec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
     };
-    // -x, +x, -y, +y, -z, +z, each counter-clockwise about its outward normal.
-    constexpr int kFaces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                  {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    // -x, +x, -y, +y, -z, +z: each face's corners counter-clockwise about its outward normal.
+    constexpr int kCorners[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                    {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    const Plane planes[6] = {{{-1, 0, 0}, lo.x}, {{1, 0, 0}, -hi.x}, {{0, -1, 0}, lo.y},
+                             {{0, 1, 0}, -hi.y}, {{0, 0, -1}, lo.z}, {{0, 0, 1}, -hi.z}};
     std::vector<Polygon> faces;
-    for (const auto& face : kFaces) {
-        faces.emplace_back(
-            std::vector<dvec3>{corner(face[0]), corner(face[1]), corner(face[2]), corner(face[3])});
+    for (int f = 0; f < 6; ++f) {
+        const double s = side(planes[f]);
+        if (std::abs(s) <= epsilon) {
+            return {};
+        }
+        if (s > epsilon) {
+            const int* c = kCorners[f];
+            faces.emplace_back(
+                std::vector<dvec3>{corner(c[0]), corner(c[1]), corner(c[2]), corner(c[3])});
+        }
     }
     return faces;
 }
@@ -173,13 +186,7 @@ void add_facing_triangles(const std::vector<Polygon>& triangles, const Side& sid
 
 // True when p lies within `margin` of the box around the polygons' vertices.
 bool near_bounds(const std::vector<Polygon>& polygons, const dvec3& p, double margin) {
-    dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
-    for (const Polygon& polygon : polygons) {
-        for (const dvec3& v : polygon.vertices) {
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-        }
-    }
+    const auto [lo, hi] = bounds_of(polygons);
     return glm::all(glm::greaterThanEqual(p, lo - margin)) &&
            glm::all(glm::lessThanEqual(p, hi + margin));
 }
@@ -238,8 +245,9 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     // after every occluder; the regions are the same, and on multiple:1650 the tree is as big
     // and 20 % faster to build this way.)
     std::vector<Inserting> polygons;
-    // Per object of exact faces: the faces of its box that face the light (empty where the
-    // light is within ε of the box), whether the rest of its faces is hidden, and when to ask.
+    // Per object of exact faces: the faces of its box that face the light (none where the
+    // light is within ε of the box's planes), whether the rest of its faces is hidden, and when
+    // to ask.
     struct Hiding {
         std::vector<Polygon> box;
         bool hidden = false;
@@ -261,20 +269,9 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
                 [&](const Polygon& triangle) { return nearest_to_light(triangle); }, outward_only,
                 int32_t(k), polygons);
             if (object.triangles.size() >= kHidingFaces) {
-                std::vector<Polygon> box = box_faces(object.triangles);
-                bool beside = false;  // the light inside the box, or within ε of a face's plane
-                for (const Polygon& face : box) {
-                    Plane plane;
-                    Plane::through(face.vertices[0], face.vertices[1], face.vertices[2], plane);
-                    const double s = light_side(plane);
-                    beside |= std::abs(s) <= epsilon_;
-                    if (s > epsilon_) {
-                        hiding[k].box.push_back(face);
-                    }
-                }
-                if (beside || hiding[k].box.empty()) {
-                    hiding[k].box.clear();
-                }
+                hiding[k].box = facing_box_faces(
+                    object.triangles, [&](const Plane& plane) { return light_side(plane); },
+                    epsilon_);
             }
             continue;
         }

@@ -221,14 +221,14 @@ private:
         Polygon fragment;
         Ball ball;
     };
-    // Takes `fragment` down from node `index` to its leaf, pushing the far parts of straddled
-    // splits onto `stack`; -1 where nothing of it is left to attach.
     // True when every ray through `polygons` (faces of a box around what is still to come) is
     // unlit beyond `nearest` in the tree as it stands: then nothing that lies in the box
     // beyond that depth can change the tree.
     bool hidden_beyond(const std::vector<Polygon>& polygons, double nearest) const;
     // Objects of fewer exact faces are not asked about: inserting them costs about as much.
     static constexpr size_t kHidingFaces = 16;
+    // Takes `fragment` down from node `index` to its leaf, pushing the far parts of straddled
+    // splits onto `stack`; -1 where nothing of it is left to attach.
     int32_t descend(int32_t index, double nearest, Polygon& fragment, const Ball& ball,
                     std::vector<Pending>& stack) const;
     // What a fragment does to the leaf it reached; a part that must go down the subtree the

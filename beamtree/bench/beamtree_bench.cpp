@@ -42,9 +42,9 @@ void build_tree(benchmark::State& state) {
 // About 10, 100, 1k and 10k light-facing outer polygons.
 BENCHMARK(build_tree)->Arg(2)->Arg(16)->Arg(165)->Arg(1650)->Unit(benchmark::kMillisecond);
 
-// Exact occluders (issue 46 item 2): the real scenes with every object as its triangles (coplanar
-// neighbours joined into convex faces), each an occluder and a stopper at once; per inserted
-// polygon is the figure to read, beside the scene's triangles.
+// Exact occluders: the real scenes with every object as its triangles (coplanar neighbours joined
+// into convex faces), each an occluder and a stopper at once; the time per light-facing face
+// offered is the figure to read, beside the scene's triangles.
 void build_tree_exact(benchmark::State& state, const char* name) {
     Scene scene = load_scene(name, SceneSearchPaths::defaults());
     scene.bounds.occluders = Occluders::triangles;
