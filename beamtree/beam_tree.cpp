@@ -88,7 +88,11 @@ struct Inserting {
 template <typename Side>
 std::vector<Polygon> facing_box_faces(const std::vector<Polygon>& polygons, const Side& side,
                                       double epsilon) {
-    const auto [lo, hi] = bounds_of(polygons);
+    // Named copies, not a structured binding: clang 14 (the fuzz build's) lets no lambda
+    // capture one.
+    const std::pair<dvec3, dvec3> bounds = bounds_of(polygons);
+    const dvec3 lo = bounds.first;
+    const dvec3 hi = bounds.second;
     auto corner = [&](int i) {
         return dvec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
     };
