@@ -164,27 +164,31 @@ double distance_to_polygon(const dvec3& p, const Polygon& polygon) {
 // occluder and a stopper on the same plane at once, so that behind it the leaf is a blocker
 // whose uncertain layer (between occluder and stopper) is empty: unlit, exactly. Each triangle
 // is placed by its own distance, so that the triangles of neighbouring objects interleave.
-// Degenerate triangles cover nothing and are left out. With `outward_only` (a closed surface
-// wound outward, the light outside it: ObjectVolumes::closed) the triangles facing away from
-// the light are left out too: they block nothing the others do not (closed_surface.h).
+// Degenerate triangles cover nothing and are left out. With `outward_only` (the light outside
+// the object's bounds), a triangle that lies on a closed component wound outward
+// (ObjectVolumes::closed_faces) and faces away from the light is left out too: it blocks nothing
+// the others do not (closed_surface.h).
 // `side(plane)`: the light's signed distance from a plane (BeamTree::light_side); `nearest(p)`:
 // a polygon's distance from the light (BeamTree::nearest_to_light).
 template <typename Side, typename Nearest>
-void add_facing_triangles(const std::vector<Polygon>& triangles, const Side& side,
-                          const Nearest& nearest, bool outward_only, int32_t object,
-                          std::vector<Inserting>& out) {
-    for (const Polygon& triangle : triangles) {
+void add_facing_triangles(const ObjectVolumes& object, const Side& side, const Nearest& nearest,
+                          bool outward_only, int32_t object_index, std::vector<Inserting>& out) {
+    const std::vector<Polygon>& triangles = object.triangles;
+    const bool closed = outward_only && !object.closed_faces.empty();
+    SL_CHECK(object.closed_faces.empty() || object.closed_faces.size() == triangles.size());
+    for (size_t f = 0; f < triangles.size(); ++f) {
+        const Polygon& triangle = triangles[f];
         const std::vector<dvec3>& v = triangle.vertices;
         Plane plane;
         if (!Plane::through(v[0], v[1], v[2], plane)) {
             continue;
         }
         const bool reversed = side(plane) < 0.0;
-        if (reversed && outward_only) {
+        if (reversed && closed && object.closed_faces[f]) {
             continue;
         }
         out.push_back({nearest(triangle), &triangle, reversed ? plane.flipped() : plane,
-                       BeamTree::Role::opaque, reversed, object});
+                       BeamTree::Role::opaque, reversed, object_index});
     }
 }
 
@@ -264,12 +268,13 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
             continue;
         }
         if (!object.triangles.empty()) {
-            // Outside the box the light is outside the solid; inside it (a torus's hole, or
-            // the solid itself) every triangle goes in.
+            // Outside the box the light is outside every closed component's solid; inside it (a
+            // torus's hole, or the solid itself) every triangle goes in.
             const bool outward_only =
-                object.closed && (parallel_ || !near_bounds(object.triangles, apex_, epsilon_));
+                !object.closed_faces.empty() &&
+                (parallel_ || !near_bounds(object.triangles, apex_, epsilon_));
             add_facing_triangles(
-                object.triangles, [&](const Plane& plane) { return light_side(plane); },
+                object, [&](const Plane& plane) { return light_side(plane); },
                 [&](const Polygon& triangle) { return nearest_to_light(triangle); }, outward_only,
                 int32_t(k), polygons);
             if (object.triangles.size() >= kHidingFaces) {

@@ -765,7 +765,8 @@ ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
     volumes.name = object.name;
     const Mesh& mesh = *object.mesh;
     const std::shared_ptr<const MeshSurface> surface = surface_of(object.mesh);
-    volumes.closed = surface->closed.usable();
+    volumes.closed = surface->closed.whole();
+    const bool some_closed = surface->closed.usable();
     volumes.mesh_triangles = mesh.triangles.size();
     // A mirroring transform turns every winding.
     const int8_t mirrored = glm::determinant(glm::dmat3(transform)) < 0.0 ? -1 : 1;
@@ -777,10 +778,16 @@ ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
         for (const uint32_t k : faces.faces[f]) {
             corners.emplace_back(transform * glm::dvec4(dvec3(mesh.positions[k]), 1.0));
         }
-        if (volumes.closed && surface->closed.outward[faces.triangle[f]] * mirrored < 0) {
+        // A face's triangles lie on one component (they share edges), so its first one's side is
+        // the face's.
+        const int8_t outward = some_closed ? surface->closed.outward[faces.triangle[f]] : 0;
+        if (outward * mirrored < 0) {
             std::reverse(corners.begin(), corners.end());  // wound outward in the world
         }
         volumes.triangles.emplace_back(std::move(corners));
+        if (some_closed) {
+            volumes.closed_faces.push_back(outward != 0);
+        }
     }
     return volumes;
 }

@@ -40,8 +40,12 @@ struct ObjectVolumes {
     // are empty.
     std::vector<Polygon> triangles;
     size_t mesh_triangles = 0;  // the triangles of the mesh they came from
-    // The triangles make a closed surface wound outward in world space (closed_surface.h): while
-    // the light is outside their bounds, those facing away from it may be left out of the tree.
+    // Per face of `triangles`: 1 where it lies on a closed component of its mesh
+    // (closed_surface.h), then wound outward in world space: while the light is outside the
+    // object's bounds, such a face facing away from it may be left out of the tree. Empty where
+    // no face does.
+    std::vector<uint8_t> closed_faces;
+    // Every face does: the whole mesh is a closed surface.
     bool closed = false;
     // Why they are triangles: "occluders = triangles", "no inner volume (...)" or "loose: inner
     // volumes fill N % of its hull" (auto).

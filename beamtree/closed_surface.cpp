@@ -25,21 +25,26 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
     return i;
 }
 
+// Whether a closed component (its triangles, corners as welded ids) cuts itself, or is not a
+// manifold surface (two sheets through one edge or vertex).
 bool cuts_itself(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& id,
-                 const std::vector<glm::uvec3>& triangles) {
+                 const std::vector<glm::uvec3>& triangles, const std::vector<uint32_t>& faces) {
     using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
     using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
     SurfaceMesh mesh;
-    std::vector<SurfaceMesh::Vertex_index> vertex;
-    for (size_t i = 0; i < positions.size(); ++i) {
-        if (id[i] == vertex.size()) {  // ids rise with the first corner of each position
-            vertex.push_back(mesh.add_vertex({positions[i].x, positions[i].y, positions[i].z}));
+    std::unordered_map<uint32_t, SurfaceMesh::Vertex_index> vertex;
+    auto corner = [&](uint32_t k) {
+        const auto [it, added] = vertex.emplace(id[k], SurfaceMesh::Vertex_index());
+        if (added) {
+            const glm::vec3& p = positions[k];
+            it->second = mesh.add_vertex({p.x, p.y, p.z});
         }
-    }
-    for (const glm::uvec3& t : triangles) {
-        if (mesh.add_face(vertex[id[t.x]], vertex[id[t.y]], vertex[id[t.z]]) ==
-            SurfaceMesh::null_face()) {
-            return true;  // not a manifold surface (two components sharing a vertex or edge)
+        return it->second;
+    };
+    for (const uint32_t f : faces) {
+        const glm::uvec3& t = triangles[f];
+        if (mesh.add_face(corner(t.x), corner(t.y), corner(t.z)) == SurfaceMesh::null_face()) {
+            return true;
         }
     }
     return CGAL::Polygon_mesh_processing::does_self_intersect(mesh);
@@ -47,70 +52,96 @@ bool cuts_itself(const std::vector<glm::vec3>& positions, const std::vector<uint
 
 }  // namespace
 
+bool ClosedSurface::usable() const {
+    return std::any_of(outward.begin(), outward.end(), [](int8_t side) { return side != 0; });
+}
+
 ClosedSurface closed_surface(const Mesh& mesh) {
     ClosedSurface out;
-    if (mesh.triangles.empty() || !mesh.is_closed()) {
-        out.why_not = "not closed and consistently wound";
+    const size_t n = mesh.triangles.size();
+    if (n == 0) {
+        out.why_not = "no triangles";
         return out;
     }
-    // Renumber the welded ids by first use, so that cuts_itself can add vertices in one pass.
-    std::vector<uint32_t> id = weld_equal_positions(mesh.positions);
-    {
-        std::vector<uint32_t> first(mesh.positions.size(), UINT32_MAX);
-        uint32_t next = 0;
-        for (uint32_t& i : id) {
-            if (first[i] == UINT32_MAX) {
-                first[i] = next++;
-            }
-            i = first[i];
-        }
-    }
+    const std::vector<uint32_t> id = weld_equal_positions(mesh.positions);
     // Components: triangles joined through shared (welded) edges.
-    const size_t n = mesh.triangles.size();
     std::vector<uint32_t> parent(n);
     std::iota(parent.begin(), parent.end(), 0u);
-    std::unordered_map<uint64_t, uint32_t> edge_owner;
-    edge_owner.reserve(3 * n);
-    for (uint32_t f = 0; f < n; ++f) {
-        const glm::uvec3& t = mesh.triangles[f];
-        const uint32_t v[3] = {id[t.x], id[t.y], id[t.z]};
-        for (int e = 0; e < 3; ++e) {
-            const uint32_t a = std::min(v[e], v[(e + 1) % 3]), b = std::max(v[e], v[(e + 1) % 3]);
-            const auto [it, added] = edge_owner.emplace(uint64_t(a) << 32 | b, f);
-            if (!added) {
-                parent[find_root(parent, f)] = find_root(parent, it->second);
+    std::vector<std::pair<uint64_t, uint32_t>> directed;  // (from << 32 | to, triangle)
+    directed.reserve(3 * n);
+    {
+        std::unordered_map<uint64_t, uint32_t> edge_owner;
+        edge_owner.reserve(3 * n);
+        for (uint32_t f = 0; f < n; ++f) {
+            const glm::uvec3& t = mesh.triangles[f];
+            const uint32_t v[3] = {id[t.x], id[t.y], id[t.z]};
+            for (int e = 0; e < 3; ++e) {
+                const uint32_t from = v[e], to = v[(e + 1) % 3];
+                directed.emplace_back(uint64_t(from) << 32 | to, f);
+                const uint64_t key = uint64_t(std::min(from, to)) << 32 | std::max(from, to);
+                const auto [it, added] = edge_owner.emplace(key, f);
+                if (!added) {
+                    parent[find_root(parent, f)] = find_root(parent, it->second);
+                }
             }
+        }
+    }
+    std::vector<uint32_t> root(n);
+    for (uint32_t f = 0; f < n; ++f) {
+        root[f] = find_root(parent, f);
+    }
+    // Why each component (by its root) is not a closed surface; nullptr while it may be.
+    std::vector<const char*> why(n, nullptr);
+    // Closed and consistently wound: every directed edge once, and its reverse once.
+    std::sort(directed.begin(), directed.end());
+    for (size_t i = 0; i < directed.size(); ++i) {
+        const uint64_t edge = directed[i].first;
+        const uint64_t twin = edge << 32 | edge >> 32;
+        const bool repeated = (i + 1 < directed.size() && directed[i + 1].first == edge) ||
+                              (i > 0 && directed[i - 1].first == edge);
+        const auto at = std::lower_bound(directed.begin(), directed.end(),
+                                         std::pair<uint64_t, uint32_t>(twin, 0u));
+        if (repeated || at == directed.end() || at->first != twin) {
+            why[root[directed[i].second]] = "not closed and consistently wound";
         }
     }
     // Each component's signed volume (divergence theorem, about its first corner's position so
     // that far-off components keep their digits), and its size for the zero test.
-    std::unordered_map<uint32_t, std::pair<double, double>> volume;  // root -> (volume, extent³)
+    std::vector<double> volume(n, 0.0), size(n, 0.0);
     for (uint32_t f = 0; f < n; ++f) {
         const glm::uvec3& t = mesh.triangles[f];
-        const uint32_t root = find_root(parent, f);
-        const glm::dvec3 origin(mesh.positions[mesh.triangles[root].x]);
+        const uint32_t r = root[f];
+        const glm::dvec3 origin(mesh.positions[mesh.triangles[r].x]);
         const glm::dvec3 a = glm::dvec3(mesh.positions[t.x]) - origin;
         const glm::dvec3 b = glm::dvec3(mesh.positions[t.y]) - origin;
         const glm::dvec3 c = glm::dvec3(mesh.positions[t.z]) - origin;
-        auto& [v, size] = volume[root];
-        v += glm::dot(a, glm::cross(b, c)) / 6.0;
+        volume[r] += glm::dot(a, glm::cross(b, c)) / 6.0;
         for (const glm::dvec3& p : {a, b, c}) {
-            size = std::max(size, std::pow(glm::length(p), 3.0));
+            size[r] = std::max(size[r], std::pow(glm::length(p), 3.0));
         }
     }
-    for (const auto& [root, v] : volume) {
-        if (!(std::abs(v.first) > 1e-9 * v.second)) {
-            out.why_not = "a component encloses no volume";
-            return out;
+    std::vector<std::vector<uint32_t>> faces(n);  // per closed component, its triangles
+    for (uint32_t f = 0; f < n; ++f) {
+        const uint32_t r = root[f];
+        if (!why[r] && !(std::abs(volume[r]) > 1e-9 * size[r])) {
+            why[r] = "a component encloses no volume";
+        }
+        if (!why[r]) {
+            faces[r].push_back(f);
         }
     }
-    if (cuts_itself(mesh.positions, id, mesh.triangles)) {
-        out.why_not = "it cuts itself";
-        return out;
+    for (uint32_t r = 0; r < n; ++r) {
+        if (!faces[r].empty() && cuts_itself(mesh.positions, id, mesh.triangles, faces[r])) {
+            why[r] = "it cuts itself";
+        }
     }
     out.outward.resize(n);
     for (uint32_t f = 0; f < n; ++f) {
-        out.outward[f] = volume[find_root(parent, f)].first > 0.0 ? 1 : -1;
+        const uint32_t r = root[f];
+        out.outward[f] = why[r] ? 0 : volume[r] > 0.0 ? 1 : -1;
+        if (why[r] && out.why_not.empty()) {
+            out.why_not = why[r];
+        }
     }
     return out;
 }

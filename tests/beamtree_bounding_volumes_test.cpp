@@ -178,9 +178,10 @@ Mesh moved(Mesh mesh, glm::vec3 offset, float scale = 1.0f, bool inside_out = fa
     return mesh;
 }
 
-// closed_surface (beamtree/closed_surface.h): which meshes may enter the tree as their outward
-// triangles only, and each triangle's side: closed components oriented by their volumes' signs,
-// inside-out ones and nested shells included; open meshes and ones that cut themselves refused.
+// closed_surface (beamtree/closed_surface.h): which triangles may enter the tree only where they
+// face the light, and each one's side: closed components oriented by their volumes' signs,
+// inside-out ones and nested shells included, each on its own beside open components and
+// components that cut themselves, whose triangles all stay (side 0).
 TEST(ClosedSurface, OrientsClosedComponentsAndRefusesOpenOrSelfCuttingMeshes) {
     const Mesh box = make_box(glm::vec3(1.0f));
     auto signs = [](const bt::ClosedSurface& s) {
@@ -203,13 +204,35 @@ TEST(ClosedSurface, OrientsClosedComponentsAndRefusesOpenOrSelfCuttingMeshes) {
     ASSERT_TRUE(hollow.usable()) << hollow.why_not;
     EXPECT_EQ(signs(hollow), std::pair(12l, 12l));
     EXPECT_EQ(hollow.outward.back(), -1);
+    // Two boxes that cut each other: each is crossed in and out on its own.
     const bt::ClosedSurface overlapping =
         bt::closed_surface(joined({box, moved(box, {0.5f, 0.2f, 0.1f})}));
-    EXPECT_FALSE(overlapping.usable());
-    EXPECT_EQ(overlapping.why_not, "it cuts itself");
+    ASSERT_TRUE(overlapping.whole()) << overlapping.why_not;
+    EXPECT_EQ(signs(overlapping), std::pair(24l, 0l));
+    // A box with a corner pulled through its opposite face cuts itself.
+    Mesh pierced = box;
+    for (glm::vec3& p : pierced.positions) {
+        if (p == glm::vec3(0.5f)) {
+            p = glm::vec3(-0.2f, -0.1f, -1.5f);
+        }
+    }
+    EXPECT_FALSE(bt::closed_surface(pierced).usable());
+    EXPECT_EQ(bt::closed_surface(pierced).why_not, "it cuts itself");
     Mesh open = box;
     open.triangles.pop_back();
-    EXPECT_FALSE(bt::closed_surface(open).usable());
+    const bt::ClosedSurface opened = bt::closed_surface(open);
+    EXPECT_FALSE(opened.usable());
+    EXPECT_EQ(opened.why_not, "not closed and consistently wound");
+    // Beside an open box and a pierced one, a closed box keeps its sides; theirs are 0.
+    const bt::ClosedSurface mixed =
+        bt::closed_surface(joined({moved(open, {3, 0, 0}), box, moved(pierced, {0, 6, 0})}));
+    ASSERT_TRUE(mixed.usable());
+    EXPECT_FALSE(mixed.whole());
+    EXPECT_EQ(mixed.why_not, "not closed and consistently wound");
+    ASSERT_EQ(mixed.outward.size(), 11u + 12u + 12u);
+    EXPECT_EQ(std::count(mixed.outward.begin(), mixed.outward.begin() + 11, 0), 11);
+    EXPECT_EQ(std::count(mixed.outward.begin() + 11, mixed.outward.begin() + 23, 1), 12);
+    EXPECT_EQ(std::count(mixed.outward.begin() + 23, mixed.outward.end(), 0), 12);
 }
 
 // With [beamtree] occluders = triangles, a closed mesh's triangles come out wound outward in
