@@ -86,11 +86,10 @@ struct Inserting {
 // (`side(plane)`: BeamTree::light_side); none where the light lies within ε of a face's plane
 // and the box (the light inside, or on the edge of, what the faces bound).
 template <typename Side>
-std::vector<Polygon> facing_box_faces(const std::vector<Polygon>& polygons, const Side& side,
+std::vector<Polygon> facing_box_faces(const std::pair<dvec3, dvec3>& bounds, const Side& side,
                                       double epsilon) {
     // Named copies, not a structured binding: clang 14 (the fuzz build's) lets no lambda
     // capture one.
-    const std::pair<dvec3, dvec3> bounds = bounds_of(polygons);
     const dvec3 lo = bounds.first;
     const dvec3 hi = bounds.second;
     auto corner = [&](int i) {
@@ -176,11 +175,18 @@ void add_facing_triangles(const ObjectVolumes& object, const Side& side, const N
     const std::vector<Polygon>& triangles = object.triangles;
     const bool closed = outward_only && !object.closed_faces.empty();
     SL_CHECK(object.closed_faces.empty() || object.closed_faces.size() == triangles.size());
+    const bool planes_known = !object.face_planes.empty();
+    SL_CHECK(!planes_known || object.face_planes.size() == triangles.size());
     for (size_t f = 0; f < triangles.size(); ++f) {
         const Polygon& triangle = triangles[f];
         const std::vector<dvec3>& v = triangle.vertices;
         Plane plane;
-        if (!Plane::through(v[0], v[1], v[2], plane)) {
+        if (planes_known) {
+            plane = object.face_planes[f];
+            if (plane.normal == dvec3(0.0)) {
+                continue;
+            }
+        } else if (!Plane::through(v[0], v[1], v[2], plane)) {
             continue;
         }
         const bool reversed = side(plane) < 0.0;
@@ -192,9 +198,9 @@ void add_facing_triangles(const ObjectVolumes& object, const Side& side, const N
     }
 }
 
-// True when p lies within `margin` of the box around the polygons' vertices.
-bool near_bounds(const std::vector<Polygon>& polygons, const dvec3& p, double margin) {
-    const auto [lo, hi] = bounds_of(polygons);
+// True when p lies within `margin` of the box.
+bool near_bounds(const std::pair<dvec3, dvec3>& bounds, const dvec3& p, double margin) {
+    const auto& [lo, hi] = bounds;
     return glm::all(glm::greaterThanEqual(p, lo - margin)) &&
            glm::all(glm::lessThanEqual(p, hi + margin));
 }
@@ -268,19 +274,21 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
             continue;
         }
         if (!object.triangles.empty()) {
+            // The box around the faces, found with them where it is known.
+            const bool box_known = object.face_bounds.first.x <= object.face_bounds.second.x;
+            const std::pair<dvec3, dvec3> box =
+                box_known ? object.face_bounds : bounds_of(object.triangles);
             // Outside the box the light is outside every closed component's solid; inside it (a
             // torus's hole, or the solid itself) every triangle goes in.
             const bool outward_only =
-                !object.closed_faces.empty() &&
-                (parallel_ || !near_bounds(object.triangles, apex_, epsilon_));
+                !object.closed_faces.empty() && (parallel_ || !near_bounds(box, apex_, epsilon_));
             add_facing_triangles(
                 object, [&](const Plane& plane) { return light_side(plane); },
                 [&](const Polygon& triangle) { return nearest_to_light(triangle); }, outward_only,
                 int32_t(k), polygons);
             if (object.triangles.size() >= kHidingFaces) {
                 hiding[k].box = facing_box_faces(
-                    object.triangles, [&](const Plane& plane) { return light_side(plane); },
-                    epsilon_);
+                    box, [&](const Plane& plane) { return light_side(plane); }, epsilon_);
             }
             continue;
         }

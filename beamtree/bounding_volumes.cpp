@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -772,6 +773,9 @@ ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
     const int8_t mirrored = glm::determinant(glm::dmat3(transform)) < 0.0 ? -1 : 1;
     const CoplanarFaces& faces = surface->faces;
     volumes.triangles.reserve(faces.faces.size());
+    volumes.face_planes.reserve(faces.faces.size());
+    volumes.face_bounds = {dvec3(std::numeric_limits<double>::max()),
+                           dvec3(std::numeric_limits<double>::lowest())};
     for (size_t f = 0; f < faces.faces.size(); ++f) {
         std::vector<dvec3> corners;
         corners.reserve(faces.faces[f].size());
@@ -783,6 +787,15 @@ ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
         const int8_t outward = some_closed ? surface->closed.outward[faces.triangle[f]] : 0;
         if (outward * mirrored < 0) {
             std::reverse(corners.begin(), corners.end());  // wound outward in the world
+        }
+        Plane plane;
+        if (!Plane::through(corners[0], corners[1], corners[2], plane)) {
+            plane.normal = dvec3(0.0);
+        }
+        volumes.face_planes.push_back(plane);
+        for (const dvec3& corner : corners) {
+            volumes.face_bounds.first = glm::min(volumes.face_bounds.first, corner);
+            volumes.face_bounds.second = glm::max(volumes.face_bounds.second, corner);
         }
         volumes.triangles.emplace_back(std::move(corners));
         if (some_closed) {

@@ -12,6 +12,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -39,6 +40,11 @@ struct ObjectVolumes {
     // plane joined into convex polygons (beamtree/coplanar_faces.h). Then `outer` and `inner`
     // are empty.
     std::vector<Polygon> triangles;
+    // Found with the faces (VolumeLibrary), so that a tree per light move need not: each face's
+    // plane through its first three corners as wound (a zero normal where they span none), and
+    // a box holding every corner (lo > hi: not known). Empty planes: the tree finds them.
+    std::vector<Plane> face_planes;
+    std::pair<dvec3, dvec3> face_bounds{dvec3(1.0), dvec3(-1.0)};
     size_t mesh_triangles = 0;  // the triangles of the mesh they came from
     // Per face of `triangles`: 1 where it lies on a closed component of its mesh
     // (closed_surface.h), then wound outward in world space: while the light is outside the
