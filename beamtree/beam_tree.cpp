@@ -30,91 +30,6 @@ const char* to_string(Region region) {
 
 namespace {
 
-// The box around the polygons' vertices: its least and greatest corners.
-std::pair<dvec3, dvec3> bounds_of(const std::vector<Polygon>& polygons) {
-    dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
-    for (const Polygon& polygon : polygons) {
-        for (const dvec3& v : polygon.vertices) {
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-        }
-    }
-    return {lo, hi};
-}
-
-// From p to the box around the polygons (an object's outer volume).
-double distance_to_box(const dvec3& p, const std::vector<Polygon>& polygons) {
-    const auto [lo, hi] = bounds_of(polygons);
-    return glm::length(glm::max(dvec3(0.0), glm::max(lo - p, p - hi)));
-}
-
-// The tree needs the light outside every outer volume; an error that says what to do otherwise.
-void require_light_outside(const std::vector<ObjectVolumes>& volumes, const dvec3& light,
-                           double epsilon) {
-    for (const ObjectVolumes& object : volumes) {
-        // Triangles need the light outside no volume: one through the light is edge-on to it.
-        if (object.triangles.empty() && object.outer.contains(light, -epsilon)) {
-            fail(
-                "the light at ({}, {}, {}) is inside the outer bounding volume of object {}{}: "
-                "the beam tree needs the light outside every outer volume (move the light out of "
-                "it; or make the objects exact occluders, [beamtree] occluders = \"triangles\"; "
-                "or cut the object into convex pieces, [beamtree] "
-                "pieces = true, when the light is outside each piece; or use a method without "
-                "regions: planes, march, froxel, lightvolume, epipolar)",
-                light.x, light.y, light.z,
-                object.name.empty() ? std::to_string(object.object) : "'" + object.name + "'",
-                object.pieces > 1
-                    ? fmt::format(" (its convex piece {} of {})", object.piece + 1, object.pieces)
-                    : "");
-        }
-    }
-}
-
-// A polygon as the tree takes it, nearest to the light first: the result does not depend on the
-// order, but a farther polygon then mostly lands in leaves a nearer one already closed, and is
-// dropped there without splitting them.
-struct Inserting {
-    double distance;         // an exact triangle's closest point; a volume's faces: its box
-    const Polygon* polygon;  // the caller's, not copied
-    Plane plane;             // facing the light
-    BeamTree::Role role;
-    bool reversed = false;  // a triangle wound the other way about `plane`: turned when inserted
-    int32_t object = -1;    // an exact face's object (its index among the volumes), else -1
-};
-
-// The faces of the box around `polygons` whose outward side faces the light by more than ε
-// (`side(plane)`: BeamTree::light_side); none where the light lies within ε of a face's plane
-// and the box (the light inside, or on the edge of, what the faces bound).
-template <typename Side>
-std::vector<Polygon> facing_box_faces(const std::pair<dvec3, dvec3>& bounds, const Side& side,
-                                      double epsilon) {
-    // Named copies, not a structured binding: clang 14 (the fuzz build's) lets no lambda
-    // capture one.
-    const dvec3 lo = bounds.first;
-    const dvec3 hi = bounds.second;
-    auto corner = [&](int i) {
-        return dvec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
-    };
-    // -x, +x, -y, +y, -z, +z: each face's corners counter-clockwise about its outward normal.
-    constexpr int kCorners[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                    {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-    const Plane planes[6] = {{{-1, 0, 0}, lo.x}, {{1, 0, 0}, -hi.x}, {{0, -1, 0}, lo.y},
-                             {{0, 1, 0}, -hi.y}, {{0, 0, -1}, lo.z}, {{0, 0, 1}, -hi.z}};
-    std::vector<Polygon> faces;
-    for (int f = 0; f < 6; ++f) {
-        const double s = side(planes[f]);
-        if (std::abs(s) <= epsilon) {
-            return {};
-        }
-        if (s > epsilon) {
-            const int* c = kCorners[f];
-            faces.emplace_back(
-                std::vector<dvec3>{corner(c[0]), corner(c[1]), corner(c[2]), corner(c[3])});
-        }
-    }
-    return faces;
-}
-
 // The point of triangle abc closest to p (Ericson, Real-Time Collision Detection §5.1.5).
 dvec3 closest_on_triangle(const dvec3& p, const dvec3& a, const dvec3& b, const dvec3& c) {
     const dvec3 ab = b - a, ac = c - a, ap = p - a;
@@ -159,52 +74,6 @@ double distance_to_polygon(const dvec3& p, const Polygon& polygon) {
     return distance;
 }
 
-// An opaque triangle stops the light whatever its winding: it goes in facing the light, as an
-// occluder and a stopper on the same plane at once, so that behind it the leaf is a blocker
-// whose uncertain layer (between occluder and stopper) is empty: unlit, exactly. Each triangle
-// is placed by its own distance, so that the triangles of neighbouring objects interleave.
-// Degenerate triangles cover nothing and are left out. With `outward_only` (the light outside
-// the object's bounds), a triangle that lies on a closed component wound outward
-// (ObjectVolumes::closed_faces) and faces away from the light is left out too: it blocks nothing
-// the others do not (closed_surface.h).
-// `side(plane)`: the light's signed distance from a plane (BeamTree::light_side); `nearest(p)`:
-// a polygon's distance from the light (BeamTree::nearest_to_light).
-template <typename Side, typename Nearest>
-void add_facing_triangles(const ObjectVolumes& object, const Side& side, const Nearest& nearest,
-                          bool outward_only, int32_t object_index, std::vector<Inserting>& out) {
-    const std::vector<Polygon>& triangles = object.triangles;
-    const bool closed = outward_only && !object.closed_faces.empty();
-    SL_CHECK(object.closed_faces.empty() || object.closed_faces.size() == triangles.size());
-    const bool planes_known = !object.face_planes.empty();
-    SL_CHECK(!planes_known || object.face_planes.size() == triangles.size());
-    for (size_t f = 0; f < triangles.size(); ++f) {
-        const Polygon& triangle = triangles[f];
-        const std::vector<dvec3>& v = triangle.vertices;
-        Plane plane;
-        if (planes_known) {
-            plane = object.face_planes[f];
-            if (plane.normal == dvec3(0.0)) {
-                continue;
-            }
-        } else if (!Plane::through(v[0], v[1], v[2], plane)) {
-            continue;
-        }
-        const bool reversed = side(plane) < 0.0;
-        if (reversed && closed && object.closed_faces[f]) {
-            continue;
-        }
-        out.push_back({nearest(triangle), &triangle, reversed ? plane.flipped() : plane,
-                       BeamTree::Role::opaque, reversed, object_index});
-    }
-}
-
-// True when p lies within `margin` of the box.
-bool near_bounds(const std::pair<dvec3, dvec3>& bounds, const dvec3& p, double margin) {
-    const auto& [lo, hi] = bounds;
-    return glm::all(glm::greaterThanEqual(p, lo - margin)) &&
-           glm::all(glm::lessThanEqual(p, hi + margin));
-}
-
 }  // namespace
 
 std::vector<Plane> influence_planes(const SpotLight& light) {
@@ -226,123 +95,6 @@ std::vector<Plane> influence_planes(const SpotLight& light) {
     planes.push_back({-d, glm::dot(d, apex) + double(light.near)});
     planes.push_back({d, -glm::dot(d, apex) - double(light.far)});
     return planes;
-}
-
-BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& volumes)
-    : apex_(light.position),
-      parallel_(light.parallel()),
-      axis_(glm::normalize(dvec3(light.direction()))),
-      scale_(double(light.far)),
-      epsilon_(kRelativeEpsilon * double(light.far)) {
-    influence_ = bt::influence_planes(light);
-
-    // Root: a chain through the four side planes, the inside an open leaf.
-    for (int i = 0; i < 4; ++i) {
-        Node node;
-        node.kind = Kind::split;
-        node.plane = influence_[size_t(i)];
-        nodes_.push_back(node);
-        parents_.push_back(i - 1);
-    }
-    for (int i = 0; i < 4; ++i) {
-        const int32_t out = add_leaf({Kind::out, {}, -1}, i);
-        at(i).front = out;
-        at(i).back = i < 3 ? i + 1 : add_leaf({Kind::open, {}, -1}, i);
-    }
-
-    if (!parallel_) {
-        require_light_outside(volumes, apex_, epsilon_);  // a sun is outside every volume
-    }
-    // One pass, nearest first. A volume's inner faces (its stoppers, Nilsson §5.2.1) follow its
-    // outer faces at once: what lies behind the volume then finds the leaf's stopper already
-    // there and is dropped, instead of splitting the leaf first. (Nilsson inserts every stopper
-    // after every occluder; the regions are the same, and on multiple:1650 the tree is as big
-    // and 20 % faster to build this way.)
-    std::vector<Inserting> polygons;
-    // Per object of exact faces: the faces of its box that face the light (none where the
-    // light is within ε of the box's planes), whether the rest of its faces is hidden, and when
-    // to ask.
-    struct Hiding {
-        std::vector<Polygon> box;
-        bool hidden = false;
-        size_t seen = 0, next_question = 0;
-    };
-    std::vector<Hiding> hiding(volumes.size());
-    for (size_t k = 0; k < volumes.size(); ++k) {
-        const ObjectVolumes& object = volumes[k];
-        if (outside_influence(object.triangles.empty() ? object.outer.faces : object.triangles)) {
-            continue;
-        }
-        if (!object.triangles.empty()) {
-            // The box around the faces, found with them where it is known.
-            const bool box_known = object.face_bounds.first.x <= object.face_bounds.second.x;
-            const std::pair<dvec3, dvec3> box =
-                box_known ? object.face_bounds : bounds_of(object.triangles);
-            // Outside the box the light is outside every closed component's solid; inside it (a
-            // torus's hole, or the solid itself) every triangle goes in.
-            const bool outward_only =
-                !object.closed_faces.empty() && (parallel_ || !near_bounds(box, apex_, epsilon_));
-            add_facing_triangles(
-                object, [&](const Plane& plane) { return light_side(plane); },
-                [&](const Polygon& triangle) { return nearest_to_light(triangle); }, outward_only,
-                int32_t(k), polygons);
-            if (object.triangles.size() >= kHidingFaces) {
-                hiding[k].box = facing_box_faces(
-                    box, [&](const Plane& plane) { return light_side(plane); }, epsilon_);
-            }
-            continue;
-        }
-        // A volume's faces go in together, at the distance of the box around it.
-        const double distance = parallel_ ? depth_of_box(object.outer.faces)
-                                          : distance_to_box(apex_, object.outer.faces);
-        for (size_t f = 0; f < object.outer.faces.size(); ++f) {
-            polygons.push_back(
-                {distance, &object.outer.faces[f], object.outer.planes[f], Role::occluder});
-        }
-        for (const ConvexVolume& inner : object.inner) {
-            for (size_t f = 0; f < inner.faces.size(); ++f) {
-                polygons.push_back({distance, &inner.faces[f], inner.planes[f], Role::stopper});
-            }
-        }
-    }
-    // Nearest first, ties in the order above: sorted as (distance, index) keys, a quarter of the
-    // bytes of the entries themselves (a sun over the house sorts 28,000 of them a frame).
-    SL_CHECK(polygons.size() < size_t(std::numeric_limits<uint32_t>::max()));
-    std::vector<std::pair<double, uint32_t>> order(polygons.size());
-    for (size_t i = 0; i < polygons.size(); ++i) {
-        order[i] = {polygons[i].distance, uint32_t(i)};
-    }
-    std::sort(order.begin(), order.end());
-    nodes_.reserve(nodes_.size() + 16 * polygons.size());
-    parents_.reserve(nodes_.capacity());
-    for (const auto& [distance, i] : order) {
-        const Inserting& o = polygons[i];
-        if (o.object >= 0) {
-            // An object whose box lies wholly behind what is in already, from this face's depth
-            // on, has nothing left that the tree would keep: each of its faces would descend to
-            // nodes that all lie beyond their reach, and be dropped there. Asked at its first
-            // face, then after 8, 24, 56, ... of them.
-            Hiding& h = hiding[size_t(o.object)];
-            if (h.hidden) {
-                ++hidden_polygons_;
-                continue;
-            }
-            if (!h.box.empty() && h.seen++ == h.next_question) {
-                h.next_question = 2 * h.next_question + 8;
-                if (hidden_beyond(h.box, distance)) {
-                    h.hidden = true;
-                    ++hidden_polygons_;
-                    continue;
-                }
-            }
-        }
-        if (o.reversed) {
-            const std::vector<dvec3>& v = o.polygon->vertices;
-            insert(Polygon(std::vector<dvec3>(v.rbegin(), v.rend())), o.plane, o.role);
-        } else {
-            insert(*o.polygon, o.plane, o.role);
-        }
-    }
 }
 
 double BeamTree::light_side(const Plane& plane) const {
@@ -388,29 +140,6 @@ bool BeamTree::edge_plane(const dvec3& a, const dvec3& b, Plane& plane) const {
     plane.normal = n / length;
     plane.offset = -glm::dot(plane.normal, a);
     return true;
-}
-
-bool BeamTree::outside_influence(const std::vector<Polygon>& polygons) const {
-    // Beyond a side of the influence pyramid or its far range, wholly (not the near range: an
-    // object between the light and it still shadows). Such an object casts no shadow inside the
-    // pyramid: the root chain would drop each of its polygons, one descent each. A point light's
-    // faces each see a part of the scene, so each skips most of it here.
-    for (const size_t i : {0, 1, 2, 3, 5}) {
-        const Plane& plane = influence_[i];
-        bool all_outside = true;
-        for (const Polygon& polygon : polygons) {
-            for (const dvec3& v : polygon.vertices) {
-                all_outside &= plane.distance(v) > epsilon_;
-            }
-            if (!all_outside) {
-                break;
-            }
-        }
-        if (all_outside && !polygons.empty()) {
-            return true;
-        }
-    }
-    return false;
 }
 
 void BeamTree::set_leaf(int32_t index, const Leaf& leaf) {
@@ -473,10 +202,10 @@ void recycle(Polygon&& fragment) {
 
 }  // namespace
 
-void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
+bool BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
     // Only light-facing polygons occlude; edge-on ones (L within ε of their plane) add nothing.
     if (light_side(plane) <= epsilon_ || !area_exceeds(polygon, epsilon_ * epsilon_)) {
-        return;
+        return false;
     }
     // Nothing beyond the far range matters (Nilsson §4.2): clip to the backplate first.
     // (as split(...).back, into a finished fragment's storage instead of a new one)
@@ -497,12 +226,9 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
     }
     if (clipped.empty()) {
         recycle(std::move(clipped));
-        return;
+        return false;
     }
     const bool stops = role != Role::occluder;
-    ++(role == Role::occluder  ? outer_polygons_
-       : role == Role::stopper ? stopper_polygons_
-                               : exact_polygons_);
     Inserted inserted{role, plane, -1, nearest_to_light(clipped)};
     if (stops) {
         inserted.stopper = int32_t(stoppers_.size());
@@ -523,40 +249,6 @@ void BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
             insert_at_leaf(leaf, next.fragment, next.ball, inserted, stack);
         }
         recycle(std::move(next.fragment));
-    }
-}
-
-bool BeamTree::hidden_beyond(const std::vector<Polygon>& polygons, double nearest) const {
-    // Every ray through the polygons, followed down the tree: a part that comes within ε of a
-    // plane goes down both sides whole (a superset of the rays a face's fragment could take
-    // there, whatever ε decides for it), so that the answer never depends on round-off.
-    thread_local std::vector<std::pair<int32_t, const Polygon*>> stack;
-    stack.clear();
-    for (const Polygon& polygon : polygons) {
-        stack.push_back({0, &polygon});
-    }
-    while (!stack.empty()) {
-        auto [index, polygon] = stack.back();
-        stack.pop_back();
-        for (;;) {
-            const Node& node = at(index);
-            if (nearest > double(node.reach) || node.kind == Kind::out) {
-                break;  // unlit beyond its reach, or outside the influence
-            }
-            if (node.kind != Kind::split) {
-                return false;  // a leaf that something beyond `nearest` would still change
-            }
-            bool front = false, back = false;
-            for (const dvec3& v : polygon->vertices) {
-                const double d = node.plane.distance(v);
-                front |= d > -epsilon_;
-                back |= d < epsilon_;
-            }
-            if (front && back) {
-                stack.push_back({node.back, polygon});
-            }
-            index = front ? node.front : node.back;
-        }
     }
     return true;
 }

@@ -88,6 +88,20 @@ struct Beam {
     Plane stopper;  // back side unlit
 };
 
+// How a tree is built; the regions it decides do not depend on it. The tree's top is the
+// nearest polygons' edges, which leaves it deep and lopsided where many small polygons crowd
+// the beam; an offer of at least `grid_from` polygons therefore first cuts the beam into a grid
+// of sub-beams by planes through L (about `polygons_per_cell` polygons a cell, at most
+// `max_grid` cells a side), a balanced top above the leaves the polygons then fill, as if those
+// planes had been the first edges inserted (docs/design.md §4).
+struct TreeBuild {
+    size_t grid_from = 16384;
+    size_t polygons_per_cell = 64;
+    int max_grid = 48;
+    // The grid's cells a side for an offer of `polygons` (1: no grid).
+    int grid(size_t polygons) const;
+};
+
 class BeamTree {
 public:
     static constexpr double kRelativeEpsilon = 1e-6;
@@ -101,7 +115,8 @@ public:
     enum class Role : uint8_t { occluder, stopper, opaque };
 
     // Throws sl::Error when the light is inside (or within ε of) an outer bounding volume.
-    BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& volumes);
+    BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& volumes,
+             const TreeBuild& build = {});
 
     // Lit, uncertain or unlit; points outside the influence volume are unlit. `margin`, when
     // given, receives the smallest distance from p to a plane the answer depended on.
@@ -204,13 +219,23 @@ private:
     Region leaf_region(const Node& leaf, const dvec3& p) const;
     void set_leaf(int32_t index, const Leaf& leaf);
 
+    // What the tree is built from, nearest first (tree_build.cpp).
+    struct Offer;
+    // Cuts the root's open leaf into grid × grid sub-beams (TreeBuild), each an open leaf.
+    void add_grid(const SpotLight& light, int grid);
+    // Inserts the offered polygons in its order, leaving out the rest of an object once its box
+    // is hidden behind what is in; counts what went in and what was left out.
+    void insert_offer(const Offer& offer);
+
     struct Inserted {
         Role role;
         Plane plane;
         int32_t stopper = -1;  // stopper, opaque: its index into stoppers_
         double nearest = 0.0;  // the polygon's distance from L: no fragment of it is nearer
     };
-    void insert(const Polygon& polygon, const Plane& plane, Role role);
+    // False where the polygon is left out before its descent (edge-on, a sliver, beyond the far
+    // range): it is then not counted as inserted.
+    bool insert(const Polygon& polygon, const Plane& plane, Role role);
     // True when every vertex lies outside one side of the influence pyramid or beyond its far
     // range: what the polygons bound casts no shadow inside it.
     bool outside_influence(const std::vector<Polygon>& polygons) const;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <fmt/format.h>
@@ -393,22 +394,29 @@ TEST_F(BoundaryOnTheGpu, WalkFindsTheTreesIntervalsAlongRandomLines) {
     }
 }
 
-// A tree of more than half a million nodes walked exactly: multiple:4000's 4,000 objects make a
-// tree of about 700,000 nodes, which the GPU walks (its short stack overflowing and restarting)
-// to the lengths trace() finds.
-TEST_F(BoundaryOnTheGpu, WalkIsExactOnATreeOfHalfAMillionNodes) {
+// Trees of half a million nodes walked exactly: multiple:4000's 4,000 objects make a tree of
+// about 510,000 nodes without the grid of sub-beams at its top (TreeBuild), deep enough for the
+// walk's short stack to overflow and restart, and one of about 460,000 with it (what the methods
+// build); the GPU walks both to the lengths trace() finds.
+TEST_F(BoundaryOnTheGpu, WalkIsExactOnTreesOfHalfAMillionNodes) {
     WalkCase c{"multiple:4000", load_canonical("multiple:4000"), {}};
-    const bt::BeamTree tree = bt::build_scene_beam_tree(c.scene);
-    std::printf("  depth %zu\n", tree.stats().max_depth);
-    ASSERT_GT(tree.stats().nodes, 500000u);
-    std::mt19937 rng(29);
-    WalkTotals totals;
-    walk_against_trace(c, tree, rng, totals);
-    print_walk("walk on a tree of half a million nodes", totals);
-    std::printf("  %zu nodes\n", tree.stats().nodes);
-    EXPECT_LT(double(totals.beyond), 1e-3 * double(totals.segments) * 3.0);
-    EXPECT_GT(totals.lengths[0], 0.1 * double(totals.segments)) << "lit crossed";
-    EXPECT_GT(totals.lengths[2], 0.1 * double(totals.segments)) << "unlit crossed";
+    bt::VolumeLibrary& library = bt::VolumeLibrary::shared(c.scene.bounds);
+    const std::vector<bt::ObjectVolumes> volumes = library.build(c.scene, nullptr);
+    const bt::BeamTree deep(c.scene.light, volumes,
+                            {.grid_from = std::numeric_limits<size_t>::max()});
+    const bt::BeamTree gridded(c.scene.light, volumes);
+    EXPECT_GT(deep.stats().max_depth, 100u) << "the walk's stack should overflow";
+    for (const bt::BeamTree* tree : {&deep, &gridded}) {
+        ASSERT_GT(tree->stats().nodes, 400000u);
+        std::mt19937 rng(29);
+        WalkTotals totals;
+        walk_against_trace(c, *tree, rng, totals);
+        print_walk("walk on a tree of half a million nodes", totals);
+        std::printf("  %zu nodes, depth %zu\n", tree->stats().nodes, tree->stats().max_depth);
+        EXPECT_LT(double(totals.beyond), 1e-3 * double(totals.segments) * 3.0);
+        EXPECT_GT(totals.lengths[0], 0.1 * double(totals.segments)) << "lit crossed";
+        EXPECT_GT(totals.lengths[2], 0.1 * double(totals.segments)) << "unlit crossed";
+    }
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 
@@ -665,6 +666,68 @@ TEST(BeamTree, BothGpuLayoutsHoldTheTreeClassifyWalks) {
     EXPECT_GT(splits, 5000u) << "the level's tree is deep";
 }
 
+// A grid of sub-beams at the top of the tree (TreeBuild) changes no region: with a dense grid
+// forced and without one, the trees of hull polygons (multiple:165), of a level's triangles from
+// its light and of the house's under a sun classify random points alike wherever both are
+// farther than 10ε from every plane they depended on, and trace() finds the same length of each
+// region along random segments; the grid's tree is the shallower one.
+TEST(BeamTree, AGridOfSubBeamsChangesNoRegion) {
+    const bt::TreeBuild none{.grid_from = std::numeric_limits<size_t>::max()};
+    const bt::TreeBuild dense{.grid_from = 0, .polygons_per_cell = 4, .max_grid = 24};
+    std::vector<Scene> scenes = {load_scene("multiple:165", SceneSearchPaths::defaults()),
+                                 load_canonical("arena"), load_canonical("house-morning")};
+    scenes[1].bounds.occluders = Occluders::triangles;
+    std::mt19937 rng(41);
+    for (const Scene& scene : scenes) {
+        bt::VolumeLibrary library(scene.bounds);
+        const std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
+        const SpotLight light = scene.spot_lights().front();
+        const bt::BeamTree plain(light, volumes, none), gridded(light, volumes, dense);
+        EXPECT_LT(gridded.stats().max_depth, plain.stats().max_depth) << scene.name;
+        size_t compared = 0, differ = 0;
+        for (int i = 0; i < 40000; ++i) {
+            const dvec3 p = random_point(rng, light);
+            double a_margin = 0.0, b_margin = 0.0;
+            const bt::Region a = plain.classify(p, &a_margin);
+            const bt::Region b = gridded.classify(p, &b_margin);
+            if (std::min(a_margin, b_margin) <= 10.0 * plain.epsilon()) {
+                continue;
+            }
+            ++compared;
+            differ += a != b;
+        }
+        EXPECT_GT(compared, 30000u) << scene.name;
+        EXPECT_EQ(differ, 0u) << scene.name;
+        std::vector<bt::RegionInterval> along_a, along_b;
+        double worst = 0.0;
+        for (int i = 0; i < 2000; ++i) {
+            const dvec3 a = random_point(rng, light), b = random_point(rng, light);
+            if (!(glm::length(b - a) > 1e-3)) {
+                continue;
+            }
+            const dvec3 direction = glm::normalize(b - a);
+            const double t1 = glm::length(b - a);
+            plain.trace(a, direction, 0.0, t1, along_a);
+            gridded.trace(a, direction, 0.0, t1, along_b);
+            std::array<double, 3> lengths{};
+            for (const bt::RegionInterval& interval : along_a) {
+                lengths[size_t(interval.region)] += interval.end - interval.begin;
+            }
+            for (const bt::RegionInterval& interval : along_b) {
+                lengths[size_t(interval.region)] -= interval.end - interval.begin;
+            }
+            for (const double difference : lengths) {
+                worst = std::max(worst, std::abs(difference));
+            }
+        }
+        // ε-thick planes decide slivers either way: a segment's lengths move by less than ε.
+        EXPECT_LT(worst, plain.epsilon()) << scene.name;
+        std::printf("%s: depth %zu without the grid, %zu with it; worst length %.2g ε\n",
+                    scene.name.c_str(), plain.stats().max_depth, gridded.stats().max_depth,
+                    worst / plain.epsilon());
+    }
+}
+
 // An object whose box lies wholly behind what is in already is left out (BeamTree's
 // hidden_beyond): it changes nothing. The same faces cut into objects of 8 faces, too few to be
 // asked about, and inserted in the same order, build the same tree node for node (planes,
@@ -696,7 +759,10 @@ TEST(BeamTree, HiddenObjectsAreLeftOutAndChangeNothing) {
             }
         }
         const SpotLight light = scene.spot_lights().front();
-        const bt::BeamTree whole(light, volumes), cut(light, pieces);
+        // Without a grid: the grid's size would follow the two offers' sizes, and its planes
+        // change the nodes (not the regions: AGridOfSubBeamsChangesNoRegion).
+        const bt::TreeBuild no_grid{.grid_from = std::numeric_limits<size_t>::max()};
+        const bt::BeamTree whole(light, volumes, no_grid), cut(light, pieces, no_grid);
         EXPECT_GT(whole.stats().hidden_polygons, 0u) << scene.name;
         EXPECT_EQ(cut.stats().hidden_polygons, 0u) << scene.name;
         const bt::GpuTree a = whole.gpu_tree(bt::GpuTreeLayout::build);
