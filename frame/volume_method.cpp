@@ -1,5 +1,7 @@
 #include "frame/volume_method.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -126,10 +128,13 @@ std::unique_ptr<FrameWork> VolumeMethod::cpu_update(const Scene& scene,
     if (lights == 1) {
         return cpu_update_light(scene, change);
     }
+    // Each light on its own task: each has its own instance, which cpu_update_light() only
+    // reads, and what they share (the volume library) is locked.
     auto work = std::make_unique<LightsWork>();
-    for (size_t i = 0; i < lights; ++i) {
-        work->lights.push_back(for_light(i).cpu_update_light(scene.for_light(i), change));
-    }
+    work->lights.resize(lights);
+    tbb::parallel_for(size_t(0), lights, [&](size_t i) {
+        work->lights[i] = for_light(i).cpu_update_light(scene.for_light(i), change);
+    });
     return work;
 }
 

@@ -148,7 +148,9 @@ protected:
     explicit VolumeMethod(std::string name) : name_(name), parameters_(std::move(name)) {}
 
     // The per-light hooks: prepare(), cpu_update() and apply_update() above for a scene of one
-    // light (Scene::lights empty), called once per light.
+    // light (Scene::lights empty), called once per light. cpu_update() runs the lights'
+    // cpu_update_light() on parallel tasks, each on its own light's instance: it reads only that
+    // instance and locks whatever it shares with the others.
     virtual void prepare_light(const Scene& scene) = 0;
     virtual std::unique_ptr<FrameWork> cpu_update_light(const Scene& scene,
                                                         const SceneChange& change) const = 0;
