@@ -39,8 +39,14 @@ void build_tree(benchmark::State& state) {
     state.counters["nodes"] = double(stats.nodes);
     state.counters["depth"] = double(stats.max_depth);
 }
-// About 10, 100, 1k and 10k light-facing outer polygons.
-BENCHMARK(build_tree)->Arg(2)->Arg(16)->Arg(165)->Arg(1650)->Unit(benchmark::kMillisecond);
+// About 10, 100, 1k, 10k and 100k light-facing outer polygons.
+BENCHMARK(build_tree)
+    ->Arg(2)
+    ->Arg(16)
+    ->Arg(165)
+    ->Arg(1650)
+    ->Arg(16500)
+    ->Unit(benchmark::kMillisecond);
 
 // Exact occluders: the real scenes with every object as its triangles (coplanar neighbours joined
 // into convex faces), each an occluder and a stopper at once; the time per light-facing face
