@@ -76,25 +76,29 @@ double distance_to_polygon(const dvec3& p, const Polygon& polygon) {
 
 }  // namespace
 
-std::vector<Plane> influence_planes(const SpotLight& light) {
+Plane beam_plane(const SpotLight& light, int axis, double m) {
     const dvec3 apex(light.position);
     const dvec3 d = glm::normalize(dvec3(light.direction()));
     const dvec3 u = glm::normalize(dvec3(light.up()) - glm::dot(dvec3(light.up()), d) * d);
-    const dvec3 r = glm::cross(d, u);
-    const double t = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
-    std::vector<Plane> planes;
-    for (const dvec3& side : {r, -r, u, -u}) {
-        if (light.parallel()) {
-            // Parallel beams: the box's sides, half_width from the axis.
-            planes.push_back({side, -glm::dot(side, apex) - double(light.half_width)});
-            continue;
-        }
-        const dvec3 n = glm::normalize(side - t * d);
-        planes.push_back({n, -glm::dot(n, apex)});
+    const dvec3 side = axis == 0 ? glm::cross(d, u) : u;
+    if (light.parallel()) {
+        // Parallel beams: m half-widths from the axis.
+        return {side, -glm::dot(side, apex) - m * double(light.half_width)};
     }
-    planes.push_back({-d, glm::dot(d, apex) + double(light.near)});
-    planes.push_back({d, -glm::dot(d, apex) - double(light.far)});
-    return planes;
+    const double t = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
+    const dvec3 n = glm::normalize(side - m * t * d);
+    return {n, -glm::dot(n, apex)};
+}
+
+std::vector<Plane> influence_planes(const SpotLight& light) {
+    const dvec3 apex(light.position);
+    const dvec3 d = glm::normalize(dvec3(light.direction()));
+    return {beam_plane(light, 0, 1.0),
+            beam_plane(light, 0, -1.0).flipped(),
+            beam_plane(light, 1, 1.0),
+            beam_plane(light, 1, -1.0).flipped(),
+            {-d, glm::dot(d, apex) + double(light.near)},
+            {d, -glm::dot(d, apex) - double(light.far)}};
 }
 
 double BeamTree::light_side(const Plane& plane) const {
@@ -354,7 +358,6 @@ void BeamTree::insert_at_leaf(int32_t index, const Polygon& fragment, const Ball
                 attach(index, fragment, opaque, here);
                 break;
             }
-            Polygon behind;
             switch (side(fragment, node.plane, epsilon_)) {
                 case Side::front:
                     attach(index, fragment, opaque, here);

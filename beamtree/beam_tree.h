@@ -37,6 +37,11 @@ enum class Region : uint8_t { lit = 0, uncertain = 1, unlit = 2 };
 // The influence pyramid circumscribing the light's cone (the shadow map's square frustum) as
 // outward planes: four sides (right, left, up, down), the near range, the far range.
 std::vector<Plane> influence_planes(const SpotLight& light);
+// The plane through L (for parallel beams: containing them) of the beams at coordinate m along
+// the light's right (axis 0) or up vector (axis 1), in units of the pyramid's half-width at the
+// same depth, its front side the beams beyond m: at m = 1 the pyramid's right or upper side, at
+// m = -1 the left or lower one flipped, and between them the lines of a grid of sub-beams.
+Plane beam_plane(const SpotLight& light, int axis, double m);
 const char* to_string(Region region);
 
 // A piece of a segment in one region type: t in [begin, end] along origin + t·direction.

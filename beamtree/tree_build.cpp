@@ -1,8 +1,8 @@
 // How the beam tree is built: what it is offered (each object's light-facing outer and inner
 // faces, or its exact triangles as coplanar faces), in what order (nearest to the light first),
 // what it leaves out (objects outside the influence pyramid, and the rest of an object once its
-// box is hidden behind what is in), and the sub-beams that let the tree of a large offer be built
-// on several cores (TreeBuild). The tree itself, its insertion and queries: beam_tree.cpp.
+// box is hidden behind what is in), and the grid of sub-beams cut at the top of the tree of a large
+// offer (TreeBuild). The tree itself, its insertion and queries: beam_tree.cpp.
 
 #include <algorithm>
 #include <array>
@@ -11,7 +11,6 @@
 #include <utility>
 
 #include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 
 #include "beamtree/beam_tree.h"
 #include "core/error.h"
@@ -161,24 +160,6 @@ bool near_bounds(const std::pair<dvec3, dvec3>& bounds, const dvec3& p, double m
            glm::all(glm::lessThanEqual(p, hi + margin));
 }
 
-// A plane through L (for parallel beams: containing them) across the influence pyramid: the
-// beams whose direction from the light, at unit depth along the axis and over the pyramid's
-// half-width there, has coordinate m along r (axis 0) or u (axis 1) of influence_planes()'
-// frame, its front side the beams beyond m. At m = ±1 it is a side of the pyramid; a grid of
-// such planes cuts the pyramid into a grid of sub-beams.
-Plane grid_plane(const SpotLight& light, int axis, double m) {
-    const dvec3 apex(light.position);
-    const dvec3 d = glm::normalize(dvec3(light.direction()));
-    const dvec3 u = glm::normalize(dvec3(light.up()) - glm::dot(dvec3(light.up()), d) * d);
-    const dvec3 side = axis == 0 ? glm::cross(d, u) : u;
-    if (light.parallel()) {
-        return {side, -glm::dot(side, apex) - m * double(light.half_width)};
-    }
-    const double t = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
-    const dvec3 n = glm::normalize(side - m * t * d);
-    return {n, -glm::dot(n, apex)};
-}
-
 }  // namespace
 
 int TreeBuild::grid(size_t polygons) const {
@@ -269,29 +250,37 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
 }
 
 void BeamTree::add_grid(const SpotLight& light, int grid) {
+    // Line k of the grid's grid - 1 lines per axis sits at m = -1 + 2 (k + 1) / grid.
+    std::array<std::vector<Plane>, 2> lines;
+    for (int axis = 0; axis < 2; ++axis) {
+        for (int k = 0; k + 1 < grid; ++k) {
+            lines[size_t(axis)].push_back(
+                bt::beam_plane(light, axis, -1.0 + 2.0 * double(k + 1) / grid));
+        }
+    }
     // The columns' planes, the middle one first (balanced), then each column's rows likewise.
-    std::vector<int32_t> columns, cells;
-    auto cut = [&](auto&& self, int32_t leaf, int axis, int lo, int hi,
-                   std::vector<int32_t>& leaves) -> void {
+    std::vector<int32_t> columns;
+    auto cut = [&](auto&& self, int32_t leaf, int axis, int lo, int hi) -> void {
         if (lo == hi) {
-            leaves.push_back(leaf);
+            if (axis == 0) {
+                columns.push_back(leaf);
+            }
             return;
         }
-        const int middle = lo + (hi - lo) / 2;  // line k of grid - 1 sits at -1 + 2 (k + 1) / grid
-        const Plane plane = grid_plane(light, axis, -1.0 + 2.0 * double(middle + 1) / grid);
+        const int middle = lo + (hi - lo) / 2;
         const int32_t front = add_leaf({Kind::open, {}, -1}, leaf);
         const int32_t back = add_leaf({Kind::open, {}, -1}, leaf);
         Node& node = at(leaf);
         node.kind = Kind::split;
-        node.plane = plane;
+        node.plane = lines[size_t(axis)][size_t(middle)];
         node.front = front;
         node.back = back;
-        self(self, back, axis, lo, middle, leaves);
-        self(self, front, axis, middle + 1, hi, leaves);
+        self(self, back, axis, lo, middle);
+        self(self, front, axis, middle + 1, hi);
     };
-    cut(cut, at(3).back, 0, 0, grid - 1, columns);
+    cut(cut, at(3).back, 0, 0, grid - 1);
     for (const int32_t column : columns) {
-        cut(cut, column, 1, 0, grid - 1, cells);
+        cut(cut, column, 1, 0, grid - 1);
     }
 }
 

@@ -355,15 +355,14 @@ void lights_move_table(const SceneSearchPaths& paths, const std::string& only) {
         const double budget =
             point ? 4.0 * double(scene.light_sources().size()) : 2.0 * double(spots);
         const double total = quantile(totals, 0.5);
-        fmt::print(
+        constexpr const char* row =
             "| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | **{:.2f}** | {:.2f} | {:.2f} | {:.2f} | "
-            "{} "
-            "|\n",
-            name, scene.light_sources().size(), spots, quantile(volumes, 0.5), quantile(tree, 0.5),
-            quantile(gpu_tree, 0.5), total, quantile(totals, 0.95), total / double(spots),
-            quantile(walls, 0.5),
-            total <= budget ? fmt::format("met ({} ms)", budget)
-                            : fmt::format("{:.1f}x over {} ms", total / budget, budget));
+            "{} |\n";
+        fmt::print(row, name, scene.light_sources().size(), spots, quantile(volumes, 0.5),
+                   quantile(tree, 0.5), quantile(gpu_tree, 0.5), total, quantile(totals, 0.95),
+                   total / double(spots), quantile(walls, 0.5),
+                   total <= budget ? fmt::format("met ({} ms)", budget)
+                                   : fmt::format("{:.1f}x over {} ms", total / budget, budget));
         std::fflush(stdout);
     }
 }
