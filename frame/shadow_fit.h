@@ -2,8 +2,8 @@
 // Where a light's shadow map lies for one frame (docs/design.md §18, "The sun's map"). A spot
 // light's map is its influence pyramid, whatever the camera sees. A sun's box holds the whole
 // scene, so one map over all of it spreads its texels over what the camera never sees; its map is
-// fitted instead to the part of the box the camera's view pyramid (from the eye to the far plane)
-// reaches: across the beams to that part's bounds, along them from the entry plane (so that every
+// fitted instead to the part of the box the camera's view pyramid reaches (scenes/view_window.h):
+// across the beams to that part's bounds, along them from the entry plane (so that every
 // occluder between the light and a visible point is in the map: an orthographic map sees a point
 // and its occluders at the same texel) to the farthest point of it, with a margin of 2 % of each
 // extent, and never beyond the box. Nothing the camera sees changes: every eye ray lies in the
