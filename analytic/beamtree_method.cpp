@@ -46,8 +46,9 @@ public:
                                                        const SceneChange& change) const override {
         AnalyticRegionPass::require_closed_form(scene, name());
         if (walks(*route_, scene, software_)) {
-            return region_frame_work(scene, change, {.gpu_tree = true, .layout = *layout_}, built_,
-                                     true);
+            return region_frame_work(
+                scene, change, {.gpu_tree = true, .layout = *layout_, .view_aspect = view_aspect()},
+                built_, true);
         }
         const Surfaces surfaces = *surfaces_;
         return region_frame_work(
@@ -55,7 +56,8 @@ public:
             {.lit = true,
              .cells = surfaces == Surfaces::cells,
              .shape = surfaces == Surfaces::fragments ? bt::BoundaryShape::fragments
-                                                      : bt::BoundaryShape::maximal},
+                                                      : bt::BoundaryShape::maximal,
+             .view_aspect = view_aspect()},
             built_);
     }
     void apply_update_light(const Scene& scene, const SceneChange&,

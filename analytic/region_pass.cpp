@@ -149,7 +149,7 @@ frame::MethodStatistics region_statistics(const bt::RegionStageTimes& ms, bool w
 std::unique_ptr<frame::FrameWork> region_frame_work(const Scene& scene, const SceneChange& change,
                                                     const bt::RegionRequest& request, bool built,
                                                     bool walk) {
-    if (built && !change.regions()) {
+    if (built && !change.regions() && !(change.camera && request.view_dependent(scene))) {
         return nullptr;
     }
     auto work = std::make_unique<RegionFrameWork>();

@@ -45,6 +45,7 @@ void play_mode(const Scene& scene, frame::VolumeMethod& method, const frame::Ren
     const Animation& animation = *scene.animation;
     Scene live = scene_at(scene, animation.frame_time(0));
     frame::SceneRenderer renderer(live, options);
+    method.set_view_aspect(options.aspect());
     method.prepare(live);
     for (int i = 0; i < warmup; ++i) {
         renderer.draw(method);  // shader compilation and first-use costs

@@ -51,6 +51,7 @@ struct RenderedView {
 void measure_view(const RenderArguments& args, const Scene& scene, frame::SceneRenderer& renderer,
                   frame::VolumeMethod& method, RenderedView& view) {
     auto start = Clock::now();
+    method.set_view_aspect(renderer.options().aspect());
     method.prepare(scene);
     view.prepare_ms = ms_since(start);
     view.measured = methods::measure_frames(renderer, method, args.warmup, args.frames);

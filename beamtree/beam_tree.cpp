@@ -90,15 +90,18 @@ Plane beam_plane(const SpotLight& light, int axis, double m) {
     return {n, -glm::dot(n, apex)};
 }
 
-std::vector<Plane> influence_planes(const SpotLight& light) {
+std::vector<Plane> influence_planes(const SpotLight& light,
+                                    const std::optional<ViewWindow>& window) {
+    SL_CHECK(!window || light.parallel());
+    const ViewWindow w = window.value_or(ViewWindow{});
     const dvec3 apex(light.position);
     const dvec3 d = glm::normalize(dvec3(light.direction()));
-    return {beam_plane(light, 0, 1.0),
-            beam_plane(light, 0, -1.0).flipped(),
-            beam_plane(light, 1, 1.0),
-            beam_plane(light, 1, -1.0).flipped(),
-            {-d, glm::dot(d, apex) + double(light.near)},
-            {d, -glm::dot(d, apex) - double(light.far)}};
+    // The window's far side in the box's clip space (glm::ortho's z) as a depth along the beams.
+    const double near = double(light.near), far = double(light.far);
+    const double depth = window ? near + 0.5 * (w.hi.z + 1.0) * (far - near) : far;
+    return {beam_plane(light, 0, w.hi.x),   beam_plane(light, 0, w.lo.x).flipped(),
+            beam_plane(light, 1, w.hi.y),   beam_plane(light, 1, w.lo.y).flipped(),
+            {-d, glm::dot(d, apex) + near}, {d, -glm::dot(d, apex) - depth}};
 }
 
 double BeamTree::light_side(const Plane& plane) const {

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -29,14 +30,18 @@
 #include "beamtree/geometry.h"
 #include "core/check.h"
 #include "scenes/scene.h"
+#include "scenes/view_window.h"
 
 namespace sl::bt {
 
 enum class Region : uint8_t { lit = 0, uncertain = 1, unlit = 2 };
 
 // The influence pyramid circumscribing the light's cone (the shadow map's square frustum) as
-// outward planes: four sides (right, left, up, down), the near range, the far range.
-std::vector<Plane> influence_planes(const SpotLight& light);
+// outward planes: four sides (right, left, up, down), the near range, the far range. With a
+// `window` (parallel beams alone: scenes/view_window.h), the part of the box in it: the sides at
+// the window's bounds across the beams, the far range at its far side.
+std::vector<Plane> influence_planes(const SpotLight& light,
+                                    const std::optional<ViewWindow>& window = std::nullopt);
 // The plane through L (for parallel beams: containing them) of the beams at coordinate m along
 // the light's right (axis 0) or up vector (axis 1), in units of the pyramid's half-width at the
 // same depth, its front side the beams beyond m: at m = 1 the pyramid's right or upper side, at
@@ -120,8 +125,12 @@ public:
     enum class Role : uint8_t { occluder, stopper, opaque };
 
     // Throws sl::Error when the light is inside (or within ε of) an outer bounding volume.
+    // With a `window` (a sun's, for one camera's view: scenes/view_window.h), the tree covers
+    // only the part of the box in it (influence_planes): exact there, where every point the
+    // camera sees lies and every occluder of such a point, and unlit beyond, as outside the box.
+    // It leaves out the objects wholly beyond, and the tree is smaller by what they would add.
     BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& volumes,
-             const TreeBuild& build = {});
+             const TreeBuild& build = {}, const std::optional<ViewWindow>& window = std::nullopt);
 
     // Lit, uncertain or unlit; points outside the influence volume are unlit. `margin`, when
     // given, receives the smallest distance from p to a plane the answer depended on.
@@ -227,7 +236,7 @@ private:
     // What the tree is built from, nearest first (tree_build.cpp).
     struct Offer;
     // Cuts the root's open leaf into grid × grid sub-beams (TreeBuild), each an open leaf.
-    void add_grid(const SpotLight& light, int grid);
+    void add_grid(const SpotLight& light, int grid, const ViewWindow& window);
     // Inserts the offered polygons in its order, leaving out the rest of an object once its box
     // is hidden behind what is in; counts what went in and what was left out.
     void insert_offer(const Offer& offer);

@@ -1,6 +1,7 @@
 #include "beamtree/frame_regions.h"
 
 #include <chrono>
+#include <optional>
 
 #include "beamtree/boundary.h"
 
@@ -35,7 +36,11 @@ FrameRegions build_frame_regions(const Scene& scene, const RegionRequest& reques
     const std::vector<ObjectVolumes>& volumes = *shared;
     out.exact = exact_occluders(volumes);
     lap(out.ms.volumes);
-    auto tree = std::make_shared<const BeamTree>(scene.light, volumes);
+    const std::optional<ViewWindow> window =
+        request.view_dependent(scene) ? view_window(scene.light, scene.camera, request.view_aspect)
+                                      : std::nullopt;
+    // A view that misses the sun's box sees none of its light: the whole box stands in for it.
+    auto tree = std::make_shared<const BeamTree>(scene.light, volumes, TreeBuild{}, window);
     lap(out.ms.tree);
     if (request.lit || request.uncertain || request.pieces) {
         auto pieces = std::make_shared<const Regions>(extract_regions(*tree));

@@ -27,6 +27,14 @@ struct RegionRequest {
     bool pieces = false;  // keep the region pieces (FrameRegions::regions: PLY, statistics)
     // The boundary meshes' triangles: maximal polygons, or each face fanned (for comparison).
     BoundaryShape shape = BoundaryShape::maximal;
+    // Over 0: the frames are drawn at this width / height, and a sun's tree covers only the part
+    // of its box that the scene's camera sees at it (BeamTree's window): the regions are then the
+    // camera's alone, and change with it (view_dependent). 0: the whole box, for any camera.
+    float view_aspect = 0.0f;
+    // Whether the regions built for `scene` depend on its camera.
+    bool view_dependent(const Scene& scene) const {
+        return view_aspect > 0.0f && scene.light.parallel();
+    }
 };
 
 // CPU milliseconds of each stage (one thread, wall clock).

@@ -171,13 +171,13 @@ int TreeBuild::grid(size_t polygons) const {
 }
 
 BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& volumes,
-                   const TreeBuild& build)
+                   const TreeBuild& build, const std::optional<ViewWindow>& window)
     : apex_(light.position),
       parallel_(light.parallel()),
       axis_(glm::normalize(dvec3(light.direction()))),
       scale_(double(light.far)),
       epsilon_(kRelativeEpsilon * double(light.far)) {
-    influence_ = bt::influence_planes(light);
+    influence_ = bt::influence_planes(light, window);
     // Root: a chain through the four side planes, the inside an open leaf.
     for (int i = 0; i < 4; ++i) {
         Node node;
@@ -245,17 +245,19 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         offer.order[i] = {offer.polygons[i].distance, uint32_t(i)};
     }
     std::sort(offer.order.begin(), offer.order.end());
-    add_grid(light, build.grid(offer.order.size()));
+    add_grid(light, build.grid(offer.order.size()), window.value_or(ViewWindow{}));
     insert_offer(offer);
 }
 
-void BeamTree::add_grid(const SpotLight& light, int grid) {
-    // Line k of the grid's grid - 1 lines per axis sits at m = -1 + 2 (k + 1) / grid.
+void BeamTree::add_grid(const SpotLight& light, int grid, const ViewWindow& window) {
+    // Line k of the grid's grid - 1 lines per axis sits at m = lo + (hi - lo) (k + 1) / grid,
+    // across the window (the whole pyramid: lo = -1, hi = 1).
     std::array<std::vector<Plane>, 2> lines;
     for (int axis = 0; axis < 2; ++axis) {
+        const double lo = window.lo[axis], hi = window.hi[axis];
         for (int k = 0; k + 1 < grid; ++k) {
             lines[size_t(axis)].push_back(
-                bt::beam_plane(light, axis, -1.0 + 2.0 * double(k + 1) / grid));
+                bt::beam_plane(light, axis, lo + (hi - lo) * double(k + 1) / grid));
         }
     }
     // The columns' planes, the middle one first (balanced), then each column's rows likewise.

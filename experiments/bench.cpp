@@ -175,6 +175,7 @@ CellContext open_context(const CellSetup& s, const Scene& scene) {
     c.renderer = std::make_unique<frame::SceneRenderer>(scene, s.options);
     c.setup_ms = ms_since(start);
     start = Clock::now();
+    s.method->set_view_aspect(s.options.aspect());
     s.method->prepare(scene);
     c.prepare_ms = ms_since(start);
     return c;

@@ -62,7 +62,7 @@ void require_valid(const ShadowSettings& settings) {
 }  // namespace
 
 gl::shared::FrameUniforms make_frame_uniforms(const Scene& scene, const RenderOptions& options) {
-    const float aspect = float(options.width) / float(options.height);
+    const float aspect = options.aspect();
     const glm::mat4 view_projection = scene.camera.projection(aspect) * scene.camera.view();
     const SpotLight& light = scene.light;
     const Medium& medium = scene.medium;

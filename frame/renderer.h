@@ -25,6 +25,7 @@ struct RenderOptions {
     int width = 640;
     int height = 360;
     ShadowSettings shadow{};  // methods that declare `shadow` parameters choose their own
+    float aspect() const { return float(width) / float(height); }
 };
 
 // GPU time per pass (GL_TIME_ELAPSED), milliseconds.

@@ -75,6 +75,14 @@ void VolumeMethod::set(const std::string& name, const std::string& text) {
     }
 }
 
+void VolumeMethod::set_view_aspect(float aspect) {
+    SL_CHECK(std::isfinite(aspect) && aspect >= 0.0f);
+    view_aspect_ = aspect;
+    for (const std::unique_ptr<VolumeMethod>& copy : copies_) {
+        copy->set_view_aspect(aspect);
+    }
+}
+
 VolumeMethod& VolumeMethod::for_light(size_t index) {
     SL_CHECK_INDEX(index, light_count());
     return index == 0 ? *this : *copies_[index - 1];
@@ -109,6 +117,7 @@ void VolumeMethod::prepare(const Scene& scene) {
         for (const Parameter& parameter : parameters()) {
             copy->set(parameter.name, parameter.text());
         }
+        copy->set_view_aspect(view_aspect_);
         copies_.push_back(std::move(copy));
     }
     for (size_t i = 0; i < lights; ++i) {

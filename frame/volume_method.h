@@ -111,6 +111,13 @@ public:
     VolumeMethod& for_light(size_t index);
     const VolumeMethod& for_light(size_t index) const;
 
+    // The frames' width / height, where the caller knows it before prepare(): a method may fit
+    // what it builds on the CPU to what the camera sees at it (a sun's beam tree:
+    // beamtree/frame_regions.h), and update it when the camera moves. 0, the default: nothing is
+    // fitted to a view. Set in every light's copy too; takes effect at the next prepare().
+    void set_view_aspect(float aspect);
+    float view_aspect() const { return view_aspect_; }
+
     // Called once per scene before the first frame: programs, buffers, and the scene's state as
     // update(scene, SceneChange::everything(scene)) would make it, for every light.
     void prepare(const Scene& scene);
@@ -199,6 +206,7 @@ private:
     std::vector<std::unique_ptr<VolumeMethod>> copies_;  // lights 1, 2, ...: see light_count()
     Param<ShadowFilter> shadow_filter_;
     Param<int> shadow_size_;
+    float view_aspect_ = 0.0f;
 };
 
 // `none`: no participating medium is rendered, I_s = 0; the frame is the surfaces alone

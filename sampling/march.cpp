@@ -100,7 +100,9 @@ public:
         analytic::AnalyticRegionPass::require_closed_form(scene, name());
         const bool walk = analytic::walks(*route_, scene, software_);
         return analytic::region_frame_work(
-            scene, change, {.lit = !walk, .uncertain = !walk, .gpu_tree = true}, built_, walk);
+            scene, change,
+            {.lit = !walk, .uncertain = !walk, .gpu_tree = true, .view_aspect = view_aspect()},
+            built_, walk);
     }
     void apply_update_light(const Scene& scene, const SceneChange&,
                             std::unique_ptr<frame::FrameWork> work) override {

@@ -121,9 +121,10 @@ public:
         // The CPU partition cuts planes with the tree alone; the lists and the lit integral need
         // the meshes only on the mesh route.
         const bool walk = analytic::walks(*route_, scene, software_);
-        return analytic::region_frame_work(scene, change,
-                                           {.lit = !walk, .uncertain = !walk, .gpu_tree = true},
-                                           tree_ != nullptr, walk);
+        return analytic::region_frame_work(
+            scene, change,
+            {.lit = !walk, .uncertain = !walk, .gpu_tree = true, .view_aspect = view_aspect()},
+            tree_ != nullptr, walk);
     }
     void apply_update_light(const Scene& scene, const SceneChange&,
                             std::unique_ptr<frame::FrameWork> work) override {

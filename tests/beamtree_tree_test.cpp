@@ -12,11 +12,13 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <random>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "beamtree/beam_tree.h"
@@ -25,6 +27,7 @@
 #include "beamtree/regions.h"
 #include "core/error.h"
 #include "scenes/scene_file.h"
+#include "scenes/view_window.h"
 #include "tests/beamtree_oracle.h"
 #include "tests/random_scenes.h"
 #include "tests/support.h"
@@ -725,6 +728,75 @@ TEST(BeamTree, AGridOfSubBeamsChangesNoRegion) {
         std::printf("%s: depth %zu without the grid, %zu with it; worst length %.2g ε\n",
                     scene.name.c_str(), plain.stats().max_depth, gridded.stats().max_depth,
                     worst / plain.epsilon());
+    }
+}
+
+// A sun's tree built for one camera's view (BeamTree's window: scenes/view_window.h) decides
+// every point the camera sees as the tree over the whole box does: along the eye rays of a 64×36
+// image, from the near plane to the far one, points farther than 10ε from every plane either
+// tree depended on classify alike. On the house in the morning, the boxes under suns placed
+// around the camera, and the boxes seen through a narrow lens, where the window is a small part
+// of the box: there and on the house the tree is smaller (not everywhere: the window's sides
+// cut polygons the box's sides did not), and beyond the window it says unlit.
+TEST(BeamTree, ASunsTreeForAViewDecidesWhatTheCameraSeesAsTheWholeBoxTree) {
+    constexpr int kWidth = 64, kHeight = 36;
+    constexpr float kAspect = float(kWidth) / float(kHeight);
+    std::vector<std::pair<std::string, Scene>> scenes = sun_placements();
+    Scene narrow = scenes.front().second;
+    narrow.camera.position = glm::vec3(1.5f, 2.5f, 2.0f);
+    narrow.camera.target = glm::vec3(1.0f, 0.0f, 0.5f);
+    narrow.camera.fov_y_degrees = 20.0f;
+    narrow.camera.far = 4.0f;
+    scenes.emplace_back("narrow view", narrow);
+    scenes.emplace_back("house-morning", load_canonical("house-morning"));
+    std::mt19937 rng(43);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (const auto& [name, scene] : scenes) {
+        bt::VolumeLibrary library(scene.bounds);
+        const std::vector<bt::ObjectVolumes> volumes = library.build(scene, nullptr);
+        const SpotLight light = scene.spot_lights().front();
+        ASSERT_TRUE(light.parallel()) << name;
+        const std::optional<ViewWindow> window = view_window(light, scene.camera, kAspect);
+        ASSERT_TRUE(window.has_value()) << name;
+        const bt::BeamTree whole(light, volumes), viewed(light, volumes, {}, window);
+        const PixelUnprojector pixels(scene.camera, kWidth, kHeight);
+        size_t compared = 0, differ = 0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                const dvec3 a = pixels.point(x, y, -1.0), b = pixels.point(x, y, 1.0);
+                for (int k = 0; k < 12; ++k) {
+                    const dvec3 p = a + unit(rng) * (b - a);
+                    double a_margin = 0.0, b_margin = 0.0;
+                    const bt::Region r = whole.classify(p, &a_margin);
+                    const bt::Region s = viewed.classify(p, &b_margin);
+                    if (std::min(a_margin, b_margin) <= 10.0 * whole.epsilon()) {
+                        continue;
+                    }
+                    ++compared;
+                    differ += r != s;
+                }
+            }
+        }
+        EXPECT_GT(compared, size_t(kWidth * kHeight * 6)) << name;
+        EXPECT_EQ(differ, 0u) << name;
+        const double share = (window->hi.x - window->lo.x) * (window->hi.y - window->lo.y) / 4.0;
+        std::printf("%s: window %.0f %% of the box's cross-section; nodes %zu -> %zu\n",
+                    name.c_str(), 100.0 * share, whole.stats().nodes, viewed.stats().nodes);
+        if (name == "house-morning") {
+            EXPECT_LT(viewed.stats().nodes, whole.stats().nodes) << name;
+        }
+        if (name == "narrow view") {
+            EXPECT_LT(share, 0.25) << name;
+            EXPECT_LT(viewed.stats().nodes, whole.stats().nodes) << name;
+            // The box's corner farthest from the window, across the beams, in the middle of the
+            // box along them: lit or not in the whole box's tree, unlit in the window's.
+            const glm::dmat4 to_world =
+                glm::inverse(glm::dmat4(light.projection()) * glm::dmat4(light.view()));
+            const double cx = window->lo.x + window->hi.x < 0.0 ? 0.99 : -0.99;
+            const double cy = window->lo.y + window->hi.y < 0.0 ? 0.99 : -0.99;
+            const glm::dvec4 corner = to_world * glm::dvec4(cx, cy, 0.0, 1.0);
+            EXPECT_EQ(viewed.classify(dvec3(corner) / corner.w), bt::Region::unlit) << name;
+        }
     }
 }
 

@@ -223,6 +223,43 @@ TEST_P(EveryMethod, ASunMatchesTheReference) {
     EXPECT_LE(error, eye_and_light_tolerances().at(GetParam()));
 }
 
+// A method told the frames' aspect (VolumeMethod::set_view_aspect) may fit a sun's regions to
+// what the camera sees (beamtree/frame_regions.h): its frame is the one drawn over the whole box,
+// and when the camera alone turns to another part of the box, the update follows it. A narrow
+// lens looks left of the boxes, then right of them.
+TEST_P(EveryMethod, ASunFittedToTheViewFollowsTheCamera) {
+    constexpr int kWidth = 64, kHeight = 36;
+    Scene before = sunlit_boxes_scene();
+    before.camera.fov_y_degrees = 15.0f;
+    before.camera.far = 12.0f;
+    before.camera.target = glm::vec3(-4.0f, 0.5f, 0.0f);
+    Scene after = before;
+    after.camera.target = glm::vec3(4.0f, 0.5f, 0.0f);
+    const SceneChange change = scene_change(before, after);
+    ASSERT_TRUE(change.camera && !change.regions());
+
+    const auto fitted = create();
+    fitted->set_view_aspect(float(kWidth) / float(kHeight));
+    {
+        frame::SceneRenderer renderer(before, {.width = kWidth, .height = kHeight});
+        fitted->prepare(before);
+        renderer.draw(*fitted);
+    }
+    frame::SceneRenderer renderer(after, {.width = kWidth, .height = kHeight});
+    fitted->update(after, change);
+    renderer.draw(*fitted);
+    const Image moved = renderer.read_in_scattering();
+
+    const auto whole = create();
+    whole->prepare(after);
+    renderer.draw(*whole);
+    const Image expected = renderer.read_in_scattering();
+    const double difference = max_abs_difference(moved, expected);
+    std::printf("%s: fitted and followed against the whole box: %.2e of a peak of %.2e\n",
+                GetParam().c_str(), difference, image_peak(expected));
+    EXPECT_LE(difference, 1e-4 * (1.0 + image_peak(expected)));
+}
+
 // Light adds up: the frame of two lights is the sum of the frames of each alone, in I_s and on the
 // surfaces (the scene has no ambient or environment light, which the first light's pass carries).
 TEST_P(EveryMethod, TwoLightsAddUpToEachAlone) {
