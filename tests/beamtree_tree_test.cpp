@@ -780,8 +780,11 @@ TEST(BeamTree, ASunsTreeForAViewDecidesWhatTheCameraSeesAsTheWholeBoxTree) {
         EXPECT_GT(compared, size_t(kWidth * kHeight * 6)) << name;
         EXPECT_EQ(differ, 0u) << name;
         const double share = (window->hi.x - window->lo.x) * (window->hi.y - window->lo.y) / 4.0;
-        std::printf("%s: window %.0f %% of the box's cross-section; nodes %zu -> %zu\n",
-                    name.c_str(), 100.0 * share, whole.stats().nodes, viewed.stats().nodes);
+        std::printf(
+            "%s: window %.0f %% of the box's cross-section; nodes %zu -> %zu, exact faces in "
+            "%zu -> %zu\n",
+            name.c_str(), 100.0 * share, whole.stats().nodes, viewed.stats().nodes,
+            whole.stats().exact_polygons, viewed.stats().exact_polygons);
         if (name == "house-morning") {
             EXPECT_LT(viewed.stats().nodes, whole.stats().nodes) << name;
         }
