@@ -209,7 +209,7 @@ void recycle(Polygon&& fragment) {
 
 }  // namespace
 
-bool BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
+bool BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role, int32_t start) {
     // Only light-facing polygons occlude; edge-on ones (L within ε of their plane) add nothing.
     if (light_side(plane) <= epsilon_ || !area_exceeds(polygon, epsilon_ * epsilon_)) {
         return false;
@@ -247,7 +247,7 @@ bool BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role) {
     thread_local std::vector<Pending> stack;
     stack.clear();
     const Ball ball = bounding_ball(clipped);
-    stack.push_back({0, std::move(clipped), ball});
+    stack.push_back({start, std::move(clipped), ball});
     while (!stack.empty()) {
         Pending next = std::move(stack.back());
         stack.pop_back();
@@ -281,9 +281,13 @@ int32_t BeamTree::descend(int32_t index, double nearest, Polygon& fragment, cons
             index = passed == Side::front ? node.front : node.back;
             continue;
         }
+        // A part that would land behind its child's reach is dropped there: not made at all.
+        const bool front_hidden = nearest > double(at(node.front).reach);
+        const bool back_hidden = nearest > double(at(node.back).reach);
+        const Parts parts = back_hidden ? Parts::front : front_hidden ? Parts::back : Parts::both;
         uint64_t touching = 0;
         const Side where = split_straddling(fragment, node.plane, epsilon_, true, front, back,
-                                            &touching, kCoincident * epsilon_);
+                                            &touching, kCoincident * epsilon_, parts);
         if (where == Side::coplanar) {
             break;  // on a plane through L: edge-on to the light, occludes nothing
         }

@@ -248,8 +248,14 @@ private:
         double nearest = 0.0;  // the polygon's distance from L: no fragment of it is nearer
     };
     // False where the polygon is left out before its descent (edge-on, a sliver, beyond the far
-    // range): it is then not counted as inserted.
-    bool insert(const Polygon& polygon, const Plane& plane, Role role);
+    // range): it is then not counted as inserted. Its descent starts at node `start`, which must
+    // lie on the path every part of the polygon would take from the root (deepest_holding).
+    bool insert(const Polygon& polygon, const Plane& plane, Role role, int32_t start = 0);
+    // From node `start` down, the deepest node whose every ancestor's plane has the whole box
+    // farther than 2ε on one side: every polygon in the box descends through it, with no split and
+    // no edge on those planes. Splits never change once made, so it stays such a node as the
+    // tree grows.
+    int32_t deepest_holding(const std::pair<dvec3, dvec3>& box, int32_t start) const;
     // True when every vertex lies outside one side of the influence pyramid or beyond its far
     // range: what the polygons bound casts no shadow inside it.
     bool outside_influence(const std::vector<Polygon>& polygons) const;

@@ -802,6 +802,9 @@ ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
             volumes.closed_faces.push_back(outward != 0);
         }
     }
+    if (volumes.triangles.size() > kFacesPerCluster) {
+        volumes.clusters = cluster_faces(volumes.triangles, kFacesPerCluster);
+    }
     return volumes;
 }
 

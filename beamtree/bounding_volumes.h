@@ -20,6 +20,7 @@
 #include "beamtree/closed_surface.h"
 #include "beamtree/convex_volume.h"
 #include "beamtree/coplanar_faces.h"
+#include "beamtree/face_clusters.h"
 #include "beamtree/geometry.h"
 #include "core/check.h"
 #include "scenes/scene.h"
@@ -53,6 +54,9 @@ struct ObjectVolumes {
     std::vector<uint8_t> closed_faces;
     // Every face does: the whole mesh is a closed surface.
     bool closed = false;
+    // The faces cut into clusters of spatial neighbours (face_clusters.h), for the tree to leave
+    // out the rest of a cluster hidden behind what is in. Empty where not found (a few faces).
+    FaceClusters clusters;
     // Why they are triangles: "occluders = triangles", "no inner volume (...)" or "loose: inner
     // volumes fill N % of its hull" (auto).
     std::string why_triangles;

@@ -96,17 +96,24 @@ namespace {
 
 // The two parts of a polygon that straddles a plane, from its vertices' distances `d`: cut
 // exactly at distance 0, so that the two parts share the cut and conserve the area (ε only
-// decided that there is a split at all). The cut points go to `cut` when given.
-void cut_in_two(const Polygon& polygon, const double* d, bool cut_on_split_plane, Polygon& front,
-                Polygon& back, std::vector<dvec3>* cut) {
+// decided that there is a split at all). The cut points go to `cut` when given. A null `front` or
+// `back`: that part is not made.
+void cut_in_two(const Polygon& polygon, const double* d, bool cut_on_split_plane, Polygon* front,
+                Polygon* back, std::vector<dvec3>* cut) {
     const size_t n = polygon.size();
-    front.vertices.reserve(n + 1);
-    back.vertices.reserve(n + 1);
-    auto add = [](Polygon& p, const dvec3& v, bool edge_flag) {
-        if (edge_flag && p.vertices.size() < 64) {
-            p.on_split_plane |= uint64_t(1) << p.vertices.size();
+    for (Polygon* part : {front, back}) {
+        if (part) {
+            part->vertices.reserve(n + 1);
         }
-        p.vertices.push_back(v);
+    }
+    auto add = [](Polygon* p, const dvec3& v, bool edge_flag) {
+        if (!p) {
+            return;
+        }
+        if (edge_flag && p->vertices.size() < 64) {
+            p->on_split_plane |= uint64_t(1) << p->vertices.size();
+        }
+        p->vertices.push_back(v);
     };
     for (size_t i = 0; i < n; ++i) {
         const size_t j = i + 1 == n ? 0 : i + 1;
@@ -148,11 +155,10 @@ void cut_in_two(const Polygon& polygon, const double* d, bool cut_on_split_plane
         }
     }
     // Emptied, not freed: a caller that reuses the parts keeps their storage.
-    if (front.size() < 3) {
-        front.clear();
-    }
-    if (back.size() < 3) {
-        back.clear();
+    for (Polygon* part : {front, back}) {
+        if (part && part->size() < 3) {
+            part->clear();
+        }
     }
 }
 
@@ -200,13 +206,13 @@ Split split(const Polygon& polygon, const Plane& plane, double epsilon, bool cut
         result.back = polygon;
         return result;
     }
-    cut_in_two(polygon, d.data(), cut_on_split_plane, result.front, result.back, &result.cut);
+    cut_in_two(polygon, d.data(), cut_on_split_plane, &result.front, &result.back, &result.cut);
     return result;
 }
 
 Side split_straddling(const Polygon& polygon, const Plane& plane, double epsilon,
                       bool cut_on_split_plane, Polygon& front, Polygon& back, uint64_t* touching,
-                      double coincident) {
+                      double coincident, Parts parts) {
     Distances d(polygon, plane, epsilon);
     if (!(d.any_front && d.any_back)) {
         if (touching) {
@@ -225,7 +231,8 @@ Side split_straddling(const Polygon& polygon, const Plane& plane, double epsilon
         }
         return d.any_front ? Side::front : d.any_back ? Side::back : Side::coplanar;
     }
-    cut_in_two(polygon, d.data(), cut_on_split_plane, front, back, nullptr);
+    cut_in_two(polygon, d.data(), cut_on_split_plane, parts == Parts::back ? nullptr : &front,
+               parts == Parts::front ? nullptr : &back, nullptr);
     return Side::straddling;
 }
 

@@ -106,14 +106,19 @@ struct Ball {
 };
 Ball bounding_ball(const Polygon& polygon);
 
+// Which parts of a straddling polygon split_straddling() makes.
+enum class Parts : uint8_t { both, front, back };
+
 // side() and split() in one pass over the distances, for a fragment descending a tree: where the
-// polygon lies, and when it straddles, its two parts in `front` and `back` (empty ones on entry)
-// exactly as split() cuts them. Where it lies on one side, `touching` (when given) receives the
-// edges whose both ends lie within `coincident` of the plane, one bit per edge as
+// polygon lies, and when it straddles, its parts in `front` and `back` (empty ones on entry)
+// exactly as split() cuts them; with `parts` front or back, only that one (the other stays empty:
+// a part the caller would drop costs no cut). Where it lies on one side, `touching` (when given)
+// receives the edges whose both ends lie within `coincident` of the plane, one bit per edge as
 // Polygon::on_split_plane marks them (an edge shared with a polygon whose edge made the plane).
 Side split_straddling(const Polygon& polygon, const Plane& plane, double epsilon,
                       bool cut_on_split_plane, Polygon& front, Polygon& back,
-                      uint64_t* touching = nullptr, double coincident = 0.0);
+                      uint64_t* touching = nullptr, double coincident = 0.0,
+                      Parts parts = Parts::both);
 
 // The convex polygon spanned by points lying on `plane`, counter-clockwise around its normal,
 // with duplicates (within epsilon) removed; empty when fewer than three remain.

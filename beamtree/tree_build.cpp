@@ -26,7 +26,10 @@ struct Inserting {
     Plane plane;             // facing the light
     BeamTree::Role role;
     bool reversed = false;  // a triangle wound the other way about `plane`: turned when inserted
-    int32_t object = -1;    // an exact face's object (its index among the volumes), else -1
+    // An exact face's boxes (indices into Offer::boxes): its object's, and its cluster's where
+    // the object has clusters (ObjectVolumes::clusters); else -1.
+    int32_t object = -1;
+    int32_t cluster = -1;
 };
 
 struct BeamTree::Offer {
@@ -34,9 +37,10 @@ struct BeamTree::Offer {
     // Nearest first, ties in the order of `polygons`: (distance, index) keys, a quarter of the
     // bytes of the entries themselves (a sun over the house sorts 28,000 of them a frame).
     std::vector<std::pair<double, uint32_t>> order;
-    // Per object of exact faces: the faces of its box that face the light (none where the light
-    // is within ε of the box's planes, or the object has too few faces to ask about).
-    std::vector<std::vector<Polygon>> boxes;
+    // The boxes asked about (BeamTree::hidden_beyond): per object of exact faces (empty where it
+    // has too few faces to ask about), then its clusters'. Their light-facing faces are found at
+    // the first question: most clusters are never asked about.
+    std::vector<std::pair<dvec3, dvec3>> boxes;
 };
 
 namespace {
@@ -81,12 +85,12 @@ void require_light_outside(const std::vector<ObjectVolumes>& volumes, const dvec
     }
 }
 
-// The faces of the box around `polygons` whose outward side faces the light by more than ε
+// Into `faces`: the faces of the box `bounds` whose outward side faces the light by more than ε
 // (`side(plane)`: BeamTree::light_side); none where the light lies within ε of a face's plane
 // and the box (the light inside, or on the edge of, what the faces bound).
 template <typename Side>
-std::vector<Polygon> facing_box_faces(const std::pair<dvec3, dvec3>& bounds, const Side& side,
-                                      double epsilon) {
+void facing_box_faces(const std::pair<dvec3, dvec3>& bounds, const Side& side, double epsilon,
+                      std::vector<Polygon>& faces) {
     // Named copies, not a structured binding: clang 14 (the fuzz build's) lets no lambda
     // capture one.
     const dvec3 lo = bounds.first;
@@ -99,11 +103,12 @@ std::vector<Polygon> facing_box_faces(const std::pair<dvec3, dvec3>& bounds, con
                                     {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
     const Plane planes[6] = {{{-1, 0, 0}, lo.x}, {{1, 0, 0}, -hi.x}, {{0, -1, 0}, lo.y},
                              {{0, 1, 0}, -hi.y}, {{0, 0, -1}, lo.z}, {{0, 0, 1}, -hi.z}};
-    std::vector<Polygon> faces;
+    faces.clear();
     for (int f = 0; f < 6; ++f) {
         const double s = side(planes[f]);
         if (std::abs(s) <= epsilon) {
-            return {};
+            faces.clear();
+            return;
         }
         if (s > epsilon) {
             const int* c = kCorners[f];
@@ -111,7 +116,6 @@ std::vector<Polygon> facing_box_faces(const std::pair<dvec3, dvec3>& bounds, con
                 std::vector<dvec3>{corner(c[0]), corner(c[1]), corner(c[2]), corner(c[3])});
         }
     }
-    return faces;
 }
 
 // An opaque triangle stops the light whatever its winding: it goes in facing the light, as an
@@ -126,8 +130,11 @@ std::vector<Polygon> facing_box_faces(const std::pair<dvec3, dvec3>& bounds, con
 // a polygon's distance from the light (BeamTree::nearest_to_light).
 template <typename Side, typename Nearest>
 void add_facing_triangles(const ObjectVolumes& object, const Side& side, const Nearest& nearest,
-                          bool outward_only, int32_t object_index, std::vector<Inserting>& out) {
+                          bool outward_only, int32_t object_box, int32_t first_cluster_box,
+                          std::vector<Inserting>& out) {
     const std::vector<Polygon>& triangles = object.triangles;
+    const bool clustered = first_cluster_box >= 0;
+    SL_CHECK(!clustered || object.clusters.cluster.size() == triangles.size());
     const bool closed = outward_only && !object.closed_faces.empty();
     SL_CHECK(object.closed_faces.empty() || object.closed_faces.size() == triangles.size());
     const bool planes_known = !object.face_planes.empty();
@@ -149,7 +156,8 @@ void add_facing_triangles(const ObjectVolumes& object, const Side& side, const N
             continue;
         }
         out.push_back({nearest(triangle), &triangle, reversed ? plane.flipped() : plane,
-                       BeamTree::Role::opaque, reversed, object_index});
+                       BeamTree::Role::opaque, reversed, object_box,
+                       clustered ? first_cluster_box + int32_t(object.clusters.cluster[f]) : -1});
     }
 }
 
@@ -200,7 +208,6 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     // after every occluder; the regions are the same, and on multiple:1650 the tree is as big
     // and 20 % faster to build this way.)
     Offer offer;
-    offer.boxes.resize(volumes.size());
     for (size_t k = 0; k < volumes.size(); ++k) {
         const ObjectVolumes& object = volumes[k];
         if (outside_influence(object.triangles.empty() ? object.outer.faces : object.triangles)) {
@@ -215,14 +222,20 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
             // torus's hole, or the solid itself) every triangle goes in.
             const bool outward_only =
                 !object.closed_faces.empty() && (parallel_ || !near_bounds(box, apex_, epsilon_));
+            int32_t object_box = -1, first_cluster_box = -1;
+            if (object.triangles.size() >= kHidingFaces) {
+                object_box = int32_t(offer.boxes.size());
+                offer.boxes.push_back(box);
+                if (object.clusters.bounds.size() > 1) {
+                    first_cluster_box = int32_t(offer.boxes.size());
+                    offer.boxes.insert(offer.boxes.end(), object.clusters.bounds.begin(),
+                                       object.clusters.bounds.end());
+                }
+            }
             add_facing_triangles(
                 object, [&](const Plane& plane) { return light_side(plane); },
                 [&](const Polygon& triangle) { return nearest_to_light(triangle); }, outward_only,
-                int32_t(k), offer.polygons);
-            if (object.triangles.size() >= kHidingFaces) {
-                offer.boxes[k] = facing_box_faces(
-                    box, [&](const Plane& plane) { return light_side(plane); }, epsilon_);
-            }
+                object_box, first_cluster_box, offer.polygons);
             continue;
         }
         // A volume's faces go in together, at the distance of the box around it.
@@ -287,12 +300,33 @@ void BeamTree::add_grid(const SpotLight& light, int grid, const ViewWindow& wind
 }
 
 void BeamTree::insert_offer(const Offer& offer) {
-    // Per object of exact faces: whether the rest of its faces is hidden, and when to ask.
+    // Per box of exact faces (an object's, a cluster's): whether the rest of its faces is
+    // hidden, and when to ask.
     struct Hiding {
         bool hidden = false;
         size_t seen = 0, next_question = 0;
+        int32_t start = 0;  // where the box's faces start their descent (deepest_holding)
     };
     std::vector<Hiding> hiding(offer.boxes.size());
+    thread_local std::vector<Polygon> facing;  // a box's light-facing faces, for one question
+    // An object whose box lies wholly behind what is in already, from this face's depth on, has
+    // nothing left that the tree would keep: each of its faces would descend to nodes that all
+    // lie beyond their reach, and be dropped there. Likewise a cluster of its faces. Asked at the
+    // box's first face, then after 8, 24, 56, ... of them.
+    auto hidden = [&](int32_t box, double distance) {
+        if (box < 0) {
+            return false;
+        }
+        Hiding& h = hiding[size_t(box)];
+        if (!h.hidden && h.seen++ == h.next_question) {
+            h.next_question = 2 * h.next_question + 8;
+            facing_box_faces(
+                offer.boxes[size_t(box)], [&](const Plane& plane) { return light_side(plane); },
+                epsilon_, facing);
+            h.hidden = !facing.empty() && hidden_beyond(facing, distance);
+        }
+        return h.hidden;
+    };
     nodes_.reserve(nodes_.size() + 16 * offer.order.size());
     parents_.reserve(nodes_.capacity());
     // The order visits the entries, their polygons and their vertices in no order of memory;
@@ -312,32 +346,24 @@ void BeamTree::insert_offer(const Offer& offer) {
         }
         const auto& [distance, i] = offer.order[k];
         const Inserting& o = offer.polygons[i];
-        if (o.object >= 0) {
-            // An object whose box lies wholly behind what is in already, from this face's depth
-            // on, has nothing left that the tree would keep: each of its faces would descend to
-            // nodes that all lie beyond their reach, and be dropped there. Asked at its first
-            // face, then after 8, 24, 56, ... of them.
-            Hiding& h = hiding[size_t(o.object)];
-            const std::vector<Polygon>& box = offer.boxes[size_t(o.object)];
-            if (h.hidden) {
-                ++hidden_polygons_;
-                continue;
-            }
-            if (!box.empty() && h.seen++ == h.next_question) {
-                h.next_question = 2 * h.next_question + 8;
-                if (hidden_beyond(box, distance)) {
-                    h.hidden = true;
-                    ++hidden_polygons_;
-                    continue;
-                }
-            }
+        if (hidden(o.object, distance) || hidden(o.cluster, distance)) {
+            ++hidden_polygons_;
+            continue;
+        }
+        // The face's descent starts below the planes its cluster's (or its object's) box lies
+        // wholly on one side of: the same descent, without the top of it.
+        int32_t start = 0;
+        if (const int32_t box = o.cluster >= 0 ? o.cluster : o.object; box >= 0) {
+            Hiding& h = hiding[size_t(box)];
+            h.start = deepest_holding(offer.boxes[size_t(box)], h.start);
+            start = h.start;
         }
         bool in = false;
         if (o.reversed) {
             const std::vector<dvec3>& v = o.polygon->vertices;
-            in = insert(Polygon(std::vector<dvec3>(v.rbegin(), v.rend())), o.plane, o.role);
+            in = insert(Polygon(std::vector<dvec3>(v.rbegin(), v.rend())), o.plane, o.role, start);
         } else {
-            in = insert(*o.polygon, o.plane, o.role);
+            in = insert(*o.polygon, o.plane, o.role, start);
         }
         if (in) {
             ++(o.role == Role::occluder  ? outer_polygons_
@@ -368,6 +394,30 @@ bool BeamTree::outside_influence(const std::vector<Polygon>& polygons) const {
         }
     }
     return false;
+}
+
+int32_t BeamTree::deepest_holding(const std::pair<dvec3, dvec3>& box, int32_t start) const {
+    const dvec3 lo = box.first, hi = box.second;
+    const double margin = 2.0 * epsilon_;
+    for (;;) {
+        const Node& node = at(start);
+        if (node.kind != Kind::split) {
+            return start;
+        }
+        // The plane's least and greatest distance over the box: at the corners its normal picks.
+        const dvec3& n = node.plane.normal;
+        const dvec3 near(n.x >= 0.0 ? lo.x : hi.x, n.y >= 0.0 ? lo.y : hi.y,
+                         n.z >= 0.0 ? lo.z : hi.z);
+        const dvec3 far(n.x >= 0.0 ? hi.x : lo.x, n.y >= 0.0 ? hi.y : lo.y,
+                        n.z >= 0.0 ? hi.z : lo.z);
+        if (node.plane.distance(near) > margin) {
+            start = node.front;
+        } else if (node.plane.distance(far) < -margin) {
+            start = node.back;
+        } else {
+            return start;
+        }
+    }
 }
 
 bool BeamTree::hidden_beyond(const std::vector<Polygon>& polygons, double nearest) const {

@@ -804,13 +804,15 @@ TEST(BeamTree, ASunsTreeForAViewDecidesWhatTheCameraSeesAsTheWholeBoxTree) {
 }
 
 // An object whose box lies wholly behind what is in already is left out (BeamTree's
-// hidden_beyond): it changes nothing. The same faces cut into objects of 8 faces, too few to be
-// asked about, and inserted in the same order, build the same tree node for node (planes,
-// children, leaves and their stoppers' planes), on the house from its light (most of its faces
-// hidden) and under a sun, and on the level. (Every face, facing the light or not: whether a
-// closed component's faces that face away may stay out is the whole object's bounds' question,
-// which a piece's bounds would answer otherwise. The pieces' planes and boxes are the tree's own
-// work, the whole objects' the library's.)
+// hidden_beyond), and so is a cluster of its faces (face_clusters.h); each face's descent starts
+// below the planes its cluster's box lies wholly on one side of (deepest_holding); a part of a
+// fragment that would land behind its child's reach is not cut off: none of it changes anything.
+// The same faces cut into objects of 8 faces, too few to be asked about, and inserted in the same
+// order, build the same tree node for node (planes, children, leaves and their stoppers' planes),
+// on the house from its light (most of its faces hidden) and under a sun, and on the level. (Every
+// face, facing the light or not: whether a closed component's faces that face away may stay out is
+// the whole object's bounds' question, which a piece's bounds would answer otherwise. The pieces'
+// planes and boxes are the tree's own work, the whole objects' the library's.)
 TEST(BeamTree, HiddenObjectsAreLeftOutAndChangeNothing) {
     std::vector<Scene> scenes = {load_canonical("house"), load_canonical("house-morning"),
                                  load_canonical("arena")};
@@ -827,9 +829,11 @@ TEST(BeamTree, HiddenObjectsAreLeftOutAndChangeNothing) {
                     object.triangles.begin() + std::ptrdiff_t(first),
                     object.triangles.begin() +
                         std::ptrdiff_t(std::min(first + 8, object.triangles.size())));
-                // Planes and box not known: the tree finds them (as the library did).
+                // Planes, box and clusters not known: the tree finds the first two (as the library
+                // did), and has no cluster to leave out or to start a descent below.
                 piece.face_planes.clear();
                 piece.face_bounds = {dvec3(1.0), dvec3(-1.0)};
+                piece.clusters = {};
                 pieces.push_back(std::move(piece));
             }
         }
