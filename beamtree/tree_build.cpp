@@ -37,9 +37,9 @@ struct BeamTree::Offer {
     // Nearest first, ties in the order of `polygons`: (distance, index) keys, a quarter of the
     // bytes of the entries themselves (a sun over the house sorts 28,000 of them a frame).
     std::vector<std::pair<double, uint32_t>> order;
-    // The boxes asked about (BeamTree::hidden_beyond): per object of exact faces (empty where it
-    // has too few faces to ask about), then its clusters'. Their light-facing faces are found at
-    // the first question: most clusters are never asked about.
+    // The boxes asked about (BeamTree::hidden_beyond): per object of kHidingFaces or more exact
+    // faces, its box, then its clusters'. Their light-facing faces are found at each question:
+    // most clusters are never asked about.
     std::vector<std::pair<dvec3, dvec3>> boxes;
 };
 
