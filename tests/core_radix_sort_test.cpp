@@ -1,0 +1,80 @@
+// sort_by_key (core/radix_sort.h) against std::sort on the same pairs.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "core/radix_sort.h"
+
+namespace sl::test {
+namespace {
+
+using Pairs = std::vector<std::pair<double, uint32_t>>;
+
+Pairs numbered(const std::vector<double>& keys) {
+    Pairs pairs;
+    for (size_t i = 0; i < keys.size(); ++i) {
+        pairs.emplace_back(keys[i], uint32_t(i));
+    }
+    return pairs;
+}
+
+// The order std::sort gives (by key, then by index), which the beam tree's offer had.
+void expect_as_std_sort(const std::vector<double>& keys, const char* what) {
+    Pairs expected = numbered(keys), sorted = numbered(keys);
+    std::sort(expected.begin(), expected.end());
+    sort_by_key(sorted);
+    ASSERT_EQ(sorted.size(), expected.size()) << what;
+    size_t differ = 0;
+    for (size_t i = 0; i < sorted.size(); ++i) {
+        // -0.0 and 0.0 compare equal, so std::sort may keep either first; the index decides.
+        differ += sorted[i].second != expected[i].second || !(sorted[i].first == expected[i].first);
+    }
+    EXPECT_EQ(differ, 0u) << what;
+}
+
+TEST(RadixSort, OrdersAsStdSortByKeyThenIndex) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> metres(0.0, 60.0);
+    std::vector<double> distances(20000);
+    for (double& d : distances) {
+        d = metres(rng);
+    }
+    expect_as_std_sort(distances, "distances in [0, 60) m");
+
+    // Ties (whole centimetres), signs, both zeros, magnitudes from denormal to huge, infinities.
+    std::vector<double> mixed;
+    std::uniform_int_distribution<int> centimetres(-300, 300);
+    std::uniform_real_distribution<double> exponent(-320.0, 300.0);
+    for (int i = 0; i < 5000; ++i) {
+        mixed.push_back(0.01 * centimetres(rng));
+        const double magnitude = std::pow(10.0, exponent(rng));
+        mixed.push_back(i % 2 ? magnitude : -magnitude);
+    }
+    for (double special :
+         {0.0, -0.0, std::numeric_limits<double>::denorm_min(),
+          -std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::max(),
+          std::numeric_limits<double>::lowest(), std::numeric_limits<double>::infinity(),
+          -std::numeric_limits<double>::infinity()}) {
+        mixed.push_back(special);
+        mixed.push_back(special);
+    }
+    std::shuffle(mixed.begin(), mixed.end(), rng);
+    expect_as_std_sort(mixed, "ties, signs, zeros, extremes");
+
+    expect_as_std_sort({}, "none");
+    expect_as_std_sort({1.0}, "one");
+    expect_as_std_sort(std::vector<double>(1000, 2.5), "all equal: every pass skipped");
+    expect_as_std_sort({3.0, 1.0, 2.0, 1.0}, "a few");
+}
+
+TEST(RadixSortDeathTest, RefusesANanKey) {
+    Pairs pairs = numbered({1.0, std::nan(""), 0.5});
+    EXPECT_DEATH(sort_by_key(pairs), "isnan");
+}
+
+}  // namespace
+}  // namespace sl::test
