@@ -209,7 +209,8 @@ void recycle(Polygon&& fragment) {
 
 }  // namespace
 
-bool BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role, int32_t start) {
+bool BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role, int32_t start,
+                      double nearest) {
     // Only light-facing polygons occlude; edge-on ones (L within ε of their plane) add nothing.
     if (light_side(plane) <= epsilon_ || !area_exceeds(polygon, epsilon_ * epsilon_)) {
         return false;
@@ -217,9 +218,19 @@ bool BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role, int
     // Nothing beyond the far range matters (Nilsson §4.2): clip to the backplate first.
     // (as split(...).back, into a finished fragment's storage instead of a new one)
     Polygon clipped = reused_polygon();
-    thread_local Polygon beyond;  // the part past the far range: dropped
-    beyond.clear();
-    switch (split_straddling(polygon, influence_[5], epsilon_, false, beyond, clipped)) {
+    // One ball for all of its fragments: what bounds the polygon bounds its fragments. Most
+    // polygons lie wholly inside the far range, which the ball tells without a vertex's distance.
+    Ball ball = bounding_ball(polygon);
+    Side far_side = ball.side(influence_[5], epsilon_);
+    if (far_side == Side::straddling) {
+        thread_local Polygon beyond;  // the part past the far range: dropped
+        beyond.clear();
+        far_side = split_straddling(polygon, influence_[5], epsilon_, false, beyond, clipped);
+        if (far_side == Side::straddling) {
+            ball = bounding_ball(clipped);
+        }
+    }
+    switch (far_side) {
         case Side::back:
             clipped.vertices.assign(polygon.vertices.begin(), polygon.vertices.end());
             clipped.on_split_plane = polygon.on_split_plane;
@@ -236,17 +247,17 @@ bool BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role, int
         return false;
     }
     const bool stops = role != Role::occluder;
-    Inserted inserted{role, plane, -1, nearest_to_light(clipped)};
+    const bool whole = far_side == Side::back;
+    Inserted inserted{role, plane, -1,
+                      whole && nearest >= 0.0 ? nearest : nearest_to_light(clipped)};
     if (stops) {
         inserted.stopper = int32_t(stoppers_.size());
         stoppers_.push_back(plane);
     }
 
     // Fragments waiting for their descent; kept between calls so that it allocates once.
-    // One ball for all of them: what bounds the polygon bounds its fragments.
     thread_local std::vector<Pending> stack;
     stack.clear();
-    const Ball ball = bounding_ball(clipped);
     stack.push_back({start, std::move(clipped), ball});
     while (!stack.empty()) {
         Pending next = std::move(stack.back());

@@ -250,7 +250,10 @@ private:
     // False where the polygon is left out before its descent (edge-on, a sliver, beyond the far
     // range): it is then not counted as inserted. Its descent starts at node `start`, which must
     // lie on the path every part of the polygon would take from the root (deepest_holding).
-    bool insert(const Polygon& polygon, const Plane& plane, Role role, int32_t start = 0);
+    // `nearest`, where known (not negative), is nearest_to_light(polygon): used unless the far
+    // range clips the polygon.
+    bool insert(const Polygon& polygon, const Plane& plane, Role role, int32_t start = 0,
+                double nearest = -1.0);
     // From node `start` down, the deepest node whose every ancestor's plane has the whole box
     // farther than 2ε on one side: every polygon in the box descends through it, with no split and
     // no edge on those planes. Splits never change once made, so it stays such a node as the

@@ -360,11 +360,16 @@ void BeamTree::insert_offer(const Offer& offer) {
             start = h.start;
         }
         bool in = false;
+        // An exact face's distance is its own nearest_to_light (add_facing_triangles); a
+        // volume's faces share the box's.
+        const double known_nearest = o.role == Role::opaque ? distance : -1.0;
         if (o.reversed) {
+            thread_local Polygon flipped;  // its storage kept from face to face
             const std::vector<dvec3>& v = o.polygon->vertices;
-            in = insert(Polygon(std::vector<dvec3>(v.rbegin(), v.rend())), o.plane, o.role, start);
+            flipped.vertices.assign(v.rbegin(), v.rend());
+            in = insert(flipped, o.plane, o.role, start, known_nearest);
         } else {
-            in = insert(*o.polygon, o.plane, o.role, start);
+            in = insert(*o.polygon, o.plane, o.role, start, known_nearest);
         }
         if (in) {
             ++(o.role == Role::occluder  ? outer_polygons_
