@@ -87,11 +87,14 @@ void require_light_outside(const std::vector<ObjectVolumes>& volumes, const dvec
 }
 
 // Into `faces`: the faces of the box `bounds` whose outward side faces the light by more than ε
-// (`side(plane)`: BeamTree::light_side); none where the light lies within ε of a face's plane
-// and the box (the light inside, or on the edge of, what the faces bound).
+// (`side(plane)`: BeamTree::light_side); every ray into the box enters through one of them. For
+// a light at a point: none where the light lies within ε of a face's plane (the light inside, or
+// on the edge of, what the faces bound). For `parallel` beams a face within ε of edge-on is left
+// out instead: no ray enters the box through it (a sun whose direction has a zero component has
+// two such faces on every box).
 template <typename Side>
 void facing_box_faces(const std::pair<dvec3, dvec3>& bounds, const Side& side, double epsilon,
-                      std::vector<Polygon>& faces) {
+                      bool parallel, std::vector<Polygon>& faces) {
     // Named copies, not a structured binding: clang 14 (the fuzz build's) lets no lambda
     // capture one.
     const dvec3 lo = bounds.first;
@@ -108,6 +111,9 @@ void facing_box_faces(const std::pair<dvec3, dvec3>& bounds, const Side& side, d
     for (int f = 0; f < 6; ++f) {
         const double s = side(planes[f]);
         if (std::abs(s) <= epsilon) {
+            if (parallel) {
+                continue;
+            }
             faces.clear();
             return;
         }
@@ -323,7 +329,7 @@ void BeamTree::insert_offer(const Offer& offer) {
             h.next_question = 2 * h.next_question + 8;
             facing_box_faces(
                 offer.boxes[size_t(box)], [&](const Plane& plane) { return light_side(plane); },
-                epsilon_, facing);
+                epsilon_, parallel_, facing);
             h.hidden = !facing.empty() && hidden_beyond(facing, distance);
         }
         return h.hidden;

@@ -26,6 +26,7 @@
 #include "beamtree/conforming.h"
 #include "beamtree/regions.h"
 #include "core/error.h"
+#include "scenes/animation.h"
 #include "scenes/scene_file.h"
 #include "scenes/view_window.h"
 #include "tests/beamtree_oracle.h"
@@ -809,13 +810,18 @@ TEST(BeamTree, ASunsTreeForAViewDecidesWhatTheCameraSeesAsTheWholeBoxTree) {
 // fragment that would land behind its child's reach is not cut off: none of it changes anything.
 // The same faces cut into objects of 8 faces, too few to be asked about, and inserted in the same
 // order, build the same tree node for node (planes, children, leaves and their stoppers' planes),
-// on the house from its light (most of its faces hidden) and under a sun, and on the level. (Every
+// on the house from its light (most of its faces hidden), under a sun, under the noon sun (whose
+// direction has no x: every box's two x faces are edge-on to it, and no ray enters through them),
+// and on the level. (Every
 // face, facing the light or not: whether a closed component's faces that face away may stay out is
 // the whole object's bounds' question, which a piece's bounds would answer otherwise. The pieces'
 // planes and boxes are the tree's own work, the whole objects' the library's.)
 TEST(BeamTree, HiddenObjectsAreLeftOutAndChangeNothing) {
+    const Scene day = load_canonical("house-day");
     std::vector<Scene> scenes = {load_canonical("house"), load_canonical("house-morning"),
-                                 load_canonical("arena")};
+                                 scene_at(day, 3.0), load_canonical("arena")};
+    scenes[2].name = "house-day at noon";
+    ASSERT_EQ(scenes[2].spot_lights().front().direction().x, 0.0f);
     for (Scene& scene : scenes) {
         scene.bounds.occluders = Occluders::triangles;
         bt::VolumeLibrary library(scene.bounds);
