@@ -1,5 +1,6 @@
 #include "core/radix_sort.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -21,7 +22,11 @@ uint64_t ordered_bits(double key) {
 void sort_by_key(std::vector<std::pair<double, uint32_t>>& pairs) {
     constexpr int kBytes = 8;
     const size_t n = pairs.size();
-    if (n < 2) {
+    if (n < kRadixFrom) {
+        for (const auto& pair : pairs) {
+            SL_CHECK(!std::isnan(pair.first));
+        }
+        std::sort(pairs.begin(), pairs.end());
         return;
     }
     std::array<std::array<uint32_t, 256>, kBytes> counts{};
