@@ -22,16 +22,15 @@ uint64_t ordered_bits(double key) {
 void sort_by_key(std::vector<std::pair<double, uint32_t>>& pairs) {
     constexpr int kBytes = 8;
     const size_t n = pairs.size();
+    for (const auto& pair : pairs) {
+        SL_CHECK(!std::isnan(pair.first));  // neither sort orders a NaN
+    }
     if (n < kRadixFrom) {
-        for (const auto& pair : pairs) {
-            SL_CHECK(!std::isnan(pair.first));
-        }
         std::sort(pairs.begin(), pairs.end());
         return;
     }
     std::array<std::array<uint32_t, 256>, kBytes> counts{};
     for (const auto& [key, index] : pairs) {
-        SL_CHECK(!std::isnan(key));
         const uint64_t bits = ordered_bits(key);
         for (int b = 0; b < kBytes; ++b) {
             ++counts[size_t(b)][(bits >> (8 * b)) & 0xff];
