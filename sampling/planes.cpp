@@ -282,7 +282,7 @@ public:
         GL.BindTextureUnit(SL_PLANES_SURFACE_DEPTH_UNIT, inputs.surface_depth);
         GL.Enable(GL_BLEND);
         GL.BlendFunc(GL_ONE, GL_ONE);
-        GL.Enable(GL_DEPTH_CLAMP);  // planes beyond the camera's far plane still count
+        GL.Enable(GL_DEPTH_CLAMP);  // planes before the near plane still count
         GL.BindVertexArray(vertex_array_.id());
         GL.ProgramUniform1i(program_.id(), SL_PLANES_KNOWN_LIT, 0);
         GL.DrawArrays(GL_TRIANGLES, 0, draws.shadowed);
