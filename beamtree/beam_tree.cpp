@@ -99,9 +99,20 @@ std::vector<Plane> influence_planes(const SpotLight& light,
     // The window's far side in the box's clip space (glm::ortho's z) as a depth along the beams.
     const double near = double(light.near), far = double(light.far);
     const double depth = window ? near + 0.5 * (w.hi.z + 1.0) * (far - near) : far;
-    return {beam_plane(light, 0, w.hi.x),   beam_plane(light, 0, w.lo.x).flipped(),
-            beam_plane(light, 1, w.hi.y),   beam_plane(light, 1, w.lo.y).flipped(),
-            {-d, glm::dot(d, apex) + near}, {d, -glm::dot(d, apex) - depth}};
+    std::vector<Plane> planes = {
+        beam_plane(light, 0, w.hi.x),   beam_plane(light, 0, w.lo.x).flipped(),
+        beam_plane(light, 1, w.hi.y),   beam_plane(light, 1, w.lo.y).flipped(),
+        {-d, glm::dot(d, apex) + near}, {d, -glm::dot(d, apex) - depth}};
+    // A cut a x + b y <= c: x and y are the light's right and up coordinates in half-widths
+    // (beam_plane's m), so its outward plane has the normal a right + b up (a unit vector) and
+    // lies c half-widths out along it.
+    const dvec3 u = glm::normalize(dvec3(light.up()) - glm::dot(dvec3(light.up()), d) * d);
+    const dvec3 right = glm::cross(d, u);
+    for (const glm::dvec3& cut : w.cuts) {
+        const dvec3 n = cut.x * right + cut.y * u;
+        planes.push_back({n, -glm::dot(n, apex) - cut.z * double(light.half_width)});
+    }
+    return planes;
 }
 
 double BeamTree::light_side(const Plane& plane) const {

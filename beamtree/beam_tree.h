@@ -39,7 +39,8 @@ enum class Region : uint8_t { lit = 0, uncertain = 1, unlit = 2 };
 // The influence pyramid circumscribing the light's cone (the shadow map's square frustum) as
 // outward planes: four sides (right, left, up, down), the near range, the far range. With a
 // `window` (parallel beams alone: scenes/view_window.h), the part of the box in it: the sides at
-// the window's bounds across the beams, the far range at its far side.
+// the window's bounds across the beams, the far range at its far side, and after the far range
+// a side per cut of the window's corners.
 std::vector<Plane> influence_planes(const SpotLight& light,
                                     const std::optional<ViewWindow>& window = std::nullopt);
 // The plane through L (for parallel beams: containing them) of the beams at coordinate m along
@@ -169,7 +170,8 @@ public:
         Beam beam;
     };
     std::vector<LeafCell> split_cells(Polyhedron cell, double epsilon) const;
-    // The influence pyramid: four sides, near range, far range (outward planes).
+    // The influence pyramid: four sides, near range, far range, then the window's cuts (outward
+    // planes; influence_planes above).
     const std::vector<Plane>& influence_planes() const { return influence_; }
     double epsilon() const { return epsilon_; }
     // The light's position; for parallel beams, the point of the axis on the entry plane.
@@ -317,6 +319,7 @@ private:
     double scale_ = 1.0;  // the far range: light_side's unit for parallel beams
     double epsilon_;
     std::vector<Plane> influence_;
+    int32_t chain_ = 4;  // the root chain's nodes, 0 to chain_ - 1: the sides and the cuts
     std::vector<Node> nodes_;
     std::vector<int32_t> parents_;  // per node, -1 at the root: for lower_reach_above()
     std::vector<Plane> stoppers_;

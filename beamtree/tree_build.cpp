@@ -193,19 +193,26 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
       scale_(double(light.far)),
       epsilon_(kRelativeEpsilon * double(light.far)) {
     influence_ = bt::influence_planes(light, window);
-    // Root: a chain through the four side planes, the inside an open leaf.
-    for (int i = 0; i < 4; ++i) {
+    // Root: a chain through the four side planes and the window's cuts (nodes 0 to sides - 1),
+    // the inside an open leaf.
+    std::vector<size_t> sides = {0, 1, 2, 3};
+    for (size_t i = 6; i < influence_.size(); ++i) {
+        sides.push_back(i);
+    }
+    const auto chain = int32_t(sides.size());
+    for (int32_t i = 0; i < chain; ++i) {
         Node node;
         node.kind = Kind::split;
-        node.plane = influence_[size_t(i)];
+        node.plane = influence_[sides[size_t(i)]];
         nodes_.push_back(node);
         parents_.push_back(i - 1);
     }
-    for (int i = 0; i < 4; ++i) {
+    for (int32_t i = 0; i < chain; ++i) {
         const int32_t out = add_leaf({Kind::out, {}, -1}, i);
         at(i).front = out;
-        at(i).back = i < 3 ? i + 1 : add_leaf({Kind::open, {}, -1}, i);
+        at(i).back = i + 1 < chain ? i + 1 : add_leaf({Kind::open, {}, -1}, i);
     }
+    chain_ = chain;
     if (!parallel_) {
         require_light_outside(volumes, apex_, epsilon_);  // a sun is outside every volume
     }
@@ -300,7 +307,7 @@ void BeamTree::add_grid(const SpotLight& light, int grid, const ViewWindow& wind
         self(self, back, axis, lo, middle);
         self(self, front, axis, middle + 1, hi);
     };
-    cut(cut, at(3).back, 0, 0, grid - 1);
+    cut(cut, at(chain_ - 1).back, 0, 0, grid - 1);
     for (const int32_t column : columns) {
         cut(cut, column, 1, 0, grid - 1);
     }
@@ -390,7 +397,10 @@ bool BeamTree::outside_influence(const std::vector<Polygon>& polygons) const {
     // object between the light and it still shadows). Such an object casts no shadow inside the
     // pyramid: the root chain would drop each of its polygons, one descent each. A point light's
     // faces each see a part of the scene, so each skips most of it here.
-    for (const size_t i : {0, 1, 2, 3, 5}) {
+    for (size_t i = 0; i < influence_.size(); ++i) {
+        if (i == 4) {
+            continue;
+        }
         const Plane& plane = influence_[i];
         bool all_outside = true;
         for (const Polygon& polygon : polygons) {

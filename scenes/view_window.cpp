@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -48,8 +49,9 @@ bool in_box(const dvec3& p) {
 // The part of the box's clip cube [-1, 1]³ inside the view pyramid (eye, far corners in order
 // around the far plane, all in the box's clip space), as the bounds of its vertices: the
 // pyramid's corners in the cube, the cube's corners in the pyramid, and where the edges of each
-// cross the faces of the other. False when they do not meet.
-bool intersection_bounds(const dvec3& eye, const std::array<dvec3, 4>& far, dvec3& lo, dvec3& hi) {
+// cross the faces of the other, into `points`. False when they do not meet.
+bool intersection_bounds(const dvec3& eye, const std::array<dvec3, 4>& far, dvec3& lo, dvec3& hi,
+                         std::vector<dvec3>& points) {
     dvec3 centre = eye;
     for (const dvec3& f : far) {
         centre += f;
@@ -70,6 +72,7 @@ bool intersection_bounds(const dvec3& eye, const std::array<dvec3, 4>& far, dvec
     hi = -lo;
     bool any = false;
     const auto take = [&](const dvec3& p) {
+        points.push_back(p);
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
         any = true;
@@ -137,6 +140,65 @@ void widen(double& lo, double& hi, double least) {
     hi = std::min(1.0, hi + pad);
 }
 
+// Twice the signed area of the triangle o, a, b in x, y: > 0 when it turns counter-clockwise.
+double turn(const dvec3& o, const dvec3& a, const dvec3& b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+}
+
+// The convex hull of the points' x, y, counter-clockwise (Andrew's monotone chain), without
+// collinear vertices.
+std::vector<dvec3> hull_across(std::vector<dvec3> points) {
+    std::sort(points.begin(), points.end(), [](const dvec3& a, const dvec3& b) {
+        return a.x < b.x || (a.x == b.x && a.y < b.y);
+    });
+    if (points.size() < 3) {
+        return points;
+    }
+    std::vector<dvec3> hull(2 * points.size());
+    size_t k = 0;
+    for (size_t i = 0; i < points.size(); ++i) {  // the lower chain
+        while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0.0) {
+            --k;
+        }
+        hull[k++] = points[i];
+    }
+    for (size_t i = points.size() - 1, lower = k + 1; i > 0; --i) {  // the upper chain
+        while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i - 1]) <= 0.0) {
+            --k;
+        }
+        hull[k++] = points[i - 1];
+    }
+    hull.resize(k - 1);  // the last is the first
+    return hull;
+}
+
+// The cuts of `window` (its rectangle already widened): each edge of the hull of the points
+// across the beams, moved out by `pad`, where it cuts a corner off the rectangle. An edge within
+// 1e-3 of a side's direction is left to that side.
+void add_cuts(const std::vector<dvec3>& points, double pad, ViewWindow& window) {
+    const std::vector<dvec3> hull = hull_across(points);
+    for (size_t i = 0; hull.size() >= 3 && i < hull.size(); ++i) {
+        const dvec3& a = hull[i];
+        const dvec3& b = hull[(i + 1) % hull.size()];
+        const double length = std::hypot(b.x - a.x, b.y - a.y);
+        if (!(length > 0.0)) {
+            continue;
+        }
+        // Counter-clockwise: the outward normal is the edge turned clockwise.
+        const double nx = (b.y - a.y) / length, ny = (a.x - b.x) / length;
+        if (std::abs(nx) < 1e-3 || std::abs(ny) < 1e-3) {
+            continue;
+        }
+        const double c = std::max(nx * a.x + ny * a.y, nx * b.x + ny * b.y) + pad;
+        // The rectangle's corner farthest out along the normal: cut only when it lies beyond.
+        const double corner = nx * (nx > 0.0 ? window.hi.x : window.lo.x) +
+                              ny * (ny > 0.0 ? window.hi.y : window.lo.y);
+        if (corner > c) {
+            window.cuts.emplace_back(nx, ny, c);
+        }
+    }
+}
+
 }  // namespace
 
 std::optional<ViewWindow> view_window(const SpotLight& light, const Camera& camera, float aspect) {
@@ -153,11 +215,14 @@ std::optional<ViewWindow> view_window(const SpotLight& light, const Camera& came
         far[i] = clip(dvec3(p) / p.w);
     }
     ViewWindow window;
-    if (!intersection_bounds(clip(dvec3(camera.position)), far, window.lo, window.hi)) {
+    std::vector<dvec3> points;
+    if (!intersection_bounds(clip(dvec3(camera.position)), far, window.lo, window.hi, points)) {
         return std::nullopt;
     }
+    const double extent = std::max(window.hi.x - window.lo.x, window.hi.y - window.lo.y);
     widen(window.lo.x, window.hi.x, kLeast);
     widen(window.lo.y, window.hi.y, kLeast);
+    add_cuts(points, kMargin * extent + 0.5 * kLeast, window);
     window.lo.z = -1.0;  // from the entry plane: every occluder before what the camera sees
     widen(window.lo.z, window.hi.z, kLeast);
     return window;

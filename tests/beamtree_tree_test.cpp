@@ -738,7 +738,9 @@ TEST(BeamTree, AGridOfSubBeamsChangesNoRegion) {
 // tree depended on classify alike. On the house in the morning, the boxes under suns placed
 // around the camera, and the boxes seen through a narrow lens, where the window is a small part
 // of the box: there and on the house the tree is smaller (not everywhere: the window's sides
-// cut polygons the box's sides did not), and beyond the window it says unlit.
+// cut polygons the box's sides did not), and beyond the window it says unlit. Every sampled
+// point in the box lies inside the window's cut corners, and on the house the cuts leave faces
+// out that the window's rectangle alone lets in.
 TEST(BeamTree, ASunsTreeForAViewDecidesWhatTheCameraSeesAsTheWholeBoxTree) {
     constexpr int kWidth = 64, kHeight = 36;
     constexpr float kAspect = float(kWidth) / float(kHeight);
@@ -760,13 +762,23 @@ TEST(BeamTree, ASunsTreeForAViewDecidesWhatTheCameraSeesAsTheWholeBoxTree) {
         const std::optional<ViewWindow> window = view_window(light, scene.camera, kAspect);
         ASSERT_TRUE(window.has_value()) << name;
         const bt::BeamTree whole(light, volumes), viewed(light, volumes, {}, window);
+        ViewWindow rectangle = *window;  // the window without its cut corners
+        rectangle.cuts.clear();
+        const bt::BeamTree boxed(light, volumes, {}, rectangle);
+        const glm::dmat4 to_box = glm::dmat4(light.projection()) * glm::dmat4(light.view());
         const PixelUnprojector pixels(scene.camera, kWidth, kHeight);
-        size_t compared = 0, differ = 0;
+        size_t compared = 0, differ = 0, outside_cuts = 0;
         for (int y = 0; y < kHeight; ++y) {
             for (int x = 0; x < kWidth; ++x) {
                 const dvec3 a = pixels.point(x, y, -1.0), b = pixels.point(x, y, 1.0);
                 for (int k = 0; k < 12; ++k) {
                     const dvec3 p = a + unit(rng) * (b - a);
+                    const glm::dvec4 q = to_box * glm::dvec4(p, 1.0);  // orthographic: w = 1
+                    if (std::abs(q.x) <= 1.0 && std::abs(q.y) <= 1.0 && std::abs(q.z) <= 1.0) {
+                        for (const glm::dvec3& cut : window->cuts) {
+                            outside_cuts += cut.x * q.x + cut.y * q.y > cut.z;
+                        }
+                    }
                     double a_margin = 0.0, b_margin = 0.0;
                     const bt::Region r = whole.classify(p, &a_margin);
                     const bt::Region s = viewed.classify(p, &b_margin);
@@ -780,14 +792,19 @@ TEST(BeamTree, ASunsTreeForAViewDecidesWhatTheCameraSeesAsTheWholeBoxTree) {
         }
         EXPECT_GT(compared, size_t(kWidth * kHeight * 6)) << name;
         EXPECT_EQ(differ, 0u) << name;
+        EXPECT_EQ(outside_cuts, 0u) << name;
         const double share = (window->hi.x - window->lo.x) * (window->hi.y - window->lo.y) / 4.0;
         std::printf(
-            "%s: window %.0f %% of the box's cross-section; nodes %zu -> %zu, exact faces in "
-            "%zu -> %zu\n",
-            name.c_str(), 100.0 * share, whole.stats().nodes, viewed.stats().nodes,
-            whole.stats().exact_polygons, viewed.stats().exact_polygons);
+            "%s: window %.0f %% of the box's cross-section, %zu corners cut; nodes %zu -> %zu "
+            "(%zu uncut), exact faces in %zu -> %zu (%zu uncut)\n",
+            name.c_str(), 100.0 * share, window->cuts.size(), whole.stats().nodes,
+            viewed.stats().nodes, boxed.stats().nodes, whole.stats().exact_polygons,
+            viewed.stats().exact_polygons, boxed.stats().exact_polygons);
         if (name == "house-morning") {
             EXPECT_LT(viewed.stats().nodes, whole.stats().nodes) << name;
+            // The cut corners leave out faces that shadow nothing the camera sees.
+            EXPECT_FALSE(window->cuts.empty()) << name;
+            EXPECT_LT(viewed.stats().exact_polygons, boxed.stats().exact_polygons) << name;
         }
         if (name == "narrow view") {
             EXPECT_LT(share, 0.25) << name;
