@@ -74,17 +74,30 @@ double distance_to_polygon(const dvec3& p, const Polygon& polygon) {
     return distance;
 }
 
+// The light's up vector made perpendicular to its axis d (glm::lookAt's).
+dvec3 up_across(const SpotLight& light, const dvec3& d) {
+    return glm::normalize(dvec3(light.up()) - glm::dot(dvec3(light.up()), d) * d);
+}
+
+// For parallel beams, the outward plane a x + b y = c across them, x and y the light's right and
+// up coordinates in half-widths from the axis, (a, b) a unit vector: its normal a right + b up.
+Plane across_beams(const SpotLight& light, double a, double b, double c) {
+    const dvec3 d = glm::normalize(dvec3(light.direction()));
+    const dvec3 u = up_across(light, d);
+    const dvec3 n = a * glm::cross(d, u) + b * u;
+    return {n, -glm::dot(n, dvec3(light.position)) - c * double(light.half_width)};
+}
+
 }  // namespace
 
 Plane beam_plane(const SpotLight& light, int axis, double m) {
+    if (light.parallel()) {
+        return across_beams(light, axis == 0 ? 1.0 : 0.0, axis == 0 ? 0.0 : 1.0, m);
+    }
     const dvec3 apex(light.position);
     const dvec3 d = glm::normalize(dvec3(light.direction()));
-    const dvec3 u = glm::normalize(dvec3(light.up()) - glm::dot(dvec3(light.up()), d) * d);
+    const dvec3 u = up_across(light, d);
     const dvec3 side = axis == 0 ? glm::cross(d, u) : u;
-    if (light.parallel()) {
-        // Parallel beams: m half-widths from the axis.
-        return {side, -glm::dot(side, apex) - m * double(light.half_width)};
-    }
     const double t = std::tan(glm::radians(double(light.cone_half_angle_degrees)));
     const dvec3 n = glm::normalize(side - m * t * d);
     return {n, -glm::dot(n, apex)};
@@ -103,14 +116,8 @@ std::vector<Plane> influence_planes(const SpotLight& light,
         beam_plane(light, 0, w.hi.x),   beam_plane(light, 0, w.lo.x).flipped(),
         beam_plane(light, 1, w.hi.y),   beam_plane(light, 1, w.lo.y).flipped(),
         {-d, glm::dot(d, apex) + near}, {d, -glm::dot(d, apex) - depth}};
-    // A cut a x + b y <= c: x and y are the light's right and up coordinates in half-widths
-    // (beam_plane's m), so its outward plane has the normal a right + b up (a unit vector) and
-    // lies c half-widths out along it.
-    const dvec3 u = glm::normalize(dvec3(light.up()) - glm::dot(dvec3(light.up()), d) * d);
-    const dvec3 right = glm::cross(d, u);
-    for (const glm::dvec3& cut : w.cuts) {
-        const dvec3 n = cut.x * right + cut.y * u;
-        planes.push_back({n, -glm::dot(n, apex) - cut.z * double(light.half_width)});
+    for (const glm::dvec3& cut : w.cuts) {  // a x + b y <= c inside
+        planes.push_back(across_beams(light, cut.x, cut.y, cut.z));
     }
     return planes;
 }

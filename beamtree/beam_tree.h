@@ -319,7 +319,8 @@ private:
     double scale_ = 1.0;  // the far range: light_side's unit for parallel beams
     double epsilon_;
     std::vector<Plane> influence_;
-    int32_t chain_ = 4;  // the root chain's nodes, 0 to chain_ - 1: the sides and the cuts
+    // The root chain's nodes, 0 to chain() - 1: the four sides and the window's cuts.
+    int32_t chain() const { return int32_t(influence_.size()) - 2; }
     std::vector<Node> nodes_;
     std::vector<int32_t> parents_;  // per node, -1 at the root: for lower_reach_above()
     std::vector<Plane> stoppers_;

@@ -193,17 +193,13 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
       scale_(double(light.far)),
       epsilon_(kRelativeEpsilon * double(light.far)) {
     influence_ = bt::influence_planes(light, window);
-    // Root: a chain through the four side planes and the window's cuts (nodes 0 to sides - 1),
-    // the inside an open leaf.
-    std::vector<size_t> sides = {0, 1, 2, 3};
-    for (size_t i = 6; i < influence_.size(); ++i) {
-        sides.push_back(i);
-    }
-    const auto chain = int32_t(sides.size());
+    // Root: a chain through the four side planes and the window's cuts (nodes 0 to chain() - 1;
+    // the influence planes less the near and far ranges), the inside an open leaf.
+    const int32_t chain = this->chain();
     for (int32_t i = 0; i < chain; ++i) {
         Node node;
         node.kind = Kind::split;
-        node.plane = influence_[sides[size_t(i)]];
+        node.plane = influence_[size_t(i < 4 ? i : i + 2)];
         nodes_.push_back(node);
         parents_.push_back(i - 1);
     }
@@ -212,7 +208,6 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         at(i).front = out;
         at(i).back = i + 1 < chain ? i + 1 : add_leaf({Kind::open, {}, -1}, i);
     }
-    chain_ = chain;
     if (!parallel_) {
         require_light_outside(volumes, apex_, epsilon_);  // a sun is outside every volume
     }
@@ -307,7 +302,7 @@ void BeamTree::add_grid(const SpotLight& light, int grid, const ViewWindow& wind
         self(self, back, axis, lo, middle);
         self(self, front, axis, middle + 1, hi);
     };
-    cut(cut, at(chain_ - 1).back, 0, 0, grid - 1);
+    cut(cut, at(chain() - 1).back, 0, 0, grid - 1);
     for (const int32_t column : columns) {
         cut(cut, column, 1, 0, grid - 1);
     }

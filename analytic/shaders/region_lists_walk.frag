@@ -38,8 +38,7 @@ void main() {
     pixel = ivec2(gl_FragCoord.xy);
     vec3 origin = frame.camera_position.xyz;
     vec3 direction = eye_ray_direction(gl_FragCoord.xy);
-    float end = min(surface_distance(surface_depth, gl_FragCoord.xy),
-                    far_plane_distance(gl_FragCoord.xy));
+    float end = eye_ray_end(surface_depth, gl_FragCoord.xy);
     if (end > 0.0) tree_walk(origin, direction, 0.0, end);
     if (inside.x) cross_surface(0, counts.x++, -end);
     if (inside.y) cross_surface(1, counts.y++, -end);

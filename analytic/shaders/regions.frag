@@ -4,10 +4,11 @@
 // surface (or the far plane): a region's two faces behind it both give G(surface) and cancel, a
 // front face before it and a back face behind it give the part in front. No tolerance decides
 // whether a face lying on a surface (lit regions end on them) is in front: a grazing view made
-// such decisions differ between rasterizers and dropped one face of a pair. With SL_FACE_CORNERS (the region meshes,
-// analytic/region_faces.h) a face's z is taken from its triangle's corners, not from the
-// interpolated position, which a triangle degenerate in float gets wrong (face_distance.glsl);
-// lightvolume's grid, made on the GPU, has no corners buffer and interpolates.
+// such decisions differ between rasterizers and dropped one face of a pair. With SL_FACE_CORNERS
+// (the region meshes, analytic/region_faces.h) a face's z is taken from its triangle's corners,
+// not from the interpolated position, which a triangle degenerate in float gets wrong
+// (face_distance.glsl); lightvolume's grid, made on the GPU, has no corners buffer and
+// interpolates.
 #include "analytic/shaders/analytic_interface.h"
 #include "gl/shaders/frame_uniforms.h"
 #include "gl/shaders/lighting.glsl"
@@ -31,9 +32,7 @@ void main() {
 #else
     float t = length(world_position - origin);
 #endif
-    // A ray that sees no surface ends at the far plane, as march's and the reference's do.
-    float z = min(t, min(surface_distance(surface_depth, gl_FragCoord.xy),
-                         far_plane_distance(gl_FragCoord.xy)));
+    float z = min(t, eye_ray_end(surface_depth, gl_FragCoord.xy));
     // The ray's cone interval (and inner cone, for a smooth edge): any z beyond the surface it
     // hits is clamped anyway.
     LightSpans spans = light_spans(origin, direction);

@@ -33,9 +33,7 @@ void walk_piece(int region, float begin, float end) {
 void main() {
     ray_origin = frame.camera_position.xyz;
     ray_direction = eye_ray_direction(gl_FragCoord.xy);
-    // A ray that sees no surface ends at the far plane, as march's and the reference's do.
-    float end = min(surface_distance(surface_depth, gl_FragCoord.xy),
-                    far_plane_distance(gl_FragCoord.xy));
+    float end = eye_ray_end(surface_depth, gl_FragCoord.xy);
     if (!(end > 0.0)) discard;
     spans = light_spans(ray_origin, ray_direction);
     ivec2 pixel = ivec2(gl_FragCoord.xy);

@@ -92,7 +92,7 @@ bool tree_walk(vec3 origin, vec3 direction, float t0, float t1) {
     int stack_node[SL_WALK_STACK];
     int top = 0, size = 0;  // a ring: the newest entry at top - 1, `size` entries kept
     // The segment lies inside the pyramid: below the root chain's four sides (restarts too);
-    // a sun's window has its cuts there, the chain's rest (BeamTree's chain_).
+    // a sun's window has its cuts there, the chain's rest (BeamTree::chain()).
     int root = tree_nodes[3].link.y;
     int index = root;
     float begin = inside0, end = inside1;

@@ -26,7 +26,7 @@ void main() {
     vec2 x = gl_FragCoord.xy;
     vec3 origin = frame.camera_position.xyz;
     vec3 direction = eye_ray_direction(x);
-    float end = trace_end(surface_depth, x);
+    float end = eye_ray_end(surface_depth, x);
     if (direct == 0) {
         float depth = view_depth(direction, end);
         float c = slice_coordinate(x);

@@ -27,6 +27,6 @@ void main() {
     }
     // Inside the image by a hair, so that the texel under it exists.
     vec2 x = clamp(sample_position(id.y, id.x), vec2(1e-3), frame.display.yz - 1e-3);
-    float end = trace_end(surface_depth, x);
+    float end = eye_ray_end(surface_depth, x);
     imageStore(coordinates, id, vec4(x, end, view_depth(eye_ray_direction(x), end)));
 }

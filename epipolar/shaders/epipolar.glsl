@@ -108,11 +108,6 @@ float line_depth(int texel, int s) {
     return texelFetch(light_depth, clamp(ivec2(floor(uv * vec2(size))), ivec2(0), size - 1), 0).r;
 }
 
-// The ray's end: the first surface, or the far plane (march.frag's trace).
-float trace_end(sampler2D depth_buffer, vec2 fragment) {
-    return min(surface_distance(depth_buffer, fragment), far_plane_distance(fragment));
-}
-
 // The plain march through the frame's shadow map: march.frag with clip = cone, no jitter, the
 // shared model (the same samples, the same sums).
 vec4 march_direct(vec3 origin, vec3 direction, float end_distance) {

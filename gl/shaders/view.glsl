@@ -23,3 +23,9 @@ float far_plane_distance(vec2 fragment) {
     vec4 far_point = frame.inverse_view_projection * vec4(ndc, 1.0, 1.0);
     return length(far_point.xyz / far_point.w - frame.camera_position.xyz);
 }
+
+// Where the eye ray through `fragment` ends, in every method and the reference: at the surface it
+// sees, or at the far plane where it sees none (docs/design.md §1).
+float eye_ray_end(sampler2D depth_buffer, vec2 fragment) {
+    return min(surface_distance(depth_buffer, fragment), far_plane_distance(fragment));
+}

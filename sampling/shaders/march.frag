@@ -110,7 +110,7 @@ void main() {
     vec2 fragment = (floor(gl_FragCoord.xy) + 0.5) / buffer_scale;
     vec3 origin = frame.camera_position.xyz;
     vec3 direction = eye_ray_direction(fragment);
-    float trace_end = min(surface_distance(surface_depth, fragment), far_plane_distance(fragment));
+    float trace_end = eye_ray_end(surface_depth, fragment);
     float start = 0.0, end = trace_end;
     if (interval_mode != 0 || clip_mode == 2) {
         vec2 cone = light_interval(origin, direction, trace_end);

@@ -24,7 +24,7 @@ const float GAUSS5[25] = float[25](
 const float DEPTH_TOLERANCE = 0.03;  // relative distance difference of one σ
 
 float distance_at(vec2 fragment) {
-    return min(surface_distance(surface_depth, fragment), far_plane_distance(fragment));
+    return eye_ray_end(surface_depth, fragment);
 }
 
 float depth_weight(ivec2 texel, float pixel_distance) {

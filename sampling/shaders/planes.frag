@@ -51,11 +51,7 @@ void main() {
         depth += (interleaved_gradient_noise(floor(gl_FragCoord.xy)) - 0.5) * dz;
     }
     float t = depth / cos_forward;
-    // Behind the surface, or past the far plane where a ray sees none (as march's and the
-    // reference's rays end there).
-    if (t >= min(surface_distance(surface_depth, gl_FragCoord.xy),
-                 far_plane_distance(gl_FragCoord.xy)))
-        discard;
+    if (t >= eye_ray_end(surface_depth, gl_FragCoord.xy)) discard;  // behind the ray's end
     bool lit = known_lit != 0;
     if (classify_mode != 0) {
         int region;
