@@ -14,7 +14,7 @@
 
 #include "beamtree/beam_tree.h"
 #include "core/error.h"
-#include "core/radix_sort.h"
+#include "core/sort_by_key.h"
 
 namespace sl::bt {
 
@@ -266,7 +266,7 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     for (size_t i = 0; i < offer.polygons.size(); ++i) {
         offer.order[i] = {offer.polygons[i].distance, uint32_t(i)};
     }
-    sort_by_key(offer.order);  // as std::sort orders the pairs, in linear time
+    sort_by_key(offer.order);  // as std::sort orders the pairs, in about linear time
     add_grid(light, build.grid(offer.order.size()), window.value_or(ViewWindow{}));
     insert_offer(offer);
 }

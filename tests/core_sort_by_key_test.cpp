@@ -1,13 +1,15 @@
-// sort_by_key (core/radix_sort.h) against std::sort on the same pairs.
+// sort_by_key (core/sort_by_key.h) against std::sort on the same pairs: spread keys, keys
+// crowded into a few of its buckets, and the keys it leaves to std::sort.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <random>
 
-#include "core/radix_sort.h"
+#include "core/sort_by_key.h"
 
 namespace sl::test {
 namespace {
@@ -36,7 +38,7 @@ void expect_as_std_sort(const std::vector<double>& keys, const char* what) {
     EXPECT_EQ(differ, 0u) << what;
 }
 
-TEST(RadixSort, OrdersAsStdSortByKeyThenIndex) {
+TEST(SortByKey, OrdersAsStdSortByKeyThenIndex) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> metres(0.0, 60.0);
     std::vector<double> distances(20000);
@@ -63,18 +65,38 @@ TEST(RadixSort, OrdersAsStdSortByKeyThenIndex) {
         mixed.push_back(special);
     }
     std::shuffle(mixed.begin(), mixed.end(), rng);
-    expect_as_std_sort(mixed, "ties, signs, zeros, extremes");
+    // Without the infinities and the extremes their range is finite: the buckets sort them,
+    // nearly all of them crowded into the two buckets about zero.
+    std::vector<double> finite;
+    std::copy_if(mixed.begin(), mixed.end(), std::back_inserter(finite),
+                 [](double key) { return std::abs(key) < 1e305; });
+    ASSERT_GE(finite.size(), kBucketsFrom);
+    expect_as_std_sort(finite, "ties, signs, zeros, denormals to 1e300");
+    expect_as_std_sort(mixed, "ties, signs, zeros, extremes, infinities");
+
+    // Distances crowded near one end of their range by a single far one: one bucket holds all
+    // but it; and both zeros mixed in a bucket of their own.
+    std::vector<double> crowded(8000);
+    for (double& d : crowded) {
+        d = 1e-6 * metres(rng);
+    }
+    crowded.push_back(1e6);
+    for (int i = 0; i < 100; ++i) {
+        crowded.push_back(i % 2 ? 0.0 : -0.0);
+    }
+    std::shuffle(crowded.begin(), crowded.end(), rng);
+    expect_as_std_sort(crowded, "crowded into one bucket");
 
     expect_as_std_sort({}, "none");
     expect_as_std_sort({1.0}, "one");
-    expect_as_std_sort(std::vector<double>(kRadixFrom, 2.5), "all equal: every pass skipped");
+    expect_as_std_sort(std::vector<double>(kBucketsFrom, 2.5), "all equal: one bucket");
     expect_as_std_sort({3.0, 1.0, 2.0, 1.0}, "a few (std::sort)");
 }
 
-TEST(RadixSortDeathTest, RefusesANanKey) {
+TEST(SortByKeyDeathTest, RefusesANanKey) {
     Pairs few = numbered({1.0, std::nan(""), 0.5});
     EXPECT_DEATH(sort_by_key(few), "isnan");
-    std::vector<double> keys(kRadixFrom, 1.0);
+    std::vector<double> keys(kBucketsFrom, 1.0);
     keys[7] = std::nan("");
     Pairs many = numbered(keys);
     EXPECT_DEATH(sort_by_key(many), "isnan");
