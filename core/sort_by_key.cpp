@@ -17,15 +17,15 @@ void sort_by_key(std::vector<std::pair<double, uint32_t>>& pairs) {
         lo = std::min(lo, pair.first);
         hi = std::max(hi, pair.first);
     }
-    if (n < kBucketsFrom || !std::isfinite(hi - lo)) {
-        std::sort(pairs.begin(), pairs.end());
-        return;
-    }
     // n buckets of equal width over [lo, hi]: a key's bucket never decreases as the key grows
     // (subtraction, a positive factor and truncation are monotone in floating point), so bucket
     // by bucket, each bucket sorted, is the order std::sort gives.
     const size_t buckets = n;
     const double scale = hi > lo ? double(buckets) / (hi - lo) : 0.0;
+    if (n < kBucketsFrom || !std::isfinite(hi - lo) || !std::isfinite(scale)) {
+        std::sort(pairs.begin(), pairs.end());  // few, an infinite key, or a denormal range
+        return;
+    }
     thread_local std::vector<uint32_t> start, bucket;
     thread_local std::vector<std::pair<double, uint32_t>> scratch;
     start.assign(buckets + 1, 0);

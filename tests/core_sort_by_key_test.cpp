@@ -87,6 +87,13 @@ TEST(SortByKey, OrdersAsStdSortByKeyThenIndex) {
     std::shuffle(crowded.begin(), crowded.end(), rng);
     expect_as_std_sort(crowded, "crowded into one bucket");
 
+    // A range so narrow that its buckets' width is denormal: left to std::sort.
+    std::vector<double> narrow(kBucketsFrom);
+    for (size_t i = 0; i < narrow.size(); ++i) {
+        narrow[i] = std::numeric_limits<double>::denorm_min() * double(i % 7);
+    }
+    expect_as_std_sort(narrow, "a denormal range");
+
     expect_as_std_sort({}, "none");
     expect_as_std_sort({1.0}, "one");
     expect_as_std_sort(std::vector<double>(kBucketsFrom, 2.5), "all equal: one bucket");
