@@ -26,29 +26,31 @@ void sort_by_key(std::vector<std::pair<double, uint32_t>>& pairs) {
         std::sort(pairs.begin(), pairs.end());  // few, an infinite key, or a denormal range
         return;
     }
-    thread_local std::vector<uint32_t> start, bucket;
+    // end[b] counts bucket b, then (summed before it) is where the bucket starts, then (each of
+    // its pairs placed there and it moved on) where it ends: the scatter leaves the ends.
+    thread_local std::vector<uint32_t> end, bucket;
     thread_local std::vector<std::pair<double, uint32_t>> scratch;
-    start.assign(buckets + 1, 0);
+    end.assign(buckets, 0);
     bucket.resize(n);
     for (size_t i = 0; i < n; ++i) {
         const double t = (pairs[i].first - lo) * scale;
         bucket[i] = uint32_t(t < double(buckets) ? size_t(t) : buckets - 1);
-        ++start[bucket[i] + 1];
+        ++end[bucket[i]];
     }
-    for (size_t b = 0; b < buckets; ++b) {
-        start[b + 1] += start[b];
+    uint32_t start = 0;
+    for (uint32_t& e : end) {
+        const uint32_t count = e;
+        e = start;
+        start += count;
     }
     scratch.resize(n);
-    {
-        thread_local std::vector<uint32_t> next;
-        next.assign(start.begin(), start.end() - 1);
-        for (size_t i = 0; i < n; ++i) {
-            scratch[next[bucket[i]]++] = pairs[i];
-        }
+    for (size_t i = 0; i < n; ++i) {
+        scratch[end[bucket[i]]++] = pairs[i];
     }
     for (size_t b = 0; b < buckets; ++b) {
-        if (start[b + 1] - start[b] > 1) {
-            std::sort(scratch.begin() + start[b], scratch.begin() + start[b + 1]);
+        const uint32_t begin = b == 0 ? 0 : end[b - 1];
+        if (end[b] - begin > 1) {
+            std::sort(scratch.begin() + begin, scratch.begin() + end[b]);
         }
     }
     pairs.swap(scratch);
