@@ -76,6 +76,26 @@ BENCHMARK_CAPTURE(build_tree_exact, arena, "arena")->Unit(benchmark::kMillisecon
 BENCHMARK_CAPTURE(build_tree_exact, house, "house")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(build_tree_exact, engine, "engine")->Unit(benchmark::kMillisecond);
 
+// A sun's tree for one camera (issue 47's light move): the light scene's first light, its tree
+// over the part of its box the scene's camera sees at 640x360 (scenes/view_window.h), as the
+// region methods build it every frame the sun or the camera moves.
+void build_tree_sun(benchmark::State& state, const char* name) {
+    const Scene scene = load_scene(name, SceneSearchPaths::defaults()).for_light(0);
+    VolumeLibrary library(scene.bounds);
+    const std::vector<ObjectVolumes> volumes = library.build(scene, nullptr);
+    const std::optional<ViewWindow> window =
+        view_window(scene.light, scene.camera, 640.0f / 360.0f);
+    for (auto _ : state) {
+        const BeamTree tree(scene.light, volumes, TreeBuild{}, window);
+        benchmark::DoNotOptimize(&tree);
+    }
+    const BeamTreeStats stats = BeamTree(scene.light, volumes, TreeBuild{}, window).stats();
+    state.counters["polygons"] = double(stats.exact_polygons + stats.hidden_polygons);
+    state.counters["hidden"] = double(stats.hidden_polygons);
+    state.counters["nodes"] = double(stats.nodes);
+}
+BENCHMARK_CAPTURE(build_tree_sun, house_morning, "house-morning")->Unit(benchmark::kMillisecond);
+
 void extract_regions_bench(benchmark::State& state) {
     const Prepared p = prepare(int(state.range(0)));
     const BeamTree tree(p.scene.light, p.volumes);
