@@ -271,10 +271,12 @@ private:
         Polygon fragment;
         Ball ball;
     };
-    // True when every ray through `polygons` (faces of a box around what is still to come) is
-    // unlit beyond `nearest` in the tree as it stands: then nothing that lies in the box
-    // beyond that depth can change the tree.
+    // True when every ray through `polygons` (the light-facing faces of a box around what is
+    // still to come) is unlit, in the tree as it stands, beyond `nearest` or from the polygons
+    // on: then nothing that lies in the box beyond that depth can change the tree.
     bool hidden_beyond(const std::vector<Polygon>& polygons, double nearest) const;
+    // True when every vertex lies behind the plane by more than ε.
+    bool wholly_behind(const Polygon& polygon, const Plane& plane) const;
     // Objects of fewer exact faces are not asked about: inserting them costs about as much.
     static constexpr size_t kHidingFaces = 16;
     // Takes `fragment` down from node `index` to its leaf, pushing the far parts of straddled

@@ -414,6 +414,15 @@ bool BeamTree::outside_influence(const std::vector<Polygon>& polygons) const {
     return false;
 }
 
+bool BeamTree::wholly_behind(const Polygon& polygon, const Plane& plane) const {
+    for (const dvec3& v : polygon.vertices) {
+        if (!(plane.distance(v) < -epsilon_)) {
+            return false;
+        }
+    }
+    return true;
+}
+
 int32_t BeamTree::deepest_holding(const std::pair<dvec3, dvec3>& box, int32_t start) const {
     const dvec3 lo = box.first, hi = box.second;
     const double margin = 2.0 * epsilon_;
@@ -441,7 +450,13 @@ int32_t BeamTree::deepest_holding(const std::pair<dvec3, dvec3>& box, int32_t st
 bool BeamTree::hidden_beyond(const std::vector<Polygon>& polygons, double nearest) const {
     // Every ray through the polygons, followed down the tree: a part that comes within ε of a
     // plane goes down both sides whole (a superset of the rays a face's fragment could take
-    // there, whatever ε decides for it), so that the answer never depends on round-off.
+    // there, whatever ε decides for it), so that the answer never depends on round-off. A ray
+    // is done where the node's reach lies nearer than `nearest`, or at a blocker leaf where the
+    // polygon lies wholly behind the stopper by more than ε: a ray that crosses a plane facing
+    // the light never comes back, so from the box's face on it is unlit there, and a face in the
+    // box sent down the tree would find its fragment behind that stopper (or behind a nearer one
+    // that took over since) and change nothing. (The reach alone misses the second case wherever
+    // the stopper slopes away from the light: its far corner lies beyond the box.)
     thread_local std::vector<std::pair<int32_t, const Polygon*>> stack;
     stack.clear();
     for (const Polygon& polygon : polygons) {
@@ -452,8 +467,9 @@ bool BeamTree::hidden_beyond(const std::vector<Polygon>& polygons, double neares
         stack.pop_back();
         for (;;) {
             const Node& node = at(index);
-            if (nearest > double(node.reach) || node.kind == Kind::out) {
-                break;  // unlit beyond its reach, or outside the influence
+            if (nearest > double(node.reach) || node.kind == Kind::out ||
+                (node.kind == Kind::blocker && wholly_behind(*polygon, stopper_of(node)))) {
+                break;  // unlit beyond its reach or its stopper, or outside the influence
             }
             if (node.kind != Kind::split) {
                 return false;  // a leaf that something beyond `nearest` would still change

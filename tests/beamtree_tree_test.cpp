@@ -884,6 +884,51 @@ TEST(BeamTree, HiddenObjectsAreLeftOutAndChangeNothing) {
     }
 }
 
+// The rest of an object is left out once every ray through its box meets a stopper nearer than
+// the box (BeamTree::hidden_beyond), and only then: a grid of 32 tiles 3ε behind a floor already
+// in the tree is left out whole, though the floor's far corner lies beyond it (its reach alone
+// would not tell); the same tiles 3ε in front of the floor are lit there, and every one goes in.
+TEST(BeamTree, TilesJustBehindAFloorAreLeftOutAndJustInFrontAreNot) {
+    SpotLight light;
+    light.position = glm::vec3(5.0f, 10.0f, 0.0f);
+    light.target = glm::vec3(-3.0f, 0.0f, 0.0f);
+    light.cone_half_angle_degrees = 40.0f;
+    light.near = 0.1f;
+    light.far = 30.0f;
+    const double epsilon = bt::BeamTree::kRelativeEpsilon * double(light.far);
+    auto triangle = [](dvec3 a, dvec3 b, dvec3 c) { return bt::Polygon({a, b, c}); };
+    // The floor (y = 0) is nearest to the light at (5, 0, 0), 10 away: it goes in first.
+    bt::ObjectVolumes floor;
+    floor.name = "floor";
+    floor.triangles = {triangle({-6, 0, -6}, {-6, 0, 6}, {6, 0, 6}),
+                       triangle({-6, 0, -6}, {6, 0, 6}, {6, 0, -6})};
+    floor.mesh_triangles = 2;
+    // 4 × 4 cells of two triangles over x in [-4, -2], z in [-1, 1], at height y: 12 or more
+    // away from the light, one object of 32 faces (asked about once, at its first face).
+    auto tiles = [&](double y) {
+        bt::ObjectVolumes grid;
+        grid.object = 1;
+        grid.name = "tiles";
+        for (int i = 0; i < 4; ++i) {
+            for (int k = 0; k < 4; ++k) {
+                const double x0 = -4.0 + 0.5 * i, x1 = x0 + 0.5;
+                const double z0 = -1.0 + 0.5 * k, z1 = z0 + 0.5;
+                grid.triangles.push_back(triangle({x0, y, z0}, {x0, y, z1}, {x1, y, z1}));
+                grid.triangles.push_back(triangle({x0, y, z0}, {x1, y, z1}, {x1, y, z0}));
+            }
+        }
+        grid.mesh_triangles = grid.triangles.size();
+        return grid;
+    };
+    for (const double y : {-3.0 * epsilon, 3.0 * epsilon}) {
+        const bt::BeamTree tree(light, {floor, tiles(y)});
+        const bt::BeamTreeStats stats = tree.stats();
+        SCOPED_TRACE(y < 0.0 ? "tiles behind the floor" : "tiles in front of the floor");
+        EXPECT_EQ(stats.hidden_polygons, y < 0.0 ? 32u : 0u);
+        EXPECT_EQ(stats.exact_polygons, y < 0.0 ? 2u : 34u);
+    }
+}
+
 // Neighbouring triangles share their edges: the plane through L and a shared edge is made once,
 // by the triangle inserted first, and the other finds its edge on its path and adds no second
 // plane for it (BeamTree::kCoincident). So no split repeats a plane of its own path, either way
