@@ -239,9 +239,15 @@ private:
     struct Offer;
     // Cuts the root's open leaf into grid × grid sub-beams (TreeBuild), each an open leaf.
     void add_grid(const SpotLight& light, int grid, const ViewWindow& window);
-    // Inserts the offered polygons in its order, leaving out the rest of an object once its box
-    // is hidden behind what is in; counts what went in and what was left out.
-    void insert_offer(const Offer& offer);
+    // Offers the object's clusters of exact faces (tree_build.cpp's OfferedCluster), each that
+    // lies inside the influence and has a face the tree takes; `index`: the object's place in
+    // the volumes, `object_box` its box's in the offer.
+    void offer_clusters(const ObjectVolumes& object, uint32_t index, int32_t object_box,
+                        bool outward_only, Offer& offer) const;
+    // Inserts the offered polygons in its order, the clusters' faces among them, leaving out the
+    // rest of an object once its box is hidden behind what is in, and a cluster whose box is;
+    // counts what went in and what was left out. `volumes`: what the offer was made of.
+    void insert_offer(const Offer& offer, const std::vector<ObjectVolumes>& volumes);
 
     struct Inserted {
         Role role;
@@ -264,6 +270,8 @@ private:
     // True when every vertex lies outside one side of the influence pyramid or beyond its far
     // range: what the polygons bound casts no shadow inside it.
     bool outside_influence(const std::vector<Polygon>& polygons) const;
+    // The same of a box (least and greatest corners) and whatever lies in it.
+    bool box_outside_influence(const std::pair<dvec3, dvec3>& box) const;
     // A fragment of an inserted polygon waiting to go down the subtree at `node`; `ball` bounds
     // the polygon it was cut from, and so the fragment.
     struct Pending {
@@ -309,6 +317,8 @@ private:
     double nearest_to_light(const Polygon& polygon) const;
     // The least depth() over the box around the polygons.
     double depth_of_box(const std::vector<Polygon>& polygons) const;
+    // The least depth() over a box (least and greatest corners).
+    double depth_of_box(const std::pair<dvec3, dvec3>& box) const;
     // The plane through L and the edge a-b (for parallel beams: containing the edge and the
     // beams' direction); false where the edge points at the light.
     bool edge_plane(const dvec3& a, const dvec3& b, Plane& plane) const;

@@ -51,6 +51,10 @@ FaceClusters cluster_faces(const std::vector<Polygon>& faces, size_t per_cluster
         ranges.pop_back();
         if (hi - lo <= per_cluster) {
             const auto index = uint32_t(clusters.bounds.size());
+            // Depth-first, lower half first: the clusters' ranges follow each other in `order`.
+            SL_CHECK(lo == (index == 0 ? 0 : clusters.first.back()));
+            clusters.first.push_back(uint32_t(hi));
+            std::sort(order.begin() + std::ptrdiff_t(lo), order.begin() + std::ptrdiff_t(hi));
             Box box = empty_box();
             for (size_t k = lo; k < hi; ++k) {
                 clusters.cluster[order[k]] = index;
@@ -80,6 +84,8 @@ FaceClusters cluster_faces(const std::vector<Polygon>& faces, size_t per_cluster
         ranges.push_back({middle, hi});
         ranges.push_back({lo, middle});
     }
+    clusters.first.insert(clusters.first.begin(), 0u);
+    clusters.faces = std::move(order);
     return clusters;
 }
 

@@ -26,6 +26,10 @@ struct FaceClusters {
     std::vector<uint32_t> cluster;
     // Per cluster, the least and greatest corners of the box around its faces' corners.
     std::vector<std::pair<dvec3, dvec3>> bounds;
+    // The faces by cluster, each cluster's in increasing order: cluster c's are
+    // faces[first[c]] to faces[first[c + 1] - 1] (`first` has one entry more than `bounds`).
+    std::vector<uint32_t> faces;
+    std::vector<uint32_t> first;
 };
 
 // Every face of `faces` in exactly one cluster of at most `per_cluster` (≥ 1) faces; faces

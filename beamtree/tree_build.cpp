@@ -1,12 +1,15 @@
 // How the beam tree is built: what it is offered (each object's light-facing outer and inner
 // faces, or its exact triangles as coplanar faces), in what order (nearest to the light first),
-// what it leaves out (objects outside the influence pyramid, and the rest of an object once its
-// box is hidden behind what is in), and the grid of sub-beams cut at the top of the tree of a large
-// offer (TreeBuild). The tree itself, its insertion and queries: beam_tree.cpp.
+// what it leaves out (objects and clusters of faces outside the influence pyramid, and the rest of
+// an object or a cluster once its box is hidden behind what is in), and the grid of sub-beams cut
+// at the top of the tree of a large offer (TreeBuild). An object cut into clusters is offered
+// cluster by cluster, each opened (its faces' distances found, its faces ordered among the rest)
+// only when the order reaches its box. The tree itself, its insertion and queries: beam_tree.cpp.
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <utility>
 
@@ -31,6 +34,22 @@ struct Inserting {
     // the object has clusters (ObjectVolumes::clusters); else -1.
     int32_t object = -1;
     int32_t cluster = -1;
+    // Ties in distance go in this order: the object's place in the volumes, then the polygon's
+    // in the object (its faces, or a volume's outer faces and then its inner ones).
+    uint64_t rank = 0;
+};
+
+// The faces of one cluster of an object's exact faces (ObjectVolumes::clusters), offered as one
+// entry at the depth of the cluster's box, which no face of it is nearer than: its faces' own
+// distances are found, and the faces ordered among the rest, only when the order reaches it and
+// the box is not hidden. Most of a building's clusters under the sun never are.
+struct OfferedCluster {
+    double depth;
+    uint32_t object;          // index into the volumes
+    uint32_t cluster;         // index into the object's clusters
+    int32_t object_box, box;  // indices into Offer::boxes
+    uint32_t facing;          // its faces the tree takes (add_facing_triangles' rules)
+    bool outward_only;
 };
 
 struct BeamTree::Offer {
@@ -38,10 +57,17 @@ struct BeamTree::Offer {
     // Nearest first, ties in the order of `polygons`: (distance, index) keys, a quarter of the
     // bytes of the entries themselves (a sun over the house sorts 28,000 of them a frame).
     std::vector<std::pair<double, uint32_t>> order;
+    // The clusters, and their order by (depth, index): (depth, index) keys.
+    std::vector<OfferedCluster> clusters;
+    std::vector<std::pair<double, uint32_t>> cluster_order;
     // The boxes asked about (BeamTree::hidden_beyond): per object of kHidingFaces or more exact
     // faces, its box, then its clusters'. Their light-facing faces are found at each question:
     // most clusters are never asked about.
     std::vector<std::pair<dvec3, dvec3>> boxes;
+    // Every polygon offered: `polygons` and the clusters' faces that the tree takes; and of
+    // those, the faces of clusters whose box lies outside the influence, left out unopened.
+    size_t count = 0;
+    size_t left_out = 0;
 };
 
 namespace {
@@ -129,42 +155,55 @@ void facing_box_faces(const std::pair<dvec3, dvec3>& bounds, const Side& side, d
 // occluder and a stopper on the same plane at once, so that behind it the leaf is a blocker
 // whose uncertain layer (between occluder and stopper) is empty: unlit, exactly. Each triangle
 // is placed by its own distance, so that the triangles of neighbouring objects interleave.
-// Degenerate triangles cover nothing and are left out. With `outward_only` (the light outside
-// the object's bounds), a triangle that lies on a closed component wound outward
-// (ObjectVolumes::closed_faces) and faces away from the light is left out too: it blocks nothing
-// the others do not (closed_surface.h).
-// `side(plane)`: the light's signed distance from a plane (BeamTree::light_side); `nearest(p)`:
-// a polygon's distance from the light (BeamTree::nearest_to_light).
+// Degenerate triangles cover nothing and are left out. With `closed` (the light outside the
+// object's bounds, and some of its faces on closed components), a triangle that lies on a closed
+// component wound outward (ObjectVolumes::closed_faces) and faces away from the light is left out
+// too: it blocks nothing the others do not (closed_surface.h).
+// True when the tree takes face f, then with `plane` facing the light and `reversed` where the
+// face is wound the other way about it. `side(plane)`: the light's signed distance from a plane
+// (BeamTree::light_side).
+template <typename Side>
+bool takes_face(const ObjectVolumes& object, size_t f, const Side& side, bool closed, Plane& plane,
+                bool& reversed) {
+    if (!object.face_planes.empty()) {
+        plane = object.face_planes[f];
+        if (plane.normal == dvec3(0.0)) {
+            return false;
+        }
+    } else {
+        const std::vector<dvec3>& v = object.triangles[f].vertices;
+        if (!Plane::through(v[0], v[1], v[2], plane)) {
+            return false;
+        }
+    }
+    reversed = side(plane) < 0.0;
+    if (reversed && closed && object.closed_faces[f]) {
+        return false;
+    }
+    if (reversed) {
+        plane = plane.flipped();
+    }
+    return true;
+}
+
+// Every face of the object that the tree takes (takes_face), as entries; `nearest(p)`: a
+// polygon's distance from the light (BeamTree::nearest_to_light); `rank`: the object's place in
+// the volumes, shifted for Inserting::rank.
 template <typename Side, typename Nearest>
 void add_facing_triangles(const ObjectVolumes& object, const Side& side, const Nearest& nearest,
-                          bool outward_only, int32_t object_box, int32_t first_cluster_box,
+                          bool outward_only, int32_t object_box, uint64_t rank,
                           std::vector<Inserting>& out) {
     const std::vector<Polygon>& triangles = object.triangles;
-    const bool clustered = first_cluster_box >= 0;
-    SL_CHECK(!clustered || object.clusters.cluster.size() == triangles.size());
     const bool closed = outward_only && !object.closed_faces.empty();
     SL_CHECK(object.closed_faces.empty() || object.closed_faces.size() == triangles.size());
-    const bool planes_known = !object.face_planes.empty();
-    SL_CHECK(!planes_known || object.face_planes.size() == triangles.size());
+    SL_CHECK(object.face_planes.empty() || object.face_planes.size() == triangles.size());
     for (size_t f = 0; f < triangles.size(); ++f) {
-        const Polygon& triangle = triangles[f];
-        const std::vector<dvec3>& v = triangle.vertices;
         Plane plane;
-        if (planes_known) {
-            plane = object.face_planes[f];
-            if (plane.normal == dvec3(0.0)) {
-                continue;
-            }
-        } else if (!Plane::through(v[0], v[1], v[2], plane)) {
-            continue;
+        bool reversed = false;
+        if (takes_face(object, f, side, closed, plane, reversed)) {
+            out.push_back({nearest(triangles[f]), &triangles[f], plane, BeamTree::Role::opaque,
+                           reversed, object_box, -1, rank | f});
         }
-        const bool reversed = side(plane) < 0.0;
-        if (reversed && closed && object.closed_faces[f]) {
-            continue;
-        }
-        out.push_back({nearest(triangle), &triangle, reversed ? plane.flipped() : plane,
-                       BeamTree::Role::opaque, reversed, object_box,
-                       clustered ? first_cluster_box + int32_t(object.clusters.cluster[f]) : -1});
     }
 }
 
@@ -217,47 +256,55 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     // after every occluder; the regions are the same, and on multiple:1650 the tree is as big
     // and 20 % faster to build this way.)
     Offer offer;
+    auto side = [&](const Plane& plane) { return light_side(plane); };
     for (size_t k = 0; k < volumes.size(); ++k) {
         const ObjectVolumes& object = volumes[k];
-        if (outside_influence(object.triangles.empty() ? object.outer.faces : object.triangles)) {
-            continue;
-        }
+        const uint64_t rank = uint64_t(k) << 32;
         if (!object.triangles.empty()) {
             // The box around the faces, found with them where it is known.
             const bool box_known = object.face_bounds.first.x <= object.face_bounds.second.x;
             const std::pair<dvec3, dvec3> box =
                 box_known ? object.face_bounds : bounds_of(object.triangles);
+            if (outside_influence(object.triangles)) {
+                continue;
+            }
+            // An object cut into clusters is offered cluster by cluster (each left out where its
+            // box lies outside the influence), any other face by face.
+            const bool clustered =
+                object.triangles.size() >= kHidingFaces && object.clusters.bounds.size() > 1;
             // Outside the box the light is outside every closed component's solid; inside it (a
             // torus's hole, or the solid itself) every triangle goes in.
             const bool outward_only =
                 !object.closed_faces.empty() && (parallel_ || !near_bounds(box, apex_, epsilon_));
-            int32_t object_box = -1, first_cluster_box = -1;
+            int32_t object_box = -1;
             if (object.triangles.size() >= kHidingFaces) {
                 object_box = int32_t(offer.boxes.size());
                 offer.boxes.push_back(box);
-                if (object.clusters.bounds.size() > 1) {
-                    first_cluster_box = int32_t(offer.boxes.size());
-                    offer.boxes.insert(offer.boxes.end(), object.clusters.bounds.begin(),
-                                       object.clusters.bounds.end());
-                }
+            }
+            if (clustered) {
+                offer_clusters(object, uint32_t(k), object_box, outward_only, offer);
+                continue;
             }
             add_facing_triangles(
-                object, [&](const Plane& plane) { return light_side(plane); },
-                [&](const Polygon& triangle) { return nearest_to_light(triangle); }, outward_only,
-                object_box, first_cluster_box, offer.polygons);
+                object, side, [&](const Polygon& triangle) { return nearest_to_light(triangle); },
+                outward_only, object_box, rank, offer.polygons);
+            continue;
+        }
+        if (outside_influence(object.outer.faces)) {
             continue;
         }
         // A volume's faces go in together, at the distance of the box around it.
         const double distance = parallel_ ? depth_of_box(object.outer.faces)
                                           : distance_to_box(apex_, object.outer.faces);
+        uint64_t place = rank;
         for (size_t f = 0; f < object.outer.faces.size(); ++f) {
-            offer.polygons.push_back(
-                {distance, &object.outer.faces[f], object.outer.planes[f], Role::occluder});
+            offer.polygons.push_back({distance, &object.outer.faces[f], object.outer.planes[f],
+                                      Role::occluder, false, -1, -1, place++});
         }
         for (const ConvexVolume& inner : object.inner) {
             for (size_t f = 0; f < inner.faces.size(); ++f) {
-                offer.polygons.push_back(
-                    {distance, &inner.faces[f], inner.planes[f], Role::stopper});
+                offer.polygons.push_back({distance, &inner.faces[f], inner.planes[f], Role::stopper,
+                                          false, -1, -1, place++});
             }
         }
     }
@@ -267,8 +314,14 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         offer.order[i] = {offer.polygons[i].distance, uint32_t(i)};
     }
     sort_by_key(offer.order);  // as std::sort orders the pairs, in about linear time
-    add_grid(light, build.grid(offer.order.size()), window.value_or(ViewWindow{}));
-    insert_offer(offer);
+    offer.cluster_order.resize(offer.clusters.size());
+    for (size_t i = 0; i < offer.clusters.size(); ++i) {
+        offer.cluster_order[i] = {offer.clusters[i].depth, uint32_t(i)};
+    }
+    sort_by_key(offer.cluster_order);
+    offer.count += offer.polygons.size();
+    add_grid(light, build.grid(offer.count), window.value_or(ViewWindow{}));
+    insert_offer(offer, volumes);
 }
 
 void BeamTree::add_grid(const SpotLight& light, int grid, const ViewWindow& window) {
@@ -308,7 +361,42 @@ void BeamTree::add_grid(const SpotLight& light, int grid, const ViewWindow& wind
     }
 }
 
-void BeamTree::insert_offer(const Offer& offer) {
+void BeamTree::offer_clusters(const ObjectVolumes& object, uint32_t index, int32_t object_box,
+                              bool outward_only, Offer& offer) const {
+    const FaceClusters& clusters = object.clusters;
+    SL_CHECK(clusters.first.size() == clusters.bounds.size() + 1);
+    SL_CHECK(clusters.faces.size() == object.triangles.size());
+    SL_CHECK(object.closed_faces.empty() || object.closed_faces.size() == object.triangles.size());
+    SL_CHECK(object.face_planes.empty() || object.face_planes.size() == object.triangles.size());
+    const bool closed = outward_only && !object.closed_faces.empty();
+    const auto first_box = int32_t(offer.boxes.size());
+    offer.boxes.insert(offer.boxes.end(), clusters.bounds.begin(), clusters.bounds.end());
+    auto side = [&](const Plane& plane) { return light_side(plane); };
+    for (size_t c = 0; c < clusters.bounds.size(); ++c) {
+        // The faces it takes are counted now (the grid's size and the faces left out count
+        // them); their distances wait.
+        uint32_t facing = 0;
+        for (uint32_t i = clusters.first[c]; i < clusters.first[c + 1]; ++i) {
+            Plane plane;
+            bool reversed = false;
+            facing += takes_face(object, clusters.faces[i], side, closed, plane, reversed);
+        }
+        offer.count += facing;
+        if (box_outside_influence(clusters.bounds[c])) {
+            offer.left_out += facing;  // as the box's question would have answered
+            continue;
+        }
+        if (facing == 0) {
+            continue;
+        }
+        // ε nearer than the box: no face of it is due before the cluster is opened, whatever
+        // the round-off of the two distances.
+        offer.clusters.push_back({depth_of_box(clusters.bounds[c]) - epsilon_, index, uint32_t(c),
+                                  object_box, first_box + int32_t(c), facing, outward_only});
+    }
+}
+
+void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>& volumes) {
     // Per box of exact faces (an object's, a cluster's): whether the rest of its faces is
     // hidden, and whether that was asked.
     struct Hiding {
@@ -321,8 +409,9 @@ void BeamTree::insert_offer(const Offer& offer) {
     // An object whose box lies wholly behind what is in already, from this face's depth on, has
     // nothing left that the tree would keep: each of its faces would descend to nodes that all
     // lie beyond their reach, and be dropped there. Likewise a cluster of its faces. Asked once,
-    // at the box's first face: asked again after 8, 24, 56, ... of them, the answers left out
-    // fewer faces than the questions cost (results/beamtree.md).
+    // at the box's first face (a cluster's: when it is opened, at its box's depth): asked again
+    // after 8, 24, 56, ... of them, the answers left out fewer faces than the questions cost
+    // (results/beamtree.md).
     auto hidden = [&](int32_t box, double distance) {
         if (box < 0) {
             return false;
@@ -337,26 +426,91 @@ void BeamTree::insert_offer(const Offer& offer) {
         }
         return h.hidden;
     };
-    nodes_.reserve(nodes_.size() + 16 * offer.order.size());
+    hidden_polygons_ += offer.left_out;
+    nodes_.reserve(nodes_.size() + 16 * offer.count);
     parents_.reserve(nodes_.capacity());
+    // The faces of the clusters opened so far, and those still to go in, nearest first (a heap
+    // of (distance, rank, entry)).
+    struct Due {
+        double distance;
+        uint64_t rank;
+        uint32_t entry;
+        bool operator>(const Due& other) const {
+            return distance != other.distance ? distance > other.distance : rank > other.rank;
+        }
+    };
+    thread_local std::vector<Inserting> opened;
+    thread_local std::vector<Due> due;
+    opened.clear();
+    due.clear();
+    auto open = [&](const OfferedCluster& group) {
+        if (hidden(group.object_box, group.depth) || hidden(group.box, group.depth)) {
+            hidden_polygons_ += group.facing;
+            return;
+        }
+        const ObjectVolumes& object = volumes[group.object];
+        const FaceClusters& clusters = object.clusters;
+        const bool closed = group.outward_only && !object.closed_faces.empty();
+        auto side = [&](const Plane& plane) { return light_side(plane); };
+        for (uint32_t i = clusters.first[group.cluster]; i < clusters.first[group.cluster + 1];
+             ++i) {
+            const uint32_t f = clusters.faces[i];
+            Plane plane;
+            bool reversed = false;
+            if (!takes_face(object, f, side, closed, plane, reversed)) {
+                continue;
+            }
+            const Polygon& triangle = object.triangles[f];
+            const uint64_t rank = uint64_t(group.object) << 32 | f;
+            const double distance = nearest_to_light(triangle);
+            due.push_back({distance, rank, uint32_t(opened.size())});
+            std::push_heap(due.begin(), due.end(), std::greater<>());
+            opened.push_back({distance, &triangle, plane, Role::opaque, reversed, group.object_box,
+                              group.box, rank});
+        }
+    };
     // The order visits the entries, their polygons and their vertices in no order of memory;
     // each first read was a cache miss that the descent waited on. Asked for ahead: an entry
     // and its polygon kLead entries ahead, that polygon's vertices half as far.
     constexpr size_t kLead = 16;
     const size_t count = offer.order.size();
-    for (size_t k = 0; k < count; ++k) {
-        if (k + kLead < count) {
-            const Inserting& ahead = offer.polygons[offer.order[k + kLead].second];
-            __builtin_prefetch(&ahead);
-            __builtin_prefetch(ahead.polygon);
+    size_t next = 0, next_cluster = 0;
+    for (;;) {
+        const Inserting* listed =
+            next < count ? &offer.polygons[offer.order[next].second] : nullptr;
+        const bool any_due = !due.empty();
+        // A cluster opens before any face at its depth or beyond.
+        if (next_cluster < offer.cluster_order.size()) {
+            const double depth = offer.cluster_order[next_cluster].first;
+            if ((!listed || depth <= listed->distance) &&
+                (!any_due || depth <= due.front().distance)) {
+                open(offer.clusters[offer.cluster_order[next_cluster++].second]);
+                continue;
+            }
         }
-        if (k + kLead / 2 < count) {
-            __builtin_prefetch(
-                offer.polygons[offer.order[k + kLead / 2].second].polygon->vertices.data());
+        if (!listed && !any_due) {
+            break;
         }
-        const auto& [distance, i] = offer.order[k];
-        const Inserting& o = offer.polygons[i];
-        if (hidden(o.object, distance) || hidden(o.cluster, distance)) {
+        const Inserting* taken = nullptr;
+        if (listed && (!any_due || !(Due{listed->distance, listed->rank, 0} > due.front()))) {
+            taken = listed;
+            if (next + kLead < count) {
+                const Inserting& ahead = offer.polygons[offer.order[next + kLead].second];
+                __builtin_prefetch(&ahead);
+                __builtin_prefetch(ahead.polygon);
+            }
+            if (next + kLead / 2 < count) {
+                __builtin_prefetch(
+                    offer.polygons[offer.order[next + kLead / 2].second].polygon->vertices.data());
+            }
+            ++next;
+        } else {
+            std::pop_heap(due.begin(), due.end(), std::greater<>());
+            taken = &opened[due.back().entry];
+            due.pop_back();
+        }
+        const Inserting& o = *taken;
+        if (hidden(o.object, o.distance) || hidden(o.cluster, o.distance)) {
             ++hidden_polygons_;
             continue;
         }
@@ -371,7 +525,7 @@ void BeamTree::insert_offer(const Offer& offer) {
         bool in = false;
         // An exact face's distance is its own nearest_to_light (add_facing_triangles); a
         // volume's faces share the box's.
-        const double known_nearest = o.role == Role::opaque ? distance : -1.0;
+        const double known_nearest = o.role == Role::opaque ? o.distance : -1.0;
         if (o.reversed) {
             thread_local Polygon flipped;  // its storage kept from face to face
             const std::vector<dvec3>& v = o.polygon->vertices;
@@ -386,6 +540,24 @@ void BeamTree::insert_offer(const Offer& offer) {
                                          : exact_polygons_);
         }
     }
+}
+
+bool BeamTree::box_outside_influence(const std::pair<dvec3, dvec3>& box) const {
+    // As outside_influence, of the box's corners: beyond one plane at the corner its normal
+    // picks least.
+    for (size_t i = 0; i < influence_.size(); ++i) {
+        if (i == 4) {
+            continue;
+        }
+        const dvec3& n = influence_[i].normal;
+        const dvec3 least(n.x >= 0.0 ? box.first.x : box.second.x,
+                          n.y >= 0.0 ? box.first.y : box.second.y,
+                          n.z >= 0.0 ? box.first.z : box.second.z);
+        if (influence_[i].distance(least) > epsilon_) {
+            return true;
+        }
+    }
+    return false;
 }
 
 bool BeamTree::outside_influence(const std::vector<Polygon>& polygons) const {

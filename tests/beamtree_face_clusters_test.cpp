@@ -65,6 +65,24 @@ TEST(FaceClusters, EveryFaceIsInOneClusterOfBoundedSizeWhoseBoxHoldsItExactly) {
             EXPECT_EQ(clusters.bounds[c].second, tight[c].second) << "cluster " << c;
             total += area_of(clusters.bounds[c]);
         }
+        // The faces listed by cluster: every face once, under its own cluster, in order.
+        ASSERT_EQ(clusters.first.size(), clusters.bounds.size() + 1);
+        ASSERT_EQ(clusters.first.back(), faces.size());
+        ASSERT_EQ(clusters.faces.size(), faces.size());
+        std::vector<int> listed(faces.size(), 0);
+        for (size_t c = 0; c < clusters.bounds.size(); ++c) {
+            EXPECT_EQ(clusters.first[c + 1] - clusters.first[c], sizes[c]) << "cluster " << c;
+            for (uint32_t i = clusters.first[c]; i < clusters.first[c + 1]; ++i) {
+                const uint32_t f = clusters.faces[i];
+                ASSERT_LT(f, faces.size());
+                ++listed[f];
+                EXPECT_EQ(clusters.cluster[f], c) << "face " << f;
+                if (i > clusters.first[c]) {
+                    EXPECT_LT(clusters.faces[i - 1], f) << "cluster " << c;
+                }
+            }
+        }
+        EXPECT_EQ(std::count(listed.begin(), listed.end(), 1), std::ptrdiff_t(faces.size()));
         // Median splits of a grid of unit squares give boxes of about their faces' own area
         // (each box's footprint at most twice its faces' across a cut row); a cluster of faces
         // taken in the shuffled order would cover most of the grid each.
@@ -81,6 +99,8 @@ TEST(FaceClusters, FacesOnOnePointStillEndInClusters) {
     for (const uint32_t c : clusters.cluster) {
         EXPECT_LT(c, clusters.bounds.size());
     }
+    EXPECT_EQ(clusters.faces.size(), faces.size());
+    EXPECT_EQ(clusters.first.size(), clusters.bounds.size() + 1);
 }
 
 }  // namespace
