@@ -85,8 +85,9 @@ struct BeamTreeStats {
     // Light-facing exact occluders (a mesh's coplanar triangles joined: coplanar_faces.h), each
     // an occluder and a stopper.
     size_t exact_polygons = 0;
-    // Light-facing exact faces left out because their object's box was wholly hidden behind
-    // what was in already (they would have changed nothing).
+    // Light-facing exact faces left out because their object's or their cluster's box was
+    // wholly hidden behind what was in already, or lay outside the influence (they would have
+    // changed nothing).
     size_t hidden_polygons = 0;
     size_t max_depth = 0;
 };
