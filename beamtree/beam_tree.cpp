@@ -152,13 +152,10 @@ double BeamTree::depth_of_box(const std::vector<Polygon>& polygons) const {
 }
 
 double BeamTree::depth_of_box(const std::pair<dvec3, dvec3>& box) const {
-    const auto& [lo, hi] = box;
     if (!parallel_) {
-        return glm::length(glm::max(dvec3(0.0), glm::max(lo - apex_, apex_ - hi)));
+        return glm::length(glm::max(dvec3(0.0), glm::max(box.first - apex_, apex_ - box.second)));
     }
-    // A linear depth: least at the corner the beams' direction picks.
-    return depth(dvec3(axis_.x >= 0.0 ? lo.x : hi.x, axis_.y >= 0.0 ? lo.y : hi.y,
-                       axis_.z >= 0.0 ? lo.z : hi.z));
+    return depth(least_corner(box, axis_));  // a linear depth: least at a corner
 }
 
 bool BeamTree::edge_plane(const dvec3& a, const dvec3& b, Plane& plane) const {

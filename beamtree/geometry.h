@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -27,6 +28,17 @@ struct Plane {
     // Through a, b, c with the normal along (b - a) x (c - a). Returns false when degenerate.
     static bool through(const dvec3& a, const dvec3& b, const dvec3& c, Plane& plane);
 };
+
+// The corner of a box (its least and greatest corners) where dot(n, p) is least (ties: the least
+// corner), and where it is greatest: what a plane with normal n meets first and last.
+inline dvec3 least_corner(const std::pair<dvec3, dvec3>& box, const dvec3& n) {
+    return {n.x >= 0.0 ? box.first.x : box.second.x, n.y >= 0.0 ? box.first.y : box.second.y,
+            n.z >= 0.0 ? box.first.z : box.second.z};
+}
+inline dvec3 greatest_corner(const std::pair<dvec3, dvec3>& box, const dvec3& n) {
+    return {n.x >= 0.0 ? box.second.x : box.first.x, n.y >= 0.0 ? box.second.y : box.first.y,
+            n.z >= 0.0 ? box.second.z : box.first.z};
+}
 
 // Lexicographic order of points (x, then y, then z): a canonical order that does not depend on
 // how the points were produced or stored.

@@ -48,14 +48,14 @@ struct OfferedCluster {
     uint32_t object;          // index into the volumes
     uint32_t cluster;         // index into the object's clusters
     int32_t object_box, box;  // indices into Offer::boxes
-    uint32_t facing;          // its faces the tree takes (add_facing_triangles' rules)
+    uint32_t facing;          // its faces the tree takes (takes_face)
     bool outward_only;
 };
 
 struct BeamTree::Offer {
     std::vector<Inserting> polygons;
     // Nearest first, ties in the order of `polygons`: (distance, index) keys, a quarter of the
-    // bytes of the entries themselves (a sun over the house sorts 28,000 of them a frame).
+    // bytes of the entries themselves.
     std::vector<std::pair<double, uint32_t>> order;
     // The clusters, and their order by (depth, index): (depth, index) keys.
     std::vector<OfferedCluster> clusters;
@@ -207,6 +207,20 @@ void add_facing_triangles(const ObjectVolumes& object, const Side& side, const N
     }
 }
 
+// The entries' (key, index) pairs, by key and then index: as std::sort orders them, in about
+// linear time (sort_by_key).
+template <typename T>
+std::vector<std::pair<double, uint32_t>> nearest_first(const std::vector<T>& entries,
+                                                       double T::*key) {
+    SL_CHECK(entries.size() < size_t(std::numeric_limits<uint32_t>::max()));
+    std::vector<std::pair<double, uint32_t>> order(entries.size());
+    for (size_t i = 0; i < entries.size(); ++i) {
+        order[i] = {entries[i].*key, uint32_t(i)};
+    }
+    sort_by_key(order);
+    return order;
+}
+
 // True when p lies within `margin` of the box.
 bool near_bounds(const std::pair<dvec3, dvec3>& bounds, const dvec3& p, double margin) {
     const auto& [lo, hi] = bounds;
@@ -261,13 +275,13 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         const ObjectVolumes& object = volumes[k];
         const uint64_t rank = uint64_t(k) << 32;
         if (!object.triangles.empty()) {
+            if (outside_influence(object.triangles)) {
+                continue;
+            }
             // The box around the faces, found with them where it is known.
             const bool box_known = object.face_bounds.first.x <= object.face_bounds.second.x;
             const std::pair<dvec3, dvec3> box =
                 box_known ? object.face_bounds : bounds_of(object.triangles);
-            if (outside_influence(object.triangles)) {
-                continue;
-            }
             // An object cut into clusters is offered cluster by cluster (each left out where its
             // box lies outside the influence), any other face by face.
             const bool clustered =
@@ -308,17 +322,8 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
             }
         }
     }
-    SL_CHECK(offer.polygons.size() < size_t(std::numeric_limits<uint32_t>::max()));
-    offer.order.resize(offer.polygons.size());
-    for (size_t i = 0; i < offer.polygons.size(); ++i) {
-        offer.order[i] = {offer.polygons[i].distance, uint32_t(i)};
-    }
-    sort_by_key(offer.order);  // as std::sort orders the pairs, in about linear time
-    offer.cluster_order.resize(offer.clusters.size());
-    for (size_t i = 0; i < offer.clusters.size(); ++i) {
-        offer.cluster_order[i] = {offer.clusters[i].depth, uint32_t(i)};
-    }
-    sort_by_key(offer.cluster_order);
+    offer.order = nearest_first(offer.polygons, &Inserting::distance);
+    offer.cluster_order = nearest_first(offer.clusters, &OfferedCluster::depth);
     offer.count += offer.polygons.size();
     add_grid(light, build.grid(offer.count), window.value_or(ViewWindow{}));
     insert_offer(offer, volumes);
@@ -405,6 +410,7 @@ void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>
         int32_t start = 0;  // where the box's faces start their descent (deepest_holding)
     };
     std::vector<Hiding> hiding(offer.boxes.size());
+    auto side = [&](const Plane& plane) { return light_side(plane); };
     thread_local std::vector<Polygon> facing;  // a box's light-facing faces, for one question
     // An object whose box lies wholly behind what is in already, from this face's depth on, has
     // nothing left that the tree would keep: each of its faces would descend to nodes that all
@@ -419,9 +425,7 @@ void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>
         Hiding& h = hiding[size_t(box)];
         if (!h.asked) {
             h.asked = true;
-            facing_box_faces(
-                offer.boxes[size_t(box)], [&](const Plane& plane) { return light_side(plane); },
-                epsilon_, parallel_, facing);
+            facing_box_faces(offer.boxes[size_t(box)], side, epsilon_, parallel_, facing);
             h.hidden = !facing.empty() && hidden_beyond(facing, distance);
         }
         return h.hidden;
@@ -443,6 +447,10 @@ void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>
     thread_local std::vector<Due> due;
     opened.clear();
     due.clear();
+    // Whether a listed entry goes in before the nearest opened face (ranks never tie).
+    auto listed_first = [&](const Inserting& o) {
+        return due.empty() || due.front() > Due{o.distance, o.rank, 0};
+    };
     auto open = [&](const OfferedCluster& group) {
         if (hidden(group.object_box, group.depth) || hidden(group.box, group.depth)) {
             hidden_polygons_ += group.facing;
@@ -451,7 +459,6 @@ void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>
         const ObjectVolumes& object = volumes[group.object];
         const FaceClusters& clusters = object.clusters;
         const bool closed = group.outward_only && !object.closed_faces.empty();
-        auto side = [&](const Plane& plane) { return light_side(plane); };
         for (uint32_t i = clusters.first[group.cluster]; i < clusters.first[group.cluster + 1];
              ++i) {
             const uint32_t f = clusters.faces[i];
@@ -492,7 +499,7 @@ void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>
             break;
         }
         const Inserting* taken = nullptr;
-        if (listed && (!any_due || !(Due{listed->distance, listed->rank, 0} > due.front()))) {
+        if (listed && listed_first(*listed)) {
             taken = listed;
             if (next + kLead < count) {
                 const Inserting& ahead = offer.polygons[offer.order[next + kLead].second];
@@ -549,11 +556,7 @@ bool BeamTree::box_outside_influence(const std::pair<dvec3, dvec3>& box) const {
         if (i == 4) {
             continue;
         }
-        const dvec3& n = influence_[i].normal;
-        const dvec3 least(n.x >= 0.0 ? box.first.x : box.second.x,
-                          n.y >= 0.0 ? box.first.y : box.second.y,
-                          n.z >= 0.0 ? box.first.z : box.second.z);
-        if (influence_[i].distance(least) > epsilon_) {
+        if (influence_[i].distance(least_corner(box, influence_[i].normal)) > epsilon_) {
             return true;
         }
     }
@@ -596,7 +599,6 @@ bool BeamTree::wholly_behind(const Polygon& polygon, const Plane& plane) const {
 }
 
 int32_t BeamTree::deepest_holding(const std::pair<dvec3, dvec3>& box, int32_t start) const {
-    const dvec3 lo = box.first, hi = box.second;
     const double margin = 2.0 * epsilon_;
     for (;;) {
         const Node& node = at(start);
@@ -605,13 +607,9 @@ int32_t BeamTree::deepest_holding(const std::pair<dvec3, dvec3>& box, int32_t st
         }
         // The plane's least and greatest distance over the box: at the corners its normal picks.
         const dvec3& n = node.plane.normal;
-        const dvec3 near(n.x >= 0.0 ? lo.x : hi.x, n.y >= 0.0 ? lo.y : hi.y,
-                         n.z >= 0.0 ? lo.z : hi.z);
-        const dvec3 far(n.x >= 0.0 ? hi.x : lo.x, n.y >= 0.0 ? hi.y : lo.y,
-                        n.z >= 0.0 ? hi.z : lo.z);
-        if (node.plane.distance(near) > margin) {
+        if (node.plane.distance(least_corner(box, n)) > margin) {
             start = node.front;
-        } else if (node.plane.distance(far) < -margin) {
+        } else if (node.plane.distance(greatest_corner(box, n)) < -margin) {
             start = node.back;
         } else {
             return start;

@@ -76,9 +76,9 @@ BENCHMARK_CAPTURE(build_tree_exact, arena, "arena")->Unit(benchmark::kMillisecon
 BENCHMARK_CAPTURE(build_tree_exact, house, "house")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(build_tree_exact, engine, "engine")->Unit(benchmark::kMillisecond);
 
-// A sun's tree for one camera (issue 47's light move): the light scene's first light, its tree
-// over the part of its box the scene's camera sees at 640x360 (scenes/view_window.h), as the
-// region methods build it every frame the sun or the camera moves.
+// A sun's tree for one camera: the light scene's first light, its tree over the part of its box
+// the scene's camera sees at 640x360 (scenes/view_window.h), as the region methods build it
+// every frame the sun or the camera moves; the volumes are built before the timing.
 void build_tree_sun(benchmark::State& state, const char* name) {
     const Scene scene = load_scene(name, SceneSearchPaths::defaults()).for_light(0);
     VolumeLibrary library(scene.bounds);
