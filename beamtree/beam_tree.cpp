@@ -234,11 +234,11 @@ void recycle(Polygon&& fragment) {
 
 }  // namespace
 
-bool BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role, int32_t start,
-                      double nearest) {
+BeamTree::Outcome BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role,
+                                   int32_t start, double nearest, bool ask_hidden) {
     // Only light-facing polygons occlude; edge-on ones (L within ε of their plane) add nothing.
     if (light_side(plane) <= epsilon_ || !area_exceeds(polygon, epsilon_ * epsilon_)) {
-        return false;
+        return Outcome::left_out;
     }
     // Nothing beyond the far range matters (Nilsson §4.2): clip to the backplate first.
     // (as split(...).back, into a finished fragment's storage instead of a new one)
@@ -269,12 +269,16 @@ bool BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role, int
     }
     if (clipped.empty()) {
         recycle(std::move(clipped));
-        return false;
+        return Outcome::left_out;
     }
     const bool stops = role != Role::occluder;
     const bool whole = far_side == Side::back;
     Inserted inserted{role, plane, -1,
                       whole && nearest >= 0.0 ? nearest : nearest_to_light(clipped)};
+    if (ask_hidden && hidden_beyond(clipped, ball, inserted.nearest, start)) {
+        recycle(std::move(clipped));
+        return Outcome::hidden;
+    }
     if (stops) {
         inserted.stopper = int32_t(stoppers_.size());
         stoppers_.push_back(plane);
@@ -293,7 +297,7 @@ bool BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role, int
         }
         recycle(std::move(next.fragment));
     }
-    return true;
+    return Outcome::inserted;
 }
 
 int32_t BeamTree::descend(int32_t index, double nearest, Polygon& fragment, const Ball& ball,

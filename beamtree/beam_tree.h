@@ -85,9 +85,9 @@ struct BeamTreeStats {
     // Light-facing exact occluders (a mesh's coplanar triangles joined: coplanar_faces.h), each
     // an occluder and a stopper.
     size_t exact_polygons = 0;
-    // Light-facing exact faces left out because their object's or their cluster's box was
-    // wholly hidden behind what was in already, or lay outside the influence (they would have
-    // changed nothing).
+    // Light-facing exact faces left out because their object's or their cluster's box, or the
+    // face itself (TreeBuild::ask_faces), was wholly hidden behind what was in already, or the
+    // box lay outside the influence (they would have changed nothing).
     size_t hidden_polygons = 0;
     size_t max_depth = 0;
 };
@@ -105,11 +105,14 @@ struct Beam {
 // the beam; an offer of at least `grid_from` polygons therefore first cuts the beam into a grid
 // of sub-beams by planes through L (about `polygons_per_cell` polygons a cell, at most
 // `max_grid` cells a side), a balanced top above the leaves the polygons then fill, as if those
-// planes had been the first edges inserted (docs/design.md §4).
+// planes had been the first edges inserted (docs/design.md §4). With `ask_faces`, an exact face
+// is first asked whether it is hidden behind what is in (BeamTree::hidden_beyond) and left out
+// where it is; the tree is the same node for node without.
 struct TreeBuild {
     size_t grid_from = 16384;
     size_t polygons_per_cell = 64;
     int max_grid = 48;
+    bool ask_faces = true;
     // The grid's cells a side for an offer of `polygons` (1: no grid).
     int grid(size_t polygons) const;
 };
@@ -247,8 +250,10 @@ private:
                         bool outward_only, Offer& offer) const;
     // Inserts the offered polygons in its order, the clusters' faces among them, leaving out the
     // rest of an object once its box is hidden behind what is in, and a cluster whose box is;
-    // counts what went in and what was left out. `volumes`: what the offer was made of.
-    void insert_offer(const Offer& offer, const std::vector<ObjectVolumes>& volumes);
+    // counts what went in and what was left out. `volumes`: what the offer was made of;
+    // `ask_faces`: TreeBuild's.
+    void insert_offer(const Offer& offer, const std::vector<ObjectVolumes>& volumes,
+                      bool ask_faces);
 
     struct Inserted {
         Role role;
@@ -256,13 +261,19 @@ private:
         int32_t stopper = -1;  // stopper, opaque: its index into stoppers_
         double nearest = 0.0;  // the polygon's distance from L: no fragment of it is nearer
     };
-    // False where the polygon is left out before its descent (edge-on, a sliver, beyond the far
-    // range): it is then not counted as inserted. Its descent starts at node `start`, which must
-    // lie on the path every part of the polygon would take from the root (deepest_holding).
-    // `nearest`, where known (not negative), is nearest_to_light(polygon): used unless the far
-    // range clips the polygon.
-    bool insert(const Polygon& polygon, const Plane& plane, Role role, int32_t start = 0,
-                double nearest = -1.0);
+    // What insert() did with a polygon.
+    enum class Outcome {
+        left_out,  // before its descent: edge-on, a sliver, beyond the far range
+        hidden,    // asked about and found hidden (hidden_beyond): it would change nothing
+        inserted,  // sent down the tree
+    };
+    // Its descent starts at node `start`, which must lie on the path every part of the polygon
+    // would take from the root (deepest_holding). `nearest`, where known (not negative), is
+    // nearest_to_light(polygon): used unless the far range clips the polygon. With `ask_hidden`,
+    // what is left of it after the far range is first asked about (hidden_beyond), and left out
+    // where it is hidden: the same tree, without the descent.
+    Outcome insert(const Polygon& polygon, const Plane& plane, Role role, int32_t start = 0,
+                   double nearest = -1.0, bool ask_hidden = false);
     // From node `start` down, the deepest node whose every ancestor's plane has the whole box
     // farther than 2ε on one side: every polygon in the box descends through it, with no split and
     // no edge on those planes. Splits never change once made, so it stays such a node as the
@@ -284,8 +295,12 @@ private:
     // still to come) is unlit, in the tree as it stands, beyond `nearest` or from the polygons
     // on: then nothing that lies in the box beyond that depth can change the tree.
     bool hidden_beyond(const std::vector<Polygon>& polygons, double nearest) const;
-    // True when every vertex lies behind the plane by more than ε.
-    bool wholly_behind(const Polygon& polygon, const Plane& plane) const;
+    // The same of one polygon (`ball` bounds it), from node `start` down (as insert's).
+    bool hidden_beyond(const Polygon& polygon, const Ball& ball, double nearest,
+                       int32_t start) const;
+    // True when every vertex lies behind the plane by more than ε (`ball` bounds the polygon:
+    // it usually tells without a vertex).
+    bool wholly_behind(const Polygon& polygon, const Ball& ball, const Plane& plane) const;
     // Objects of fewer exact faces are not asked about: inserting them costs about as much.
     static constexpr size_t kHidingFaces = 16;
     // Takes `fragment` down from node `index` to its leaf, pushing the far parts of straddled

@@ -326,7 +326,7 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
     offer.cluster_order = nearest_first(offer.clusters, &OfferedCluster::depth);
     offer.count += offer.polygons.size();
     add_grid(light, build.grid(offer.count), window.value_or(ViewWindow{}));
-    insert_offer(offer, volumes);
+    insert_offer(offer, volumes, build.ask_faces);
 }
 
 void BeamTree::add_grid(const SpotLight& light, int grid, const ViewWindow& window) {
@@ -401,15 +401,18 @@ void BeamTree::offer_clusters(const ObjectVolumes& object, uint32_t index, int32
     }
 }
 
-void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>& volumes) {
+void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>& volumes,
+                            bool ask_faces) {
     // Per box of exact faces (an object's, a cluster's): whether the rest of its faces is
     // hidden, and whether that was asked.
     struct Hiding {
         bool hidden = false;
         bool asked = false;
         int32_t start = 0;  // where the box's faces start their descent (deepest_holding)
+        bool grew = false;  // the box's last face sent down the tree added nodes to it
     };
     std::vector<Hiding> hiding(offer.boxes.size());
+    bool loose_grew = false;  // as Hiding::grew, for the faces of no box
     auto side = [&](const Plane& plane) { return light_side(plane); };
     thread_local std::vector<Polygon> facing;  // a box's light-facing faces, for one question
     // An object whose box lies wholly behind what is in already, from this face's depth on, has
@@ -524,24 +527,35 @@ void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>
         // The face's descent starts below the planes its cluster's (or its object's) box lies
         // wholly on one side of: the same descent, without the top of it.
         int32_t start = 0;
+        bool* grew = &loose_grew;
         if (const int32_t box = o.cluster >= 0 ? o.cluster : o.object; box >= 0) {
             Hiding& h = hiding[size_t(box)];
             h.start = deepest_holding(offer.boxes[size_t(box)], h.start);
             start = h.start;
+            grew = &h.grew;
         }
-        bool in = false;
+        // An exact face is asked about on its own (hidden_beyond) before its descent, unless the
+        // last face of its box that went down grew the tree: a box's faces come nearest first,
+        // and after one that grew the tree the next is seldom hidden, where asking costs about a
+        // third of a descent (results/beamtree.md).
+        const bool ask = ask_faces && o.role == Role::opaque && !*grew;
         // An exact face's distance is its own nearest_to_light (add_facing_triangles); a
         // volume's faces share the box's.
         const double known_nearest = o.role == Role::opaque ? o.distance : -1.0;
+        const size_t nodes_before = nodes_.size();
+        Outcome outcome = Outcome::left_out;
         if (o.reversed) {
             thread_local Polygon flipped;  // its storage kept from face to face
             const std::vector<dvec3>& v = o.polygon->vertices;
             flipped.vertices.assign(v.rbegin(), v.rend());
-            in = insert(flipped, o.plane, o.role, start, known_nearest);
+            outcome = insert(flipped, o.plane, o.role, start, known_nearest, ask);
         } else {
-            in = insert(*o.polygon, o.plane, o.role, start, known_nearest);
+            outcome = insert(*o.polygon, o.plane, o.role, start, known_nearest, ask);
         }
-        if (in) {
+        if (outcome == Outcome::hidden) {
+            ++hidden_polygons_;
+        } else if (outcome == Outcome::inserted) {
+            *grew = nodes_.size() != nodes_before;
             ++(o.role == Role::occluder  ? outer_polygons_
                : o.role == Role::stopper ? stopper_polygons_
                                          : exact_polygons_);
@@ -589,7 +603,15 @@ bool BeamTree::outside_influence(const std::vector<Polygon>& polygons) const {
     return false;
 }
 
-bool BeamTree::wholly_behind(const Polygon& polygon, const Plane& plane) const {
+bool BeamTree::wholly_behind(const Polygon& polygon, const Ball& ball, const Plane& plane) const {
+    switch (ball.side(plane, epsilon_)) {  // decides only where every vertex would
+        case Side::back:
+            return true;
+        case Side::front:
+            return false;
+        default:
+            break;
+    }
     for (const dvec3& v : polygon.vertices) {
         if (!(plane.distance(v) < -epsilon_)) {
             return false;
@@ -618,40 +640,54 @@ int32_t BeamTree::deepest_holding(const std::pair<dvec3, dvec3>& box, int32_t st
 }
 
 bool BeamTree::hidden_beyond(const std::vector<Polygon>& polygons, double nearest) const {
-    // Every ray through the polygons, followed down the tree: a part that comes within ε of a
-    // plane goes down both sides whole (a superset of the rays a face's fragment could take
-    // there, whatever ε decides for it), so that the answer never depends on round-off. A ray
-    // is done where the node's reach lies nearer than `nearest`, or at a blocker leaf where the
-    // polygon lies wholly behind the stopper by more than ε: a ray that crosses a plane facing
-    // the light never comes back, so from the box's face on it is unlit there, and a face in the
-    // box sent down the tree would find its fragment behind that stopper (or behind a nearer one
-    // that took over since) and change nothing. (The reach alone misses the second case wherever
-    // the stopper slopes away from the light: its far corner lies beyond the box.)
-    thread_local std::vector<std::pair<int32_t, const Polygon*>> stack;
-    stack.clear();
     for (const Polygon& polygon : polygons) {
-        stack.push_back({0, &polygon});
+        if (!hidden_beyond(polygon, bounding_ball(polygon), nearest, 0)) {
+            return false;
+        }
     }
+    return true;
+}
+
+bool BeamTree::hidden_beyond(const Polygon& polygon, const Ball& ball, double nearest,
+                             int32_t start) const {
+    // Every ray through the polygon, followed down the tree: a polygon that comes within ε of a
+    // plane goes down both sides whole (a superset of the rays a fragment of it could take there,
+    // whatever ε decides for it), so that the answer never depends on round-off. A ray is done
+    // where the node's reach lies nearer than `nearest`, or at a blocker leaf where the polygon
+    // lies wholly behind the stopper by more than ε: a ray that crosses a plane facing the light
+    // never comes back, so from the polygon on it is unlit there, and a fragment sent down the
+    // tree would find itself behind that stopper (or behind a nearer one that took over since)
+    // and change nothing. (The reach alone misses the second case wherever the stopper slopes
+    // away from the light: its far corner lies beyond the polygon.) The ball decides most planes
+    // without a vertex, and only where the vertices would.
+    thread_local std::vector<int32_t> stack;
+    stack.clear();
+    stack.push_back(start);
     while (!stack.empty()) {
-        auto [index, polygon] = stack.back();
+        int32_t index = stack.back();
         stack.pop_back();
         for (;;) {
             const Node& node = at(index);
             if (nearest > double(node.reach) || node.kind == Kind::out ||
-                (node.kind == Kind::blocker && wholly_behind(*polygon, stopper_of(node)))) {
+                (node.kind == Kind::blocker && wholly_behind(polygon, ball, stopper_of(node)))) {
                 break;  // unlit beyond its reach or its stopper, or outside the influence
             }
             if (node.kind != Kind::split) {
                 return false;  // a leaf that something beyond `nearest` would still change
             }
+            const Side passed = ball.side(node.plane, epsilon_);
+            if (passed != Side::straddling) {
+                index = passed == Side::front ? node.front : node.back;
+                continue;
+            }
             bool front = false, back = false;
-            for (const dvec3& v : polygon->vertices) {
+            for (const dvec3& v : polygon.vertices) {
                 const double d = node.plane.distance(v);
                 front |= d > -epsilon_;
                 back |= d < epsilon_;
             }
             if (front && back) {
-                stack.push_back({node.back, polygon});
+                stack.push_back(node.back);
             }
             index = front ? node.front : node.back;
         }

@@ -822,10 +822,11 @@ TEST(BeamTree, ASunsTreeForAViewDecidesWhatTheCameraSeesAsTheWholeBoxTree) {
 }
 
 // An object whose box lies wholly behind what is in already is left out (BeamTree's
-// hidden_beyond), and so is a cluster of its faces (face_clusters.h); each face's descent starts
-// below the planes its cluster's box lies wholly on one side of (deepest_holding); a part of a
-// fragment that would land behind its child's reach is not cut off: none of it changes anything.
-// The same faces cut into objects of 8 faces, too few to be asked about, and inserted in the same
+// hidden_beyond), and so is a cluster of its faces (face_clusters.h), and a face found hidden on
+// its own (TreeBuild::ask_faces); each face's descent starts below the planes its cluster's box
+// lies wholly on one side of (deepest_holding); a part of a fragment that would land behind its
+// child's reach is not cut off: none of it changes anything. The same faces cut into objects of
+// 8 faces, too few to be asked about, with no face asked about either, and inserted in the same
 // order, build the same tree node for node (planes, children, leaves and their stoppers' planes),
 // on the house from its light (most of its faces hidden), under a sun, under the noon sun (whose
 // direction has no x: every box's two x faces are edge-on to it, and no ray enters through them),
@@ -864,9 +865,19 @@ TEST(BeamTree, HiddenObjectsAreLeftOutAndChangeNothing) {
         // Without a grid: the grid's size would follow the two offers' sizes, and its planes
         // change the nodes (not the regions: AGridOfSubBeamsChangesNoRegion).
         const bt::TreeBuild no_grid{.grid_from = std::numeric_limits<size_t>::max()};
-        const bt::BeamTree whole(light, volumes, no_grid), cut(light, pieces, no_grid);
-        EXPECT_GT(whole.stats().hidden_polygons, 0u) << scene.name;
+        const bt::TreeBuild unasked{.grid_from = no_grid.grid_from, .ask_faces = false};
+        const bt::BeamTree whole(light, volumes, no_grid), cut(light, pieces, unasked);
+        const bt::BeamTree boxes_only(light, volumes, unasked);
+        EXPECT_GT(boxes_only.stats().hidden_polygons, 0u) << scene.name;
+        // The faces' questions leave out more, of the same faces.
+        EXPECT_GT(whole.stats().hidden_polygons, boxes_only.stats().hidden_polygons) << scene.name;
+        EXPECT_EQ(whole.stats().hidden_polygons + whole.stats().exact_polygons,
+                  boxes_only.stats().hidden_polygons + boxes_only.stats().exact_polygons)
+            << scene.name;
         EXPECT_EQ(cut.stats().hidden_polygons, 0u) << scene.name;
+        EXPECT_EQ(boxes_only.gpu_tree(bt::GpuTreeLayout::build).nodes.size(),
+                  whole.gpu_tree(bt::GpuTreeLayout::build).nodes.size())
+            << scene.name;
         const bt::GpuTree a = whole.gpu_tree(bt::GpuTreeLayout::build);
         const bt::GpuTree b = cut.gpu_tree(bt::GpuTreeLayout::build);
         ASSERT_EQ(a.nodes.size(), b.nodes.size()) << scene.name;
