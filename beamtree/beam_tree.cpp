@@ -122,12 +122,6 @@ std::vector<Plane> influence_planes(const SpotLight& light,
     return planes;
 }
 
-double BeamTree::light_side(const Plane& plane) const {
-    // Parallel beams: the sine of the angle between the plane and the beams, times the box's
-    // depth, so that ε compares with it as with a distance.
-    return parallel_ ? -glm::dot(plane.normal, axis_) * scale_ : plane.distance(apex_);
-}
-
 double BeamTree::depth(const dvec3& p) const {
     return parallel_ ? glm::dot(p - apex_, axis_) : glm::length(p - apex_);
 }

@@ -324,8 +324,11 @@ private:
     void lower_reach_above(int32_t index);
 
     // The light's signed distance from a plane (> 0: the plane faces it), in length units; for
-    // parallel beams the sine of their angle with the plane times the influence box's depth.
-    double light_side(const Plane& plane) const;
+    // parallel beams the sine of their angle with the plane times the influence box's depth
+    // (so that ε compares with it as with a distance). Asked of every face offered: inline.
+    double light_side(const Plane& plane) const {
+        return parallel_ ? -glm::dot(plane.normal, axis_) * scale_ : plane.distance(apex_);
+    }
     // How far along the light's beams p lies: its distance from L, or for parallel beams its
     // depth past the entry plane.
     double depth(const dvec3& p) const;
