@@ -229,7 +229,8 @@ void recycle(Polygon&& fragment) {
 }  // namespace
 
 BeamTree::Outcome BeamTree::insert(const Polygon& polygon, const Plane& plane, Role role,
-                                   int32_t start, double nearest, bool ask_hidden) {
+                                   int32_t start, double nearest, bool ask_hidden,
+                                   const Ball* known_ball) {
     // Only light-facing polygons occlude; edge-on ones (L within ε of their plane) add nothing.
     if (light_side(plane) <= epsilon_ || !area_exceeds(polygon, epsilon_ * epsilon_)) {
         return Outcome::left_out;
@@ -239,7 +240,7 @@ BeamTree::Outcome BeamTree::insert(const Polygon& polygon, const Plane& plane, R
     Polygon clipped = reused_polygon();
     // One ball for all of its fragments: what bounds the polygon bounds its fragments. Most
     // polygons lie wholly inside the far range, which the ball tells without a vertex's distance.
-    Ball ball = bounding_ball(polygon);
+    Ball ball = known_ball ? *known_ball : bounding_ball(polygon);
     Side far_side = ball.side(influence_[5], epsilon_);
     if (far_side == Side::straddling) {
         thread_local Polygon beyond;  // the part past the far range: dropped

@@ -271,9 +271,10 @@ private:
     // would take from the root (deepest_holding). `nearest`, where known (not negative), is
     // nearest_to_light(polygon): used unless the far range clips the polygon. With `ask_hidden`,
     // what is left of it after the far range is first asked about (hidden_beyond), and left out
-    // where it is hidden: the same tree, without the descent.
+    // where it is hidden: the same tree, without the descent. `ball`, where known, bounds the
+    // polygon (bounding_ball).
     Outcome insert(const Polygon& polygon, const Plane& plane, Role role, int32_t start = 0,
-                   double nearest = -1.0, bool ask_hidden = false);
+                   double nearest = -1.0, bool ask_hidden = false, const Ball* ball = nullptr);
     // From node `start` down, the deepest node whose every ancestor's plane has the whole box
     // farther than 2ε on one side: every polygon in the box descends through it, with no split and
     // no edge on those planes. Splits never change once made, so it stays such a node as the

@@ -774,6 +774,7 @@ ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
     const CoplanarFaces& faces = surface->faces;
     volumes.triangles.reserve(faces.faces.size());
     volumes.face_planes.reserve(faces.faces.size());
+    volumes.face_balls.reserve(faces.faces.size());
     volumes.face_bounds = {dvec3(std::numeric_limits<double>::max()),
                            dvec3(std::numeric_limits<double>::lowest())};
     for (size_t f = 0; f < faces.faces.size(); ++f) {
@@ -798,6 +799,7 @@ ObjectVolumes VolumeLibrary::triangles_of(const Object& object, int index) {
             volumes.face_bounds.second = glm::max(volumes.face_bounds.second, corner);
         }
         volumes.triangles.emplace_back(std::move(corners));
+        volumes.face_balls.push_back(bounding_ball(volumes.triangles.back()));
         if (some_closed) {
             volumes.closed_faces.push_back(outward != 0);
         }

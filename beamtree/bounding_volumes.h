@@ -46,6 +46,9 @@ struct ObjectVolumes {
     // a box holding every corner (lo > hi: not known). Empty planes: the tree finds them.
     std::vector<Plane> face_planes;
     std::pair<dvec3, dvec3> face_bounds{dvec3(1.0), dvec3(-1.0)};
+    // Likewise the ball around each face (bounding_ball), which decides most of a face's planes
+    // in the tree without a vertex. Empty: the tree finds them.
+    std::vector<Ball> face_balls;
     size_t mesh_triangles = 0;  // the triangles of the mesh they came from
     // Per face of `triangles`: 1 where it lies on a closed component of its mesh
     // (closed_surface.h), then wound outward in world space: while the light is outside the

@@ -37,6 +37,7 @@ struct Inserting {
     // Ties in distance go in this order: the object's place in the volumes, then the polygon's
     // in the object (its faces, or a volume's outer faces and then its inner ones).
     uint64_t rank = 0;
+    const Ball* ball = nullptr;  // around `polygon`, where found with it (ObjectVolumes)
 };
 
 // The faces of one cluster of an object's exact faces (ObjectVolumes::clusters), offered as one
@@ -186,6 +187,11 @@ bool takes_face(const ObjectVolumes& object, size_t f, const Side& side, bool cl
     return true;
 }
 
+// The ball around face f where it was found with the faces, else null.
+const Ball* face_ball(const ObjectVolumes& object, size_t f) {
+    return object.face_balls.empty() ? nullptr : &object.face_balls[f];
+}
+
 // Every face of the object that the tree takes (takes_face), as entries; `nearest(p)`: a
 // polygon's distance from the light (BeamTree::nearest_to_light); `rank`: the object's place in
 // the volumes, shifted for Inserting::rank.
@@ -197,12 +203,13 @@ void add_facing_triangles(const ObjectVolumes& object, const Side& side, const N
     const bool closed = outward_only && !object.closed_faces.empty();
     SL_CHECK(object.closed_faces.empty() || object.closed_faces.size() == triangles.size());
     SL_CHECK(object.face_planes.empty() || object.face_planes.size() == triangles.size());
+    SL_CHECK(object.face_balls.empty() || object.face_balls.size() == triangles.size());
     for (size_t f = 0; f < triangles.size(); ++f) {
         Plane plane;
         bool reversed = false;
         if (takes_face(object, f, side, closed, plane, reversed)) {
             out.push_back({nearest(triangles[f]), &triangles[f], plane, BeamTree::Role::opaque,
-                           reversed, object_box, -1, rank | f});
+                           reversed, object_box, -1, rank | f, face_ball(object, f)});
         }
     }
 }
@@ -373,6 +380,7 @@ void BeamTree::offer_clusters(const ObjectVolumes& object, uint32_t index, int32
     SL_CHECK(clusters.faces.size() == object.triangles.size());
     SL_CHECK(object.closed_faces.empty() || object.closed_faces.size() == object.triangles.size());
     SL_CHECK(object.face_planes.empty() || object.face_planes.size() == object.triangles.size());
+    SL_CHECK(object.face_balls.empty() || object.face_balls.size() == object.triangles.size());
     const bool closed = outward_only && !object.closed_faces.empty();
     const auto first_box = int32_t(offer.boxes.size());
     offer.boxes.insert(offer.boxes.end(), clusters.bounds.begin(), clusters.bounds.end());
@@ -476,7 +484,7 @@ void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>
             due.push_back({distance, rank, uint32_t(opened.size())});
             std::push_heap(due.begin(), due.end(), std::greater<>());
             opened.push_back({distance, &triangle, plane, Role::opaque, reversed, group.object_box,
-                              group.box, rank});
+                              group.box, rank, face_ball(object, f)});
         }
     };
     // The order visits the entries, their polygons and their vertices in no order of memory;
@@ -548,9 +556,9 @@ void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>
             thread_local Polygon flipped;  // its storage kept from face to face
             const std::vector<dvec3>& v = o.polygon->vertices;
             flipped.vertices.assign(v.rbegin(), v.rend());
-            outcome = insert(flipped, o.plane, o.role, start, known_nearest, ask);
+            outcome = insert(flipped, o.plane, o.role, start, known_nearest, ask, o.ball);
         } else {
-            outcome = insert(*o.polygon, o.plane, o.role, start, known_nearest, ask);
+            outcome = insert(*o.polygon, o.plane, o.role, start, known_nearest, ask, o.ball);
         }
         if (outcome == Outcome::hidden) {
             ++hidden_polygons_;

@@ -853,9 +853,10 @@ TEST(BeamTree, HiddenObjectsAreLeftOutAndChangeNothing) {
                     object.triangles.begin() + std::ptrdiff_t(first),
                     object.triangles.begin() +
                         std::ptrdiff_t(std::min(first + 8, object.triangles.size())));
-                // Planes, box and clusters not known: the tree finds the first two (as the library
-                // did), and has no cluster to leave out or to start a descent below.
+                // Planes, balls, box and clusters not known: the tree finds the first three (as
+                // the library did), and has no cluster to leave out or to start a descent below.
                 piece.face_planes.clear();
+                piece.face_balls.clear();
                 piece.face_bounds = {dvec3(1.0), dvec3(-1.0)};
                 piece.clusters = {};
                 pieces.push_back(std::move(piece));
