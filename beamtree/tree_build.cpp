@@ -282,11 +282,14 @@ BeamTree::BeamTree(const SpotLight& light, const std::vector<ObjectVolumes>& vol
         const ObjectVolumes& object = volumes[k];
         const uint64_t rank = uint64_t(k) << 32;
         if (!object.triangles.empty()) {
-            if (outside_influence(object.triangles)) {
+            // The box around the faces, found with them where it is known. Beyond a plane of the
+            // influence, so is every corner of every face (and the box tells in one corner for
+            // most objects the window leaves out); else the corners themselves may still be.
+            const bool box_known = object.face_bounds.first.x <= object.face_bounds.second.x;
+            if ((box_known && box_outside_influence(object.face_bounds)) ||
+                outside_influence(object.triangles)) {
                 continue;
             }
-            // The box around the faces, found with them where it is known.
-            const bool box_known = object.face_bounds.first.x <= object.face_bounds.second.x;
             const std::pair<dvec3, dvec3> box =
                 box_known ? object.face_bounds : bounds_of(object.triangles);
             // An object cut into clusters is offered cluster by cluster (each left out where its
