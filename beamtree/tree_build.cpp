@@ -134,7 +134,9 @@ void facing_box_faces(const std::pair<dvec3, dvec3>& bounds, const Side& side, d
                                     {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
     const Plane planes[6] = {{{-1, 0, 0}, lo.x}, {{1, 0, 0}, -hi.x}, {{0, -1, 0}, lo.y},
                              {{0, 1, 0}, -hi.y}, {{0, 0, -1}, lo.z}, {{0, 0, 1}, -hi.z}};
-    faces.clear();
+    // The faces are written over the last question's, in their storage: a sun faces the same
+    // three faces of every box.
+    size_t count = 0;
     for (int f = 0; f < 6; ++f) {
         const double s = side(planes[f]);
         if (std::abs(s) <= epsilon) {
@@ -145,11 +147,18 @@ void facing_box_faces(const std::pair<dvec3, dvec3>& bounds, const Side& side, d
             return;
         }
         if (s > epsilon) {
+            if (faces.size() == count) {
+                faces.emplace_back();
+            }
+            Polygon& face = faces[count++];
             const int* c = kCorners[f];
-            faces.emplace_back(
-                std::vector<dvec3>{corner(c[0]), corner(c[1]), corner(c[2]), corner(c[3])});
+            face.clear();
+            for (int k = 0; k < 4; ++k) {
+                face.vertices.push_back(corner(c[k]));
+            }
         }
     }
+    faces.resize(count);
 }
 
 // An opaque triangle stops the light whatever its winding: it goes in facing the light, as an
@@ -185,6 +194,18 @@ bool takes_face(const ObjectVolumes& object, size_t f, const Side& side, bool cl
         plane = plane.flipped();
     }
     return true;
+}
+
+// takes_face's answer alone, without the plane: what counting a cluster's faces asks of each.
+template <typename Side>
+bool counts_face(const ObjectVolumes& object, size_t f, const Side& side, bool closed) {
+    if (object.face_planes.empty()) {
+        Plane plane;
+        bool reversed = false;
+        return takes_face(object, f, side, closed, plane, reversed);
+    }
+    const Plane& plane = object.face_planes[f];
+    return plane.normal != dvec3(0.0) && !(closed && object.closed_faces[f] && side(plane) < 0.0);
 }
 
 // The ball around face f where it was found with the faces, else null.
@@ -393,9 +414,7 @@ void BeamTree::offer_clusters(const ObjectVolumes& object, uint32_t index, int32
         // them); their distances wait.
         uint32_t facing = 0;
         for (uint32_t i = clusters.first[c]; i < clusters.first[c + 1]; ++i) {
-            Plane plane;
-            bool reversed = false;
-            facing += takes_face(object, clusters.faces[i], side, closed, plane, reversed);
+            facing += counts_face(object, clusters.faces[i], side, closed);
         }
         offer.count += facing;
         if (box_outside_influence(clusters.bounds[c])) {
