@@ -169,43 +169,37 @@ void facing_box_faces(const std::pair<dvec3, dvec3>& bounds, const Side& side, d
 // object's bounds, and some of its faces on closed components), a triangle that lies on a closed
 // component wound outward (ObjectVolumes::closed_faces) and faces away from the light is left out
 // too: it blocks nothing the others do not (closed_surface.h).
-// True when the tree takes face f, then with `plane` facing the light and `reversed` where the
-// face is wound the other way about it. `side(plane)`: the light's signed distance from a plane
+// True when the tree takes face f; then, where asked for, `plane` facing the light and
+// `reversed` where the face is wound the other way about it (counting the faces asks for
+// neither: no plane is copied). `side(plane)`: the light's signed distance from a plane
 // (BeamTree::light_side).
 template <typename Side>
-bool takes_face(const ObjectVolumes& object, size_t f, const Side& side, bool closed, Plane& plane,
-                bool& reversed) {
+bool takes_face(const ObjectVolumes& object, size_t f, const Side& side, bool closed,
+                Plane* plane = nullptr, bool* reversed = nullptr) {
+    Plane through;
+    const Plane* wound = &through;  // the face's plane as wound
     if (!object.face_planes.empty()) {
-        plane = object.face_planes[f];
-        if (plane.normal == dvec3(0.0)) {
+        wound = &object.face_planes[f];
+        if (wound->normal == dvec3(0.0)) {
             return false;
         }
     } else {
         const std::vector<dvec3>& v = object.triangles[f].vertices;
-        if (!Plane::through(v[0], v[1], v[2], plane)) {
+        if (!Plane::through(v[0], v[1], v[2], through)) {
             return false;
         }
     }
-    reversed = side(plane) < 0.0;
-    if (reversed && closed && object.closed_faces[f]) {
+    const bool away = side(*wound) < 0.0;
+    if (away && closed && object.closed_faces[f]) {
         return false;
     }
+    if (plane) {
+        *plane = away ? wound->flipped() : *wound;
+    }
     if (reversed) {
-        plane = plane.flipped();
+        *reversed = away;
     }
     return true;
-}
-
-// takes_face's answer alone, without the plane: what counting a cluster's faces asks of each.
-template <typename Side>
-bool counts_face(const ObjectVolumes& object, size_t f, const Side& side, bool closed) {
-    if (object.face_planes.empty()) {
-        Plane plane;
-        bool reversed = false;
-        return takes_face(object, f, side, closed, plane, reversed);
-    }
-    const Plane& plane = object.face_planes[f];
-    return plane.normal != dvec3(0.0) && !(closed && object.closed_faces[f] && side(plane) < 0.0);
 }
 
 // The ball around face f where it was found with the faces, else null.
@@ -228,7 +222,7 @@ void add_facing_triangles(const ObjectVolumes& object, const Side& side, const N
     for (size_t f = 0; f < triangles.size(); ++f) {
         Plane plane;
         bool reversed = false;
-        if (takes_face(object, f, side, closed, plane, reversed)) {
+        if (takes_face(object, f, side, closed, &plane, &reversed)) {
             out.push_back({nearest(triangles[f]), &triangles[f], plane, BeamTree::Role::opaque,
                            reversed, object_box, -1, rank | f, face_ball(object, f)});
         }
@@ -414,7 +408,7 @@ void BeamTree::offer_clusters(const ObjectVolumes& object, uint32_t index, int32
         // them); their distances wait.
         uint32_t facing = 0;
         for (uint32_t i = clusters.first[c]; i < clusters.first[c + 1]; ++i) {
-            facing += counts_face(object, clusters.faces[i], side, closed);
+            facing += takes_face(object, clusters.faces[i], side, closed);
         }
         offer.count += facing;
         if (box_outside_influence(clusters.bounds[c])) {
@@ -497,7 +491,7 @@ void BeamTree::insert_offer(const Offer& offer, const std::vector<ObjectVolumes>
             const uint32_t f = clusters.faces[i];
             Plane plane;
             bool reversed = false;
-            if (!takes_face(object, f, side, closed, plane, reversed)) {
+            if (!takes_face(object, f, side, closed, &plane, &reversed)) {
                 continue;
             }
             const Polygon& triangle = object.triangles[f];
