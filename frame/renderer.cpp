@@ -385,7 +385,7 @@ void SceneRenderer::draw_object(size_t index, GLuint program, bool with_normals)
 
 FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     const auto start = std::chrono::steady_clock::now();
-    // Several lights (docs/design.md §18): per light, its shadow map, its term on the surfaces
+    // Several lights (docs/design.md §17): per light, its shadow map, its term on the surfaces
     // and its I_s, each added to the first light's; the method holds an instance per light.
     const size_t lights = scene_.lights.empty() ? 1 : scene_.spot_lights().size();
     const bool whole = method.takes_every_light();
@@ -393,9 +393,6 @@ FrameTimings SceneRenderer::draw(VolumeMethod& method) {
     SL_CHECK(method.light_count() == (whole ? 1 : lights));
     if (const ShadowSettings wanted = method.shadow_settings(options_.shadow); wanted != shadow_) {
         allocate_shadow(wanted);
-    }
-    if (lights > 1 && !light_scattering_.id()) {
-        create_light_target();
     }
     shadow_timeline_->begin();
     surface_timeline_->begin();
@@ -544,43 +541,17 @@ void SceneRenderer::draw_volume(VolumeMethod& method, const Scene& scene, bool a
         }
     } pass_end{*timeline_};
     timeline_->section(method.name().c_str());
-    // A further light draws into its own target, which is then added to the frame's.
-    const GLuint target = add_light ? light_volume_framebuffer_.id() : volume_framebuffer_.id();
-    GL.BindFramebuffer(GL_FRAMEBUFFER, target);
-    const float zero[4] = {0, 0, 0, 0};
-    GL.ClearNamedFramebufferfv(target, GL_COLOR, 0, zero);
+    // Every method only adds into its target (VolumeMethod::render), so a further light's
+    // instance adds its I_s straight onto the lights drawn before it: the target is cleared once.
+    GL.BindFramebuffer(GL_FRAMEBUFFER, volume_framebuffer_.id());
+    if (!add_light) {
+        const float zero[4] = {0, 0, 0, 0};
+        GL.ClearNamedFramebufferfv(volume_framebuffer_.id(), GL_COLOR, 0, zero);
+    }
     GL.Disable(GL_DEPTH_TEST);
     GL.DepthMask(GL_FALSE);
     method.render(VolumeInputs{scene, uniforms_, surface_depth_.id(), shadow_map_.id(),
                                options_.width, options_.height, *timeline_});
-    if (add_light) {
-        timeline_->section("add light");
-        GL.BindFramebuffer(GL_FRAMEBUFFER, volume_framebuffer_.id());
-        GL.Viewport(0, 0, options_.width, options_.height);
-        GL.Disable(GL_DEPTH_TEST);
-        GL.Enable(GL_BLEND);
-        GL.BlendEquation(GL_FUNC_ADD);
-        GL.BlendFunc(GL_ONE, GL_ONE);
-        GL.UseProgram(accumulate_program_.id());
-        GL.BindTextureUnit(SL_ACCUMULATE_SOURCE_UNIT, light_scattering_.id());
-        GL.BindVertexArray(empty_vertex_array_.id());
-        GL.DrawArrays(GL_TRIANGLES, 0, 3);
-        GL.Disable(GL_BLEND);
-    }
-}
-
-void SceneRenderer::create_light_target() {
-    light_scattering_ =
-        gl::create_texture_2d(GL_RGBA32F, options_.width, options_.height, GL_NEAREST);
-    light_scattering_.label("one light's in-scattering");
-    light_volume_framebuffer_ = gl::create_framebuffer();
-    GL.NamedFramebufferTexture(light_volume_framebuffer_.id(), GL_COLOR_ATTACHMENT0,
-                               light_scattering_.id(), 0);
-    require_complete(light_volume_framebuffer_.id(), "one light's in-scattering", options_.width,
-                     options_.height);
-    accumulate_program_ =
-        gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                            {GL_FRAGMENT_SHADER, "frame/shaders/accumulate.frag"}});
 }
 
 void SceneRenderer::draw_composite() {

@@ -112,7 +112,6 @@ private:
     // `add_light`: a further light's term, added to the first's (several lights).
     void draw_surfaces(bool add_light);
     void draw_volume(VolumeMethod& method, const Scene& scene, bool add_light);
-    void create_light_target();
     void draw_composite();
     FrameTimings read_timings() const;
 
@@ -155,10 +154,6 @@ private:
     std::unique_ptr<Timeline> timeline_;         // the volume pass, by the method's sections
     std::unique_ptr<Timeline> shadow_timeline_;  // the shadow maps, one section per light
     std::unique_ptr<Timeline> surface_timeline_;
-    // Several lights: each further light's I_s, before it is added to in_scattering_.
-    gl::Texture light_scattering_;
-    gl::Framebuffer light_volume_framebuffer_;
-    gl::Program accumulate_program_;
 };
 
 // The uniform block for `scene` seen at the given size (exposed for tests and CPU oracles).

@@ -1,5 +1,5 @@
 #pragma once
-// Where a light's shadow map lies for one frame (docs/design.md §18, "The sun's map"). A spot
+// Where a light's shadow map lies for one frame (docs/design.md §17, "The sun's map"). A spot
 // light's map is its influence pyramid, whatever the camera sees. A sun's box holds the whole
 // scene, so one map over all of it spreads its texels over what the camera never sees; its map is
 // fitted instead to the part of the box the camera's view pyramid reaches (scenes/view_window.h):

@@ -97,7 +97,7 @@ public:
         return "every medium and light: spot lights (cone or pyramid), point lights and "
                "directional lights, any number (it samples e(z) itself)";
     }
-    // Several lights (docs/design.md §18): I_s sums over the scene's spot lights
+    // Several lights (docs/design.md §17): I_s sums over the scene's spot lights
     // (Scene::spot_lights, a point light counting as its six faces), each with its own instance
     // of the method: this one for the first, and for each further light a copy of it (the same
     // method with the same parameter values), each prepared and updated with the scene as its
@@ -137,7 +137,9 @@ public:
     void update(const Scene& scene, const SceneChange& change) {
         apply_update(scene, change, cpu_update(scene, change));
     }
-    // Adds I_s (linear RGB, alpha ignored) into the bound framebuffer, which is cleared to zero
+    // Adds I_s (linear RGB, alpha ignored) into the bound framebuffer, blending ONE, ONE; it
+    // neither reads that target nor writes it otherwise. The target holds the I_s of the lights
+    // drawn before this one (zero for the first: several lights sum there, docs/design.md §17)
     // and has no depth attachment; the viewport covers it.
     virtual void render(const VolumeInputs& inputs) = 0;
     // Counters of the last frame rendered (empty by default); may wait for the GPU. Of this

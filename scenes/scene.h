@@ -298,7 +298,7 @@ struct Scene {
     // The light every part that takes one light reads: the scene's one spot light, or, with
     // several lights, the first of spot_lights().
     SpotLight light;
-    // Several lights ([[lights]] in scene files; docs/design.md §18), as declared: empty when the
+    // Several lights ([[lights]] in scene files; docs/design.md §17), as declared: empty when the
     // scene's one light is `light`. Otherwise `light` is spot_lights()[0].
     std::vector<LightSource> lights;
     Medium medium;

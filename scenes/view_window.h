@@ -1,5 +1,5 @@
 #pragma once
-// The part of a sun's box that a camera's view reaches (docs/design.md §18): what the sun's
+// The part of a sun's box that a camera's view reaches (docs/design.md §17): what the sun's
 // shadow map is fitted to (frame/shadow_fit.h) and what its beam tree covers when it is built
 // for that view (beamtree/beam_tree.h). The view pyramid runs from the eye to the far plane, and
 // every eye ray lies in it: across the beams outside the window, and along them beyond its far

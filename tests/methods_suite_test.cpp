@@ -153,7 +153,7 @@ TEST_P(EveryMethod, FiniteOutputWithTheEyeInsideTheLightAndTheLightBehindTheEye)
     }
 }
 
-// The boxes lit by a point light beside the spot (docs/design.md §18): seven lights as the methods
+// The boxes lit by a point light beside the spot (docs/design.md §17): seven lights as the methods
 // take them (the spot and the point light's six pyramidal faces), one as the reference does.
 Scene point_and_spot_scene() {
     Scene scene = boxes_scene(MediumModel::physical);
@@ -188,7 +188,7 @@ TEST_P(EveryMethod, APointLightBesideASpotLightMatchesTheReference) {
     EXPECT_LE(compare_images(frame.in_scattering, exact).rel_rmse, tolerance);
 }
 
-// The boxes under a sun (a directional light, docs/design.md §18): slanting from above, its box
+// The boxes under a sun (a directional light, docs/design.md §17): slanting from above, its box
 // the scene's, the camera inside it.
 Scene sunlit_boxes_scene() {
     Scene scene = boxes_scene(MediumModel::physical);

@@ -1,5 +1,5 @@
 // The interface of the frame's own passes (shadow.vert, surface.vert/frag, shadow_blur.frag,
-// composite.frag, accumulate.frag), shared by frame/renderer.cpp and the shaders (uniform
+// composite.frag), shared by frame/renderer.cpp and the shaders (uniform
 // locations, texture units). The units the renderer keeps bound for every pass are in
 // gl/shaders/frame_uniforms.h.
 #ifndef SL_FRAME_INTERFACE_H
@@ -20,8 +20,5 @@
 // composite.frag
 #define SL_COMPOSITE_SURFACE_UNIT 0
 #define SL_COMPOSITE_IN_SCATTERING_UNIT 1
-
-// accumulate.frag
-#define SL_ACCUMULATE_SOURCE_UNIT 0
 
 #endif
