@@ -65,7 +65,7 @@ public:
         if (auto* regions = dynamic_cast<RegionFrameWork*>(work.get())) {
             const bt::FrameRegions& r = regions->regions;
             stages_ = r.ms;
-            pass_.upload_mesh(r.lit.positions, r.lit.triangles);
+            pass_.upload_mesh(r.lit.positions, r.lit.triangles, scene.light, r.shared_sides);
             walk_ = regions->walk;
             if (walk_) {
                 tree_.upload(r.gpu);

@@ -1,5 +1,6 @@
 #include "analytic/region_pass.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -70,9 +71,50 @@ double winding_number(const std::vector<glm::vec3>& positions,
     return sum / (4.0 * glm::pi<double>());
 }
 
+namespace {
+
+// The triangles not lying on a shared side's plane (upload_mesh): all three corners within 1e-5
+// of their distance from L, beside which a float corner's rounding (6e-8 of its coordinates) and
+// the planes' (1e-16) are nothing.
+std::vector<glm::uvec3> off_shared_sides(const std::vector<glm::vec3>& positions,
+                                         const std::vector<glm::uvec3>& triangles,
+                                         const SpotLight& light,
+                                         const std::array<bool, 4>& shared_sides) {
+    const std::vector<bt::Plane> planes = bt::influence_planes(light);
+    const glm::dvec3 apex(light.position);
+    std::vector<glm::uvec3> kept;
+    kept.reserve(triangles.size());
+    for (const glm::uvec3& t : triangles) {
+        bool on_shared = false;
+        for (size_t k = 0; k < shared_sides.size() && !on_shared; ++k) {
+            if (!shared_sides[k]) {
+                continue;
+            }
+            on_shared = true;
+            for (const uint32_t corner : {t.x, t.y, t.z}) {
+                const glm::dvec3 p(positions[corner]);
+                const double tolerance = 1e-5 * (glm::length(p - apex) + glm::length(apex));
+                on_shared = on_shared && std::abs(planes[k].distance(p)) <= tolerance;
+            }
+        }
+        if (!on_shared) {
+            kept.push_back(t);
+        }
+    }
+    return kept;
+}
+
+}  // namespace
+
 void AnalyticRegionPass::upload_mesh(const std::vector<glm::vec3>& positions,
-                                     const std::vector<glm::uvec3>& triangles) {
-    faces_ = create_region_faces(positions, triangles);
+                                     const std::vector<glm::uvec3>& triangles,
+                                     const SpotLight& light,
+                                     const std::array<bool, 4>& shared_sides) {
+    const bool leave_out = light.cube_face && std::find(shared_sides.begin(), shared_sides.end(),
+                                                        true) != shared_sides.end();
+    faces_ = leave_out ? create_region_faces(
+                             positions, off_shared_sides(positions, triangles, light, shared_sides))
+                       : create_region_faces(positions, triangles);
     positions_ = positions;
     triangles_ = triangles;
     windings_eye_.reset();
@@ -113,16 +155,23 @@ SignedDrawScope::~SignedDrawScope() {
 }
 
 void AnalyticRegionPass::set_scene(const Scene& scene) {
-    if (closed_form_.set_scene(scene)) {
+    const bool remade = closed_form_.set_scene(scene);
+    if (remade || shell_ != scene.light.cube_face) {
+        shell_ = scene.light.cube_face;
+        // The faces' and the eye's G over a point light's shell (upload_mesh); the walk route
+        // draws no faces, and integrates over the face's own pyramid.
         std::vector<std::string> defines = closed_form_defines(scene);
+        if (shell_) {
+            defines.push_back("SL_POINT_SHELL 1");
+        }
+        eye_program_ =
+            gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
+                                {GL_FRAGMENT_SHADER, "analytic/shaders/regions_eye.frag"}},
+                               defines);
         defines.push_back("SL_FACE_CORNERS 1");  // z from faces_.corners
         program_ = gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/world_position.vert"},
                                        {GL_FRAGMENT_SHADER, "analytic/shaders/regions.frag"}},
                                       defines);
-        eye_program_ =
-            gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
-                                {GL_FRAGMENT_SHADER, "analytic/shaders/regions_eye.frag"}},
-                               closed_form_defines(scene));
         walk_program_ =
             gl::create_program({{GL_VERTEX_SHADER, "gl/shaders/fullscreen.vert"},
                                 {GL_FRAGMENT_SHADER, "analytic/shaders/regions_walk.frag"}},

@@ -4,6 +4,7 @@
 // additive blending into the float target (analytic/shaders/regions.frag). Used by `beamtree`,
 // `hybrid2` and `hybrid3`.
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -81,9 +82,15 @@ public:
                 const std::vector<glm::uvec3>& triangles);
     // The per-frame halves of upload(): new faces (fresh buffers, so the previous frame's stay
     // alive until the GPU is done with them), and the scene's medium table and edge program,
-    // remade only when the medium or the kind of cone edge differs from the last call's.
+    // remade only when the medium, the kind of cone edge or the light's kind differs from the last
+    // call's. For a face of a point light (SpotLight::cube_face), `light` and its
+    // `shared_sides` (bt::shared_sides) leave out the faces that lie on a shared side's plane:
+    // its neighbour leaves out the same, and the pairs they make would cancel, since the faces
+    // of a point light integrate over its whole shell (SL_POINT_SHELL in in_scattering.glsl)
+    // where a spot's integrate over its pyramid. The eye's winding number counts every face.
     void upload_mesh(const std::vector<glm::vec3>& positions,
-                     const std::vector<glm::uvec3>& triangles);
+                     const std::vector<glm::uvec3>& triangles, const SpotLight& light = {},
+                     const std::array<bool, 4>& shared_sides = {});
     void set_scene(const Scene& scene);
     // Adds ∫ e over the regions' part of every eye ray, up to the first surface. A ray that
     // starts inside a region has no front face to subtract G at its start (it lies behind the
@@ -110,8 +117,8 @@ public:
 private:
     double count(const Query& query) const;  // the last draw's result (0 without a mesh)
 
-    RegionFaces faces_;
-    std::vector<glm::vec3> positions_;  // the mesh, for the eye's winding number
+    RegionFaces faces_;                 // those drawn
+    std::vector<glm::vec3> positions_;  // the whole mesh, for the eye's winding number
     std::vector<glm::uvec3> triangles_;
     // The regions about the eye (the winding number rounded), for the eye it was taken at: taken
     // again only when the eye moves or the mesh is replaced.
@@ -123,6 +130,7 @@ private:
     mutable bool walked_ = false;  // the last draw was draw_walk (the queries count it)
     gl::VertexArray eye_vertex_array_;
     ClosedFormScene closed_form_;
+    bool shell_ = false;  // the programs integrate over a point light's shell (cube_face)
     Query fragments_;
     Query rasterized_;
 };

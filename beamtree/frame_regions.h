@@ -6,6 +6,7 @@
 // the regions and build the surfaces asked for. No GL: it runs on the pipelined frame loop's
 // worker thread (frame/frame_loop.h) while the GPU draws the previous frame.
 
+#include <array>
 #include <memory>
 #include <string>
 #include <utility>
@@ -50,13 +51,25 @@ struct RegionStageTimes {
     std::vector<std::pair<std::string, double>> named() const;
 };
 
+// A face of a point light (SpotLight::cube_face), per side of its pyramid (influence_planes'
+// order: right, left, up, down): true where no shadow can end on the side's plane, so that the
+// neighbouring face's lit region meets the plane in the same set as this face's: then the lit
+// faces the two put on the plane cancel in pairs, and the region pass may leave both out
+// (AnalyticRegionPass::upload_mesh). A shadow ends on the plane only along an edge that lies on
+// it (within 1e-4 of its distance from L) of a polygon the trees take (a volume's face, an exact
+// face) with no polygon on the plane's other side along the same edge (a room's corner, where
+// two walls meet on the plane, ends none). Every face finds the same answer for the plane it
+// shares: the test reads the whole scene. All false for any other light.
+std::array<bool, 4> shared_sides(const SpotLight& light, const std::vector<ObjectVolumes>& volumes);
+
 struct FrameRegions {
     std::shared_ptr<const BeamTree> tree;
     std::shared_ptr<const Regions> regions;  // with RegionRequest::pieces
     RegionMesh lit, uncertain;
     GpuTree gpu;
     RegionStageTimes ms;
-    ExactOccluders exact;  // [beamtree] occluders
+    ExactOccluders exact;                // [beamtree] occluders
+    std::array<bool, 4> shared_sides{};  // with RegionRequest::lit: shared_sides()
 };
 
 // Throws sl::Error as BeamTree's constructor and VolumeLibrary::build do.

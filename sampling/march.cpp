@@ -109,7 +109,7 @@ public:
         if (auto* regions = dynamic_cast<analytic::RegionFrameWork*>(work.get())) {
             const bt::FrameRegions& r = regions->regions;
             stages_ = r.ms;
-            analytic_.upload_mesh(r.lit.positions, r.lit.triangles);
+            analytic_.upload_mesh(r.lit.positions, r.lit.triangles, scene.light, r.shared_sides);
             lists_.upload(bt::RegionMesh{}, r.uncertain);
             tree_.upload(r.gpu);
             walk_ = regions->walk;

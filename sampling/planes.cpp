@@ -133,7 +133,8 @@ public:
             tree_ = r.tree;
             stages_ = r.ms;
             if (variant_ == PlanesVariant::hybrid2) {
-                analytic_.upload_mesh(r.lit.positions, r.lit.triangles);
+                analytic_.upload_mesh(r.lit.positions, r.lit.triangles, scene.light,
+                                      r.shared_sides);
             }
             lists_.upload(r.lit, r.uncertain);
             gpu_tree_.upload(r.gpu);

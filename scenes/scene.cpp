@@ -156,6 +156,7 @@ std::array<SpotLight, 6> PointLight::faces() const {
         face.intensity = intensity;
         face.falloff_degrees = 0.0f;
         face.shape = SpotShape::pyramid;
+        face.cube_face = true;
     }
     return faces;
 }

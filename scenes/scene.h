@@ -123,6 +123,9 @@ struct SpotLight {
     // plane) on, `intensity` is the irradiance, the shadow map orthographic; the cone angle is
     // unused (0) and the shape a pyramid (the box's sides are the shadow map's clip square).
     float half_width = 0.0f;
+    // One of a point light's six faces (PointLight::faces): its four sides are its neighbours'
+    // sides, and the cube shell about its position is what the six tile.
+    bool cube_face = false;
 
     bool operator==(const SpotLight&) const = default;
     bool parallel() const { return half_width > 0.0f; }

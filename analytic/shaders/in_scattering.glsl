@@ -315,12 +315,54 @@ vec3 in_scattering_antiderivative(vec3 origin, vec3 direction, vec2 span, float 
 }
 
 // The ray's cone interval and, for a smooth falloff, its inner cone's (half-angle cone -
-// falloff, where the factor is 1): `inner` is empty (x = y = outer.y) when there is none.
+// falloff, where the factor is 1): `inner` is empty (x = y = outer.y) when there is none. With
+// SL_POINT_SHELL (a face of a point light, whose edge is hard): the ray's at most two intervals in
+// the point light's whole shell, `outer` the nearer and `inner` the farther (shell_spans).
 struct LightSpans {
     vec2 outer, inner;
 };
 
+#ifdef SL_POINT_SHELL
+// The ray's interval (from 0 to t_max) inside the cube of half-size `half_size` about L, its
+// sides along the world's axes as a point light's faces are (PointLight::faces).
+vec2 cube_interval(vec3 w, vec3 direction, float half_size, float t_max) {
+    vec2 span = vec2(0.0, t_max);
+    for (int k = 0; k < 3; ++k) {
+        span = clip_linear(half_size - w[k], -direction[k], span);
+        span = clip_linear(half_size + w[k], direction[k], span);
+    }
+    return span;
+}
+
+// The ray's intervals between the point light's two cubes (of half-sizes near and far, the
+// face's own): what its six faces' pyramids tile. The faces of a point light integrate over the
+// whole shell, not their own pyramid, so that G is the same function in all six and the region
+// faces on the planes between two faces, which cancel in pairs, can be left out of both
+// (AnalyticRegionPass::upload_mesh): a closed region inside the pyramid integrates the same
+// with either.
+LightSpans shell_spans(vec3 origin, vec3 direction) {
+    vec3 w = origin - frame.light_position.xyz;
+    float near = frame.light_position.w, far = frame.light_direction.w;
+    vec2 outer = cube_interval(w, direction, far, 1e30);
+    vec2 inner = cube_interval(w, direction, near, 1e30);
+    LightSpans spans;
+    spans.outer = vec2(1.0, 0.0);
+    spans.inner = vec2(1.0, 0.0);
+    if (!(outer.y > outer.x)) return spans;
+    if (!(inner.y > inner.x)) {
+        spans.outer = outer;
+        return spans;
+    }
+    spans.outer = vec2(outer.x, min(outer.y, inner.x));
+    spans.inner = vec2(max(outer.x, inner.y), outer.y);
+    return spans;
+}
+#endif
+
 LightSpans light_spans(vec3 origin, vec3 direction) {
+#ifdef SL_POINT_SHELL
+    return shell_spans(origin, direction);
+#endif
     LightSpans spans;
     spans.outer = light_interval(origin, direction, 1e30);
     spans.inner = vec2(spans.outer.y);
@@ -366,6 +408,10 @@ vec3 shell_integral(vec3 origin, vec3 direction, vec2 span, vec2 shell, float z)
 // G(z) of the scene's light, the smooth falloff included: G(z1) - G(z0) = ∫ e c over [z0, z1].
 // A program made without SL_SMOOTH_CONE_EDGE integrates a hard edge whatever the uniforms say.
 vec3 in_scattering_integral(vec3 origin, vec3 direction, LightSpans spans, float z) {
+#ifdef SL_POINT_SHELL
+    return in_scattering_antiderivative(origin, direction, spans.outer, z) +
+           in_scattering_antiderivative(origin, direction, spans.inner, z);
+#endif
 #ifndef SL_SMOOTH_CONE_EDGE
     return in_scattering_antiderivative(origin, direction, spans.outer, z);
 #else
