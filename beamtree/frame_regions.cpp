@@ -43,19 +43,9 @@ public:
             return;  // in the plane: edge-on to the light, it shadows nothing
         }
         if (front && back) {  // across it: its segment on the plane, for both sides
-            std::vector<dvec3> points;
-            for (size_t i = 0; i < n; ++i) {
-                const dvec3& a = polygon.vertices[i];
-                const dvec3& b = polygon.vertices[i + 1 == n ? 0 : i + 1];
-                const double da = plane_.distance(a), db = plane_.distance(b);
-                if (on(a)) {
-                    points.push_back(a);
-                } else if ((da > 0.0) != (db > 0.0) && !on(b)) {
-                    points.push_back(a + da / (da - db) * (b - a));
-                }
-            }
-            if (points.size() >= 2) {
-                crossings_.push_back({points.front(), points.back()});
+            const std::vector<dvec3> cut = split(polygon, plane_, 0.0).cut;
+            if (cut.size() >= 2) {
+                crossings_.push_back({cut.front(), cut.back()});
             }
             return;
         }
